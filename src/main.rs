@@ -1,0 +1,3 @@
+//! The `tribosim` command line.
+
+fn main() {}
