@@ -1,0 +1,574 @@
+//! From JSON to a validated [`Scene`], with every problem located by path.
+//!
+//! Why the field-by-field retry: serde stops at the first error, and errors from deserialising
+//! a `serde_json::Value` carry no location at all (`serde_path_to_error` is not a dependency).
+//! So when the whole document fails, each section field is deserialised alone. Every section
+//! field has a default, so a one-field object deserialises exactly when that field is
+//! well-formed; its failure is reported at its dotted path with serde's own message ("invalid
+//! type: string \"5\", expected f64", "unknown field `lod_n`, expected one of `load_n`, ..."),
+//! which names the expected type and, for typos, the valid names. The well-formed fields are
+//! then deserialised and range-checked, so type and range problems come back together.
+
+use serde::Deserialize;
+use serde::de::DeserializeOwned;
+use serde_json::{Map, Value};
+
+use super::{
+    Ball, Corrosion, DEFAULT_ARCHARD_K, Disc, FieldError, Numerics, Scene, SceneErrors,
+    TestConditions, Wear, preset, validate,
+};
+
+/// The top-level fields of a scene, in the contract's order.
+const SECTIONS: [&str; 7] = [
+    "name",
+    "ball",
+    "disc",
+    "test",
+    "wear",
+    "corrosion",
+    "numerics",
+];
+
+/// Parses scene JSON text; malformed JSON is a single error with an empty path whose message
+/// carries serde_json's line and column.
+pub fn parse_scene_str(text: &str) -> Result<Scene, SceneErrors> {
+    let json: Value = serde_json::from_str(text)
+        .map_err(|e| SceneErrors(vec![FieldError::new("", format!("not valid JSON: {e}"))]))?;
+    parse_scene(&json)
+}
+
+/// Parses a scene: resolves `{"preset": ..., "overrides": ...}`, fills every default and
+/// validates, returning all problems at once. With a preset, paths start with `overrides.`,
+/// which is where the user's text is.
+pub fn parse_scene(json: &Value) -> Result<Scene, SceneErrors> {
+    let (document, prefix) = preset::resolve(json)?;
+    let mut errors = Vec::new();
+    if let Some(mut scene) = deserialize_located(&document, &mut errors) {
+        if scene.wear.archard_k.is_none() && scene.wear.archard_calibration.is_none() {
+            scene.wear.archard_k = Some(DEFAULT_ARCHARD_K);
+        }
+        errors.extend(validate::check(&scene));
+        if errors.is_empty() {
+            return Ok(scene);
+        }
+    }
+    if !prefix.is_empty() {
+        for error in &mut errors {
+            error.path = if error.path.is_empty() {
+                prefix.to_owned()
+            } else {
+                format!("{prefix}.{}", error.path)
+            };
+        }
+    }
+    Err(SceneErrors(errors))
+}
+
+/// Deserialises `document`; on failure records each ill-formed field and returns the scene
+/// built from the well-formed ones (or `None` if not even that is possible).
+fn deserialize_located(document: &Value, errors: &mut Vec<FieldError>) -> Option<Scene> {
+    let Some(top) = document.as_object() else {
+        errors.push(FieldError::new(
+            "",
+            format!("a scene must be a JSON object, got {document}"),
+        ));
+        return None;
+    };
+    let top = drop_non_objects(top, errors);
+    if errors.is_empty() {
+        if let Ok(scene) = Scene::deserialize(&Value::Object(top.clone())) {
+            return Some(scene);
+        }
+    }
+    let mut kept = Map::new();
+    for (key, value) in &top {
+        let field = match key.as_str() {
+            "name" => whole::<String>(key, value, errors),
+            "ball" => by_field::<Ball>(key, value, errors),
+            "disc" => by_field::<Disc>(key, value, errors),
+            "test" => by_field::<TestConditions>(key, value, errors),
+            "wear" => by_field::<Wear>(key, value, errors),
+            "corrosion" => by_field::<Option<Corrosion>>(key, value, errors),
+            "numerics" => by_field::<Numerics>(key, value, errors),
+            _ => {
+                let expected: Vec<String> = SECTIONS.iter().map(|s| format!("`{s}`")).collect();
+                errors.push(FieldError::new(
+                    key.as_str(),
+                    format!(
+                        "unknown field `{key}`, expected one of {}",
+                        expected.join(", ")
+                    ),
+                ));
+                None
+            }
+        };
+        if let Some(field) = field {
+            kept.insert(key.clone(), field);
+        }
+    }
+    match Scene::deserialize(&Value::Object(kept)) {
+        Ok(scene) => Some(scene),
+        Err(e) => {
+            errors.push(FieldError::new("", e.to_string()));
+            None
+        }
+    }
+}
+
+/// `top` without the sections (and `wear.archard_calibration`) that are not objects, each
+/// recorded as an error. Serde's derived structs also accept a JSON array of the fields in
+/// declaration order, so `"ball": [3]` would silently set the radius; the contract's shape is
+/// an object, and this keeps it so.
+fn drop_non_objects(top: &Map<String, Value>, errors: &mut Vec<FieldError>) -> Map<String, Value> {
+    let mut kept = top.clone();
+    for (key, value) in top {
+        let optional = key == "corrosion";
+        let is_section = SECTIONS.contains(&key.as_str()) && key != "name";
+        if is_section && !(value.is_object() || (optional && value.is_null())) {
+            errors.push(FieldError::new(
+                key.as_str(),
+                format!("must be an object of `{key}` fields, got {value}"),
+            ));
+            kept.remove(key);
+        }
+    }
+    if let Some(Value::Object(wear)) = kept.get_mut("wear") {
+        if let Some(calibration) = wear.get("archard_calibration") {
+            if !(calibration.is_object() || calibration.is_null()) {
+                errors.push(FieldError::new(
+                    "wear.archard_calibration",
+                    format!(
+                        "must be an object {{\"time_s\": ..., \"wear_volume_mm3\": ...}}, \
+                         got {calibration}"
+                    ),
+                ));
+                wear.remove("archard_calibration");
+            }
+        }
+    }
+    kept
+}
+
+/// `value` if it deserialises as a `T`, else an error at `path`.
+fn whole<T: DeserializeOwned>(
+    path: &str,
+    value: &Value,
+    errors: &mut Vec<FieldError>,
+) -> Option<Value> {
+    match T::deserialize(value) {
+        Ok(_) => Some(value.clone()),
+        Err(e) => {
+            errors.push(FieldError::new(path, e.to_string()));
+            None
+        }
+    }
+}
+
+/// The fields of the section object `value` that deserialise alone as a `T`; an error at
+/// `path.field` for each one that does not.
+fn by_field<T: DeserializeOwned>(
+    path: &str,
+    value: &Value,
+    errors: &mut Vec<FieldError>,
+) -> Option<Value> {
+    let Value::Object(object) = value else {
+        return whole::<T>(path, value, errors);
+    };
+    let mut kept = Map::new();
+    for (key, field) in object {
+        let alone = Value::Object(Map::from_iter([(key.clone(), field.clone())]));
+        match T::deserialize(&alone) {
+            Ok(_) => {
+                kept.insert(key.clone(), field.clone());
+            }
+            Err(e) => {
+                let field_path = format!("{path}.{key}");
+                let refined = if field_path == "disc.hardness_table" {
+                    table_errors(&field_path, field)
+                } else {
+                    Vec::new()
+                };
+                if refined.is_empty() {
+                    let hint = hint(&field_path).unwrap_or_default();
+                    errors.push(FieldError::new(field_path, format!("{e}{hint}")));
+                } else {
+                    errors.extend(refined);
+                }
+            }
+        }
+    }
+    Some(Value::Object(kept))
+}
+
+/// Element-level type errors in a hardness table, so a bad cell is named by its indices
+/// rather than the whole table. Empty when the problem is not in an element.
+fn table_errors(path: &str, value: &Value) -> Vec<FieldError> {
+    let Some(rows) = value.as_array() else {
+        return Vec::new();
+    };
+    let mut errors = Vec::new();
+    for (i, row) in rows.iter().enumerate() {
+        match row.as_array() {
+            Some(pair) if pair.len() == 2 => {
+                for (j, cell) in pair.iter().enumerate() {
+                    if !cell.is_number() {
+                        errors.push(FieldError::new(
+                            format!("{path}[{i}][{j}]"),
+                            format!("must be a number, got {cell}"),
+                        ));
+                    }
+                }
+            }
+            _ => errors.push(FieldError::new(
+                format!("{path}[{i}]"),
+                format!("must be a [cycles, hardness_mpa] pair, got {row}"),
+            )),
+        }
+    }
+    errors
+}
+
+/// The allowed range, for fields whose serde type error would not say it.
+fn hint(path: &str) -> Option<&'static str> {
+    match path {
+        "test.cycles" => Some("; must be a whole number in 1..=1000000"),
+        "numerics.grid" => Some("; must be \"auto\" or a whole number of cells in 8..=2048"),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{
+        AnodicArea, ArchardCalibration, CycleStep, DomainSize, GridSize, Switch, presets,
+    };
+    use super::*;
+    use serde_json::json;
+
+    /// The contract's example scene, verbatim.
+    const CONTRACT_EXAMPLE: &str = r#"{
+      "name": "316L vs alumina, 5 N, 60 rpm",
+      "ball": { "radius_mm": 3.0, "youngs_modulus_gpa": 300.0, "poisson_ratio": 0.21 },
+      "disc": {
+        "youngs_modulus_gpa": 205.0, "poisson_ratio": 0.28,
+        "hardness_mpa": 2473.0,
+        "hardness_table": [[10, 2551], [60, 2727], [300, 2854], [1800, 2933], [3600, 2953]],
+        "yield_factor": 2.8
+      },
+      "test": {
+        "load_n": 5.0, "track_radius_mm": 2.992, "speed_rpm": 60.0,
+        "friction_coefficient": 0.45, "cycles": 300
+      },
+      "wear": { "archard_k": 1.19e-4, "plasticity": "auto" },
+      "corrosion": {
+        "corrosion_potential_v": -0.10, "tafel_a_c_v": -3.31, "tafel_b_c_v_per_decade": 0.56,
+        "anodic_current_density_a_cm2": 0.01, "exposed_area_cm2": 2.56,
+        "anodic_area": "wear_track", "anodic_area_factor": 1.0,
+        "molar_mass_g_mol": 55.85, "valence": 2.0, "density_g_cm3": 7.9
+      },
+      "numerics": { "grid": "auto", "domain_um": "auto", "tolerance": 1e-8,
+                    "cycle_step": "auto", "coupling": "auto" }
+    }"#;
+
+    fn errors_of(json: &Value) -> Vec<FieldError> {
+        match parse_scene(json) {
+            Ok(scene) => panic!("expected errors, parsed {scene:?}"),
+            Err(SceneErrors(errors)) => errors,
+        }
+    }
+
+    fn paths(errors: &[FieldError]) -> Vec<&str> {
+        errors.iter().map(|e| e.path.as_str()).collect()
+    }
+
+    fn message_at<'a>(errors: &'a [FieldError], path: &str) -> &'a str {
+        errors.iter().find(|e| e.path == path).map_or_else(
+            || panic!("no error at {path}: {errors:?}"),
+            |e| e.message.as_str(),
+        )
+    }
+
+    #[test]
+    fn contract_example_is_the_preset() {
+        let parsed = parse_scene_str(CONTRACT_EXAMPLE).expect("the contract's example is valid");
+        let preset = presets()
+            .into_iter()
+            .find(|p| p.name == "dalmau2018-316l")
+            .expect("the paper's preset exists");
+        assert_eq!(parsed, preset.scene);
+    }
+
+    #[test]
+    fn empty_scene_takes_the_paper_defaults() {
+        let scene = parse_scene(&json!({})).expect("all fields are optional");
+        assert_eq!(scene.wear.archard_k, Some(DEFAULT_ARCHARD_K));
+        assert_eq!(scene.corrosion, None);
+        assert_eq!(scene.disc.hardness_table, None);
+        assert_eq!(scene.test.cycles, 300);
+        // Same literals as the defaults, so equality is exact.
+        assert_eq!(scene, Scene::default());
+    }
+
+    #[test]
+    fn echo_fills_every_default_and_parses_back_to_the_same_scene() {
+        let scene =
+            parse_scene(&json!({"test": {"load_n": 10}, "corrosion": {}})).expect("valid scene");
+        let echo = serde_json::to_value(&scene).expect("scenes serialise");
+        assert_eq!(echo["wear"]["archard_k"], json!(1.19e-4));
+        assert_eq!(echo["numerics"]["grid"], json!("auto"));
+        assert_eq!(echo["numerics"]["cycle_step"], json!("auto"));
+        assert_eq!(echo["corrosion"]["anodic_area"], json!("wear_track"));
+        assert_eq!(echo["test"]["load_n"], json!(10.0));
+        assert_eq!(parse_scene(&echo), Ok(scene));
+    }
+
+    #[test]
+    fn top_level_keys_match_the_sections() {
+        let full = presets().remove(0).scene;
+        let echo = serde_json::to_value(&full).expect("scenes serialise");
+        let keys: Vec<&str> = echo
+            .as_object()
+            .expect("a scene serialises to an object")
+            .keys()
+            .map(String::as_str)
+            .collect();
+        let mut sections = SECTIONS.to_vec();
+        sections.sort_unstable();
+        let mut keys = keys;
+        keys.sort_unstable();
+        assert_eq!(keys, sections);
+    }
+
+    #[test]
+    fn auto_or_number_settings_round_trip() {
+        let scene = parse_scene(&json!({"numerics": {
+            "grid": 256, "domain_um": 256.0, "cycle_step": 1, "coupling": "off"
+        }}))
+        .expect("valid numerics");
+        assert_eq!(scene.numerics.grid, GridSize::Cells(256));
+        assert_eq!(scene.numerics.domain_um, DomainSize::Micrometres(256.0));
+        assert_eq!(scene.numerics.cycle_step, CycleStep::EveryCycle);
+        assert_eq!(scene.numerics.coupling, Switch::Off);
+        let echo = serde_json::to_value(&scene.numerics).expect("numerics serialise");
+        assert_eq!(echo["grid"], json!(256));
+        assert_eq!(echo["domain_um"], json!(256.0));
+        assert_eq!(echo["cycle_step"], json!(1));
+    }
+
+    #[test]
+    fn typo_is_named_with_the_valid_names() {
+        let errors = errors_of(&json!({"test": {"lod_n": 5}, "wears": {}}));
+        assert_eq!(paths(&errors), ["test.lod_n", "wears"]);
+        assert!(message_at(&errors, "test.lod_n").contains("`load_n`"));
+        assert!(message_at(&errors, "wears").contains("`wear`"));
+    }
+
+    #[test]
+    fn every_problem_is_reported_at_once() {
+        let errors = errors_of(&json!({
+            "ball": {"poisson_ratio": 0.5},
+            "test": {"load_n": -5, "speed_rpm": "fast", "cycles": 0},
+            "numerics": {"grid": 4096, "cycle_step": 2, "tolerance": 0.1},
+            "corrosion": {"valence": 0}
+        }));
+        let mut got = paths(&errors);
+        got.sort_unstable();
+        assert_eq!(
+            got,
+            [
+                "ball.poisson_ratio",
+                "corrosion.valence",
+                "numerics.cycle_step",
+                "numerics.grid",
+                "numerics.tolerance",
+                "test.cycles",
+                "test.load_n",
+                "test.speed_rpm",
+            ]
+        );
+        assert_eq!(
+            message_at(&errors, "test.load_n"),
+            "must be > 0 N and finite, got -5"
+        );
+        assert!(message_at(&errors, "test.speed_rpm").contains("expected f64"));
+        assert!(message_at(&errors, "numerics.grid").contains("8..=2048"));
+        assert!(message_at(&errors, "numerics.cycle_step").contains("fixed strides"));
+        assert!(message_at(&errors, "ball.poisson_ratio").contains("(-1, 0.5)"));
+    }
+
+    #[test]
+    fn integer_fields_name_their_range_on_type_errors() {
+        let errors = errors_of(&json!({"test": {"cycles": 2.5}, "numerics": {"grid": "big"}}));
+        assert!(message_at(&errors, "test.cycles").contains("1..=1000000"));
+        assert!(message_at(&errors, "numerics.grid").contains("\"auto\""));
+    }
+
+    #[test]
+    fn hardness_table_problems_carry_indices() {
+        let errors = errors_of(&json!({"disc": {
+            "hardness_table": [[10, 2551], [5, 2600], [20, -1], [0.5, 2700]]
+        }}));
+        assert_eq!(
+            paths(&errors),
+            [
+                "disc.hardness_table[1][0]",
+                "disc.hardness_table[2][1]",
+                "disc.hardness_table[3][0]",
+            ]
+        );
+        let errors = errors_of(&json!({"disc": {"hardness_table": [["a", 1], [2, 3, 4]]}}));
+        assert_eq!(
+            paths(&errors),
+            ["disc.hardness_table[0][0]", "disc.hardness_table[1]"]
+        );
+    }
+
+    #[test]
+    fn hardness_table_must_determine_the_fit() {
+        let errors = errors_of(&json!({"disc": {"hardness_table": []}}));
+        assert_eq!(paths(&errors), ["disc.hardness_table"]);
+        let errors = errors_of(&json!({"disc": {"hardness_table": [[1, 2500]]}}));
+        assert!(message_at(&errors, "disc.hardness_table").contains("above 1"));
+    }
+
+    #[test]
+    fn softening_law_must_stay_positive_over_the_run() {
+        // H = 2473 - 600 ln n passes zero at n = e^(2473/600), about 61.6 cycles.
+        let table = json!([[10, 2473.0 - 600.0 * 10f64.ln()]]);
+        let short = json!({"disc": {"hardness_table": table}, "test": {"cycles": 60}});
+        assert!(parse_scene(&short).is_ok());
+        let long = json!({"disc": {"hardness_table": table}, "test": {"cycles": 62}});
+        assert_eq!(paths(&errors_of(&long)), ["disc.hardness_table"]);
+    }
+
+    #[test]
+    fn archard_k_and_calibration_are_exclusive() {
+        let calibration = json!({"time_s": 3600, "wear_volume_mm3": 11.72e-3});
+        let errors = errors_of(&json!({"wear": {
+            "archard_k": 1e-4, "archard_calibration": calibration
+        }}));
+        let message = message_at(&errors, "wear");
+        assert!(message.contains("archard_k") && message.contains("archard_calibration"));
+        // Alone, a calibration is fine: a missing `archard_k` is "not given", not the default.
+        let scene = parse_scene(&json!({"wear": {"archard_calibration": calibration}}))
+            .expect("a calibration without k is valid");
+        assert_eq!(scene.wear.archard_k, None);
+    }
+
+    #[test]
+    fn calibration_derives_k_from_the_3600_s_point() {
+        let scene = parse_scene(&json!({
+            "preset": "dalmau2018-316l",
+            "overrides": {"wear": {
+                "archard_k": null,
+                "archard_calibration": {"time_s": 3600, "wear_volume_mm3": 11.72e-3}
+            }}
+        }))
+        .expect("a calibration replaces k");
+        assert_eq!(
+            scene.wear.archard_calibration,
+            Some(ArchardCalibration {
+                time_s: 3600.0,
+                wear_volume_mm3: 11.72e-3
+            })
+        );
+        let k = scene.archard_k().expect("the paper table fits");
+        // By hand: H(3600) = 2454.99 + 63.383 ln 3600 = 2974.0 MPa (fit of the paper table),
+        // s = 3600 s x 2 pi x 2.992 mm/s = 67.677 m, k = 11.72e-12 x 2974.0e6 / (5 x 67.677)
+        // = 1.0300e-4. Carried to 5 digits: 1e-4 relative.
+        assert!(((k - 1.0300e-4) / 1.0300e-4).abs() < 1e-4, "k = {k}");
+    }
+
+    #[test]
+    fn zero_k_is_a_run_without_wear_but_k_above_one_is_refused() {
+        let scene = parse_scene(&json!({"wear": {"archard_k": 0.0}})).expect("k = 0 is valid");
+        assert_eq!(scene.wear.archard_k, Some(0.0));
+        let errors = errors_of(&json!({"wear": {"archard_k": 1.5}}));
+        assert!(message_at(&errors, "wear.archard_k").contains("[0, 1]"));
+    }
+
+    #[test]
+    fn preset_overrides_merge_and_null_removes_a_section() {
+        let scene = parse_scene(&json!({
+            "preset": "dalmau2018-316l",
+            "overrides": {"test": {"load_n": 10}, "corrosion": null}
+        }))
+        .expect("valid overrides");
+        assert_eq!(scene.test.load_n.to_bits(), 10f64.to_bits());
+        assert_eq!(scene.test.speed_rpm.to_bits(), 60f64.to_bits());
+        assert_eq!(scene.corrosion, None);
+        assert!(scene.disc.hardness_table.is_some());
+
+        let kept = parse_scene(&json!({
+            "preset": "dalmau2018-316l",
+            "overrides": {"corrosion": {"anodic_area": "real_contact"}}
+        }))
+        .expect("valid overrides");
+        let corrosion = kept.corrosion.expect("the preset has corrosion");
+        assert_eq!(corrosion.anodic_area, AnodicArea::RealContact);
+        assert_eq!(corrosion.exposed_area_cm2.to_bits(), 2.56f64.to_bits());
+    }
+
+    #[test]
+    fn preset_errors_point_into_the_overrides() {
+        let errors = errors_of(&json!({
+            "preset": "dalmau2018-316l",
+            "overrides": {"test": {"load_n": 0}}
+        }));
+        assert_eq!(paths(&errors), ["overrides.test.load_n"]);
+
+        let errors = errors_of(&json!({"preset": "dalmau2019", "ball": {}}));
+        assert_eq!(paths(&errors), ["ball", "preset"]);
+        assert!(message_at(&errors, "preset").contains("`dalmau2018-316l`"));
+    }
+
+    #[test]
+    fn sections_must_be_objects_not_field_arrays() {
+        let errors = errors_of(&json!({
+            "ball": [3.0],
+            "corrosion": [1],
+            "name": 5,
+            "wear": {"archard_calibration": [3600, 0.01], "archard_k": null}
+        }));
+        assert_eq!(
+            paths(&errors),
+            ["ball", "corrosion", "wear.archard_calibration", "name"]
+        );
+        assert!(parse_scene(&json!({"corrosion": null})).is_ok());
+    }
+
+    #[test]
+    fn malformed_json_and_non_objects_are_single_errors() {
+        let Err(SceneErrors(errors)) = parse_scene_str("{\"test\": ") else {
+            panic!("truncated JSON parsed");
+        };
+        assert_eq!(paths(&errors), [""]);
+        assert!(errors[0].message.contains("line 1"));
+        assert_eq!(paths(&errors_of(&json!([1, 2]))), [""]);
+    }
+
+    #[test]
+    fn overflowing_numbers_are_rejected_by_the_json_parser() {
+        // serde_json refuses 1e400 rather than producing infinity, so no inf reaches a scene
+        // from text; the finiteness checks guard scenes built in Rust.
+        let Err(SceneErrors(errors)) = parse_scene_str(r#"{"test": {"load_n": 1e400}}"#) else {
+            panic!("1e400 parsed");
+        };
+        assert!(errors[0].message.contains("out of range"), "{errors:?}");
+    }
+
+    #[test]
+    fn display_lists_every_problem() {
+        let errors = SceneErrors(vec![
+            FieldError::new("test.load_n", "must be > 0 N and finite, got -5"),
+            FieldError::new("", "a scene must be a JSON object, got 3"),
+        ]);
+        assert_eq!(
+            errors.to_string(),
+            "invalid scene, 2 problems:\n  test.load_n: must be > 0 N and finite, got -5\n  \
+             a scene must be a JSON object, got 3"
+        );
+        let json = serde_json::to_value(&errors).expect("errors serialise");
+        assert_eq!(json[0]["path"], json!("test.load_n"));
+    }
+}

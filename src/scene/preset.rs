@@ -1,0 +1,154 @@
+//! Built-in scenes, and the `{"preset": ..., "overrides": {...}}` form that starts from one.
+
+use serde::Serialize;
+use serde_json::{Map, Value};
+
+use super::{Corrosion, FieldError, Scene, SceneErrors};
+
+/// Name of the paper's scene: AISI 316L against alumina, 5 N, 60 rpm, 300 cycles.
+pub const DALMAU2018_316L: &str = "dalmau2018-316l";
+
+/// A named built-in scene.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Preset {
+    /// What `"preset"` refers to.
+    pub name: &'static str,
+    /// One line on where the scene comes from.
+    pub description: &'static str,
+    /// The full scene.
+    pub scene: Scene,
+}
+
+/// Every built-in scene, for `tribosim presets` and `GET /presets`.
+pub fn presets() -> Vec<Preset> {
+    vec![Preset {
+        name: DALMAU2018_316L,
+        description: "Dalmau et al., Wear 394-395 (2018): AISI 316L against an alumina ball \
+                      in 3% NaCl, Tables 2 and 3",
+        scene: dalmau2018_316l(),
+    }]
+}
+
+/// The contract's example scene: the defaults plus the measured hardness table and the
+/// electrochemistry, which a bare scene leaves out.
+fn dalmau2018_316l() -> Scene {
+    let mut scene = Scene {
+        name: "316L vs alumina, 5 N, 60 rpm".to_owned(),
+        corrosion: Some(Corrosion::default()),
+        ..Scene::default()
+    };
+    scene.disc.hardness_table = Some(vec![
+        (10.0, 2551.0),
+        (60.0, 2727.0),
+        (300.0, 2854.0),
+        (1800.0, 2933.0),
+        (3600.0, 2953.0),
+    ]);
+    scene
+}
+
+/// The document to parse: `json` itself, or a preset's scene with the overrides merged in.
+/// The second value is the path prefix that locates errors in the user's document.
+pub(super) fn resolve(json: &Value) -> Result<(Value, &'static str), SceneErrors> {
+    let Some(object) = json.as_object().filter(|o| o.contains_key("preset")) else {
+        return Ok((json.clone(), ""));
+    };
+    let mut errors: Vec<FieldError> = object
+        .keys()
+        .filter(|key| !matches!(key.as_str(), "preset" | "overrides"))
+        .map(|key| {
+            FieldError::new(
+                key.as_str(),
+                "not allowed next to `preset`; put changes to the preset under `overrides`",
+            )
+        })
+        .collect();
+    let known: Vec<Preset> = presets();
+    let names = || {
+        known
+            .iter()
+            .map(|p| format!("`{}`", p.name))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let preset = match &object["preset"] {
+        Value::String(name) => {
+            let found = known.iter().find(|p| p.name == name);
+            if found.is_none() {
+                errors.push(FieldError::new(
+                    "preset",
+                    format!("unknown preset `{name}`; known presets: {}", names()),
+                ));
+            }
+            found
+        }
+        other => {
+            errors.push(FieldError::new(
+                "preset",
+                format!("must be a preset name ({}), got {other}", names()),
+            ));
+            None
+        }
+    };
+    let overrides = match object.get("overrides") {
+        None | Some(Value::Null) => Some(Map::new()),
+        Some(Value::Object(map)) => Some(map.clone()),
+        Some(other) => {
+            errors.push(FieldError::new(
+                "overrides",
+                format!("must be an object of scene fields, got {other}"),
+            ));
+            None
+        }
+    };
+    match (preset, overrides) {
+        (Some(preset), Some(overrides)) if errors.is_empty() => {
+            let mut document = serde_json::to_value(&preset.scene).map_err(|e| {
+                SceneErrors(vec![FieldError::new(
+                    "preset",
+                    format!("internal error serialising the preset: {e}"),
+                )])
+            })?;
+            merge(&mut document, &Value::Object(overrides));
+            Ok((document, "overrides"))
+        }
+        _ => Err(SceneErrors(errors)),
+    }
+}
+
+/// Deep merge: objects merge key by key; anything else (including `null`, which removes an
+/// optional section such as `corrosion`) replaces.
+fn merge(base: &mut Value, patch: &Value) {
+    match (base, patch) {
+        (Value::Object(base), Value::Object(patch)) => {
+            for (key, value) in patch {
+                match base.get_mut(key) {
+                    Some(slot) => merge(slot, value),
+                    None => {
+                        base.insert(key.clone(), value.clone());
+                    }
+                }
+            }
+        }
+        (slot, patch) => *slot = patch.clone(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    #[test]
+    fn merge_is_deep_for_objects_and_replaces_everything_else() {
+        let mut base = json!({"a": {"x": 1, "y": [1, 2]}, "b": 2, "c": {"z": 3}});
+        merge(
+            &mut base,
+            &json!({"a": {"y": [9], "w": 4}, "b": {"new": true}, "c": null}),
+        );
+        assert_eq!(
+            base,
+            json!({"a": {"x": 1, "y": [9], "w": 4}, "b": {"new": true}, "c": null})
+        );
+    }
+}
