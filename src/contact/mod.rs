@@ -1,1 +1,28 @@
 //! The contact core: influence coefficients, the DC-FFT operator and the bounded solver.
+//!
+//! The pieces are kept apart as in Tamaas and ContactMechanics: [`Grid`] and
+//! [`ElasticPair`] describe the problem, [`Kernel`] holds the influence coefficients,
+//! an [`Operator`] applies them ([`DcFft`] fast, [`DenseOperator`] by direct summation),
+//! and the solver works on any operator.
+
+pub mod check;
+pub mod coupled;
+mod error;
+mod fft;
+mod grid;
+mod hertz;
+pub mod influence;
+mod material;
+mod operator;
+pub mod solver;
+
+pub use check::{Verification, verify};
+pub use coupled::solve_coupled;
+pub use error::ContactError;
+pub use fft::DcFft;
+pub use grid::Grid;
+pub use hertz::Hertz;
+pub use influence::Kernel;
+pub use material::{ElasticPair, Material};
+pub use operator::{DenseOperator, Operator, SumOperator};
+pub use solver::{ContactProblem, ContactSolution, SolverOptions, solve};

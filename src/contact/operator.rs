@@ -1,0 +1,87 @@
+//! The linear map from cell pressures to surface displacements. The solver only needs
+//! `apply`, so it runs unchanged on the fast [`super::DcFft`], on the [`DenseOperator`]
+//! reference, or on a [`SumOperator`] of both kernels.
+
+use super::Kernel;
+
+/// A linear operator on fields over an `nx` x `ny` grid (row-major, x fastest).
+pub trait Operator {
+    /// Cells along x and y.
+    fn shape(&self) -> (usize, usize);
+
+    /// `output = K input`. Takes `&mut self` so implementations keep their scratch buffers
+    /// and allocate nothing per call.
+    fn apply(&mut self, input: &[f64], output: &mut [f64]);
+}
+
+/// Direct summation `u_I = sum_J K(I - J) p_J`, O(N^4): the reference the FFT operator is
+/// tested against, and fast enough for grids of a few thousand cells.
+#[derive(Debug, Clone)]
+pub struct DenseOperator {
+    kernel: Kernel,
+}
+
+impl DenseOperator {
+    /// The direct-summation operator of `kernel`.
+    pub fn new(kernel: Kernel) -> Self {
+        Self { kernel }
+    }
+}
+
+impl Operator for DenseOperator {
+    fn shape(&self) -> (usize, usize) {
+        self.kernel.shape()
+    }
+
+    fn apply(&mut self, input: &[f64], output: &mut [f64]) {
+        let (nx, ny) = self.shape();
+        for (i, out) in output.iter_mut().enumerate() {
+            let (ix, iy) = ((i % nx) as isize, (i / nx) as isize);
+            let mut sum = 0.0;
+            for (j, &p) in input.iter().enumerate() {
+                if p != 0.0 {
+                    let (jx, jy) = ((j % nx) as isize, (j / nx) as isize);
+                    sum += self.kernel.value(ix - jx, iy - jy) * p;
+                }
+            }
+            *out = sum;
+        }
+        debug_assert_eq!(output.len(), nx * ny);
+    }
+}
+
+/// `A + B`: the normal and the coupling operators together, e.g. for checking a coupled
+/// solution against the full (non-symmetric) operator.
+#[derive(Debug)]
+pub struct SumOperator<A, B> {
+    first: A,
+    second: B,
+    scratch: Vec<f64>,
+}
+
+impl<A: Operator, B: Operator> SumOperator<A, B> {
+    /// The sum of two operators of the same shape.
+    pub fn new(first: A, second: B) -> Self {
+        assert_eq!(first.shape(), second.shape(), "operator shapes differ");
+        let (nx, ny) = first.shape();
+        Self {
+            first,
+            second,
+            scratch: vec![0.0; nx * ny],
+        }
+    }
+}
+
+impl<A: Operator, B: Operator> Operator for SumOperator<A, B> {
+    fn shape(&self) -> (usize, usize) {
+        self.first.shape()
+    }
+
+    fn apply(&mut self, input: &[f64], output: &mut [f64]) {
+        self.first.apply(input, output);
+        self.second.apply(input, &mut self.scratch);
+        for (o, s) in output.iter_mut().zip(&self.scratch) {
+            *o += s;
+        }
+    }
+}
