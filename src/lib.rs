@@ -8,3 +8,4 @@ pub mod contact;
 pub mod corrosion;
 pub mod hardness;
 pub mod scene;
+pub mod simulation;

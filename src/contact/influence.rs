@@ -79,17 +79,38 @@ pub struct Kernel {
 impl Kernel {
     /// Evaluates `scale * corner_sum(F)` for every offset. Neighbouring offsets share
     /// corners, so `F` is evaluated once per corner of the `2nx x 2ny` corner lattice
-    /// (4x fewer transcendental calls than four corners per offset).
-    fn build(grid: &Grid, antiderivative: impl Fn(f64, f64) -> f64, scale: f64) -> Self {
+    /// (4x fewer transcendental calls than four corners per offset), and only on the
+    /// quadrant `x, y > 0`: the lattice is symmetric about both axes and `F` has the
+    /// parities `x_parity`, `y_parity` (+1 even, -1 odd), another 4x.
+    fn build(
+        grid: &Grid,
+        antiderivative: impl Fn(f64, f64) -> f64,
+        (x_parity, y_parity): (f64, f64),
+        scale: f64,
+    ) -> Self {
         let (nx, ny) = (grid.nx, grid.ny);
         let (cx, cy) = (2 * nx, 2 * ny);
-        // Corner (k, l) sits at ((k - nx + 1/2) dx, (l - ny + 1/2) dy) relative to the
-        // observation point's offset, i.e. at x +- a for the neighbouring offsets.
+        // Corner (k, l) sits at ((k - nx + 1/2) dx, (l - ny + 1/2) dy): x + a and x - a of
+        // the neighbouring offsets. Mirror index and sign for the quadrant lookup:
+        let mirror = |k: usize, n: usize, parity: f64| {
+            if k >= n {
+                (k - n, 1.0)
+            } else {
+                (n - 1 - k, parity)
+            }
+        };
+        let mut quadrant = Vec::with_capacity(nx * ny);
+        for l in 0..ny {
+            let y = (l as f64 + 0.5) * grid.dy;
+            quadrant.extend((0..nx).map(|k| antiderivative((k as f64 + 0.5) * grid.dx, y)));
+        }
         let mut corners = Vec::with_capacity(cx * cy);
         for l in 0..cy {
-            let y = (l as f64 - ny as f64 + 0.5) * grid.dy;
-            corners
-                .extend((0..cx).map(|k| antiderivative((k as f64 - nx as f64 + 0.5) * grid.dx, y)));
+            let (ql, sy) = mirror(l, ny, y_parity);
+            corners.extend((0..cx).map(|k| {
+                let (qk, sx) = mirror(k, nx, x_parity);
+                sx * sy * quadrant[ql * nx + qk]
+            }));
         }
         let at = |k: usize, l: usize| corners[l * cx + k];
         let mut values = Vec::with_capacity((cx - 1) * (cy - 1));
@@ -106,7 +127,7 @@ impl Kernel {
     /// The normal (Boussinesq) kernel: `I_n / (pi E*)`, metres per pascal.
     pub fn normal(grid: &Grid, pair: &ElasticPair) -> Self {
         let scale = 1.0 / (std::f64::consts::PI * pair.reduced_modulus_pa);
-        Self::build(grid, normal_antiderivative, scale)
+        Self::build(grid, normal_antiderivative, (-1.0, -1.0), scale)
     }
 
     /// The friction coupling kernel for `q_x = mu p`: `(1/2) delta_nu mu I_c / (2 pi G*)`,
@@ -114,7 +135,7 @@ impl Kernel {
     pub fn coupling(grid: &Grid, pair: &ElasticPair, friction_coefficient: f64) -> Self {
         let scale = 0.5 * pair.delta_nu * friction_coefficient
             / (2.0 * std::f64::consts::PI * pair.reduced_shear_modulus_pa);
-        Self::build(grid, coupling_antiderivative, scale)
+        Self::build(grid, coupling_antiderivative, (1.0, -1.0), scale)
     }
 
     /// Cells along x and y of the grid this kernel was built for.

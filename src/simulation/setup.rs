@@ -1,0 +1,347 @@
+//! From a scene to the numerical problem: materials, grid and domain, the hardness law, and
+//! the decisions of what to model, each recorded with its reason.
+
+use crate::contact::{
+    ContactError, ContactProblem, ContactSolution, DcFft, ElasticPair, Grid, Hertz, Kernel,
+    Material, SolverOptions, solve, solve_coupled,
+};
+use crate::hardness::HardnessLaw;
+use crate::scene::{GridSize, Scene, Switch};
+
+use super::{ModelChoice, SimulationError};
+
+/// Auto domain side in contact radii: 5.8 a gives the paper's 0.256 mm for its scene
+/// (a = 44.2 um), a margin of 1.9 a around the first contact.
+pub const DOMAIN_PER_CONTACT_RADIUS: f64 = 5.8;
+
+/// Auto cell density: the paper's 1 um cells across its 44.2 um contact radius. At this
+/// density the Hertz errors are -1.1e-4 (peak pressure), +6.4e-3 (area) and -2.3e-5
+/// (approach): `tribosim bench contact`, N = 256.
+pub const CELLS_PER_CONTACT_RADIUS: f64 = 44.0;
+
+/// The coupling term changes the pressures by at least 1.2 |mu delta-nu| relative to p0
+/// (measured on the paper's Hertz case: 1.21 to 1.26 at N = 64, 1.74 to 1.81 at N = 128, for
+/// mu from 0.01 to 1). Below `tolerance / COUPLING_SENSITIVITY` it cannot matter.
+pub const COUPLING_SENSITIVITY: f64 = 1.2;
+
+/// A scene turned into numbers (SI) and modelling decisions.
+#[derive(Debug, Clone)]
+pub struct Setup {
+    /// The validated scene, defaults filled in.
+    pub scene: Scene,
+    /// Combined elastic constants.
+    pub pair: ElasticPair,
+    /// The first cycle's grid.
+    pub grid: Grid,
+    /// Hertz's solution for the unworn ball, the yardstick for sizing.
+    pub hertz: Hertz,
+    /// Disc hardness against cycles.
+    pub hardness: HardnessLaw,
+    /// Archard's coefficient (given, or derived from a calibration point).
+    pub archard_k: f64,
+    /// Whether pressures are capped at Y (eq. 12).
+    pub plasticity: bool,
+    /// Whether the friction coupling term is modelled (eq. 7).
+    pub coupling: bool,
+    /// Contact solver settings.
+    pub options: SolverOptions,
+    /// The decisions, for the result's `models`.
+    pub models: Vec<ModelChoice>,
+}
+
+fn choice(name: &str, active: bool, reason: String) -> ModelChoice {
+    ModelChoice {
+        name: name.to_owned(),
+        active,
+        reason,
+    }
+}
+
+/// Smallest `2^i 3^j >= n`: sizes rustfft transforms fastest.
+fn fft_friendly(n: usize) -> usize {
+    let mut best = usize::MAX;
+    let mut three = 1;
+    while three < 2 * n {
+        let mut size = three;
+        while size < n {
+            size *= 2;
+        }
+        best = best.min(size);
+        three *= 3;
+    }
+    best
+}
+
+impl Setup {
+    /// Checks the scene and makes every decision. Fails with the scene's field errors.
+    pub fn new(scene: &Scene) -> Result<Self, SimulationError> {
+        scene.validate()?;
+        let ball = Material::new(
+            scene.ball.youngs_modulus_pa(),
+            scene.ball.poisson_ratio,
+            "ball",
+        )
+        .map_err(|e| SimulationError::Contact {
+            cycle: 0,
+            source: e,
+        })?;
+        let disc = Material::new(
+            scene.disc.youngs_modulus_pa(),
+            scene.disc.poisson_ratio,
+            "disc",
+        )
+        .map_err(|e| SimulationError::Contact {
+            cycle: 0,
+            source: e,
+        })?;
+        let pair = ElasticPair::new(ball, disc);
+        let hardness = scene.hardness_law()?;
+        let archard_k = scene.archard_k()?;
+        let hertz = Hertz {
+            radius_m: scene.ball_radius_m(),
+            load_n: scene.load_n(),
+            reduced_modulus_pa: pair.reduced_modulus_pa,
+        };
+        let options = SolverOptions {
+            tolerance: scene.numerics.tolerance,
+            ..SolverOptions::default()
+        };
+        let mut models = Vec::new();
+
+        // Plasticity: pressures are highest on the unworn surface, so Hertz's p0 against the
+        // lowest yield pressure of the run decides whether the cap can ever act.
+        let factor = scene.disc.yield_factor;
+        let cycles = scene.test.cycles as f64;
+        let lowest_yield = (hardness.hardness_pa(1.0).min(hardness.hardness_pa(cycles))) / factor;
+        let p0 = hertz.peak_pressure_pa();
+        let reach = format!(
+            "p0 {:.0} MPa {} lowest Y {:.0} MPa (H / {factor})",
+            p0 / 1e6,
+            if p0 >= lowest_yield { ">=" } else { "<" },
+            lowest_yield / 1e6
+        );
+        let plasticity = match scene.wear.plasticity {
+            Switch::On => {
+                models.push(choice(
+                    "plasticity",
+                    true,
+                    format!("on by request; {reach}"),
+                ));
+                true
+            }
+            Switch::Off => {
+                models.push(choice(
+                    "plasticity",
+                    false,
+                    format!("off by request; {reach}"),
+                ));
+                false
+            }
+            Switch::Auto => {
+                let active = p0 >= lowest_yield;
+                models.push(choice("plasticity", active, reach));
+                active
+            }
+        };
+
+        let mu = scene.test.friction_coefficient;
+        let strength = (mu * pair.delta_nu).abs();
+        let measured = format!(
+            "|mu delta-nu| = {strength:.3e}; it moves pressures by >= {COUPLING_SENSITIVITY} times that, against tolerance {:.0e}",
+            options.tolerance
+        );
+        let coupling = match scene.numerics.coupling {
+            Switch::On => {
+                models.push(choice(
+                    "coupling",
+                    true,
+                    format!("on by request; {measured}"),
+                ));
+                true
+            }
+            Switch::Off => {
+                models.push(choice(
+                    "coupling",
+                    false,
+                    format!("off by request; {measured}"),
+                ));
+                false
+            }
+            Switch::Auto => {
+                let active = COUPLING_SENSITIVITY * strength >= options.tolerance;
+                models.push(choice("coupling", active, measured));
+                active
+            }
+        };
+
+        let radius = if plasticity {
+            let punch = (scene.load_n() / (std::f64::consts::PI * lowest_yield)).sqrt();
+            hertz.contact_radius_m().max(punch)
+        } else {
+            hertz.contact_radius_m()
+        };
+        let domain = scene
+            .numerics
+            .domain_m()
+            .unwrap_or(DOMAIN_PER_CONTACT_RADIUS * radius);
+        let (cells, how) = match scene.numerics.grid {
+            GridSize::Cells(n) => (n, "as requested".to_owned()),
+            GridSize::Auto => {
+                let wanted = (domain / (radius / CELLS_PER_CONTACT_RADIUS)).ceil() as usize;
+                let n = fft_friendly(wanted).min(Grid::MAX_CELLS_PER_SIDE);
+                (
+                    n,
+                    format!("auto: {CELLS_PER_CONTACT_RADIUS} cells per contact radius"),
+                )
+            }
+        };
+        let grid = Grid::square(cells, domain).map_err(|e| SimulationError::Contact {
+            cycle: 0,
+            source: e,
+        })?;
+        models.push(choice(
+            "grid",
+            true,
+            format!(
+                "{cells} x {cells} cells of {:.3} um over {:.1} um ({how}); contact radius {:.1} um",
+                grid.dx * 1e6,
+                domain * 1e6,
+                radius * 1e6
+            ),
+        ));
+        models.push(choice(
+            "work_hardening",
+            matches!(hardness, HardnessLaw::Logarithmic { .. }),
+            match hardness {
+                HardnessLaw::Logarithmic { a_pa, b_pa } => format!(
+                    "H = {:.1} + {:.2} ln n MPa, fitted to the table and the bulk value{}",
+                    a_pa / 1e6,
+                    b_pa / 1e6,
+                    if hardness.is_decreasing() {
+                        " (decreasing: softening)"
+                    } else {
+                        ""
+                    }
+                ),
+                HardnessLaw::Constant { hardness_pa } => {
+                    format!("no table: H = {:.0} MPa throughout", hardness_pa / 1e6)
+                }
+            },
+        ));
+
+        Ok(Self {
+            scene: scene.clone(),
+            pair,
+            grid,
+            hertz,
+            hardness,
+            archard_k,
+            plasticity,
+            coupling,
+            options,
+            models,
+        })
+    }
+
+    /// The pressure cap at `cycle`: `H(n) / yield_factor`, or infinite without plasticity.
+    pub fn yield_pressure_pa(&self, cycle: f64) -> f64 {
+        if self.plasticity {
+            self.hardness
+                .yield_pressure_pa(cycle, self.scene.disc.yield_factor)
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// The unworn ball's height above its apex at each cell of `grid` (the exact sphere).
+    pub fn ball_separation(&self, grid: &Grid) -> Vec<f64> {
+        let r = self.scene.ball_radius_m();
+        grid.sample(|x, y| r - (r * r - x * x - y * y).max(0.0).sqrt())
+    }
+
+    /// The influence operators for `grid`.
+    pub fn operators(&self, grid: &Grid) -> ContactOperators {
+        let coupling = self.coupling.then(|| {
+            DcFft::new(&Kernel::coupling(
+                grid,
+                &self.pair,
+                self.scene.test.friction_coefficient,
+            ))
+        });
+        ContactOperators {
+            normal: DcFft::new(&Kernel::normal(grid, &self.pair)),
+            coupling,
+        }
+    }
+}
+
+/// The operators of one grid: the normal kernel and, when modelled, the coupling kernel.
+#[derive(Debug)]
+pub struct ContactOperators {
+    normal: DcFft,
+    coupling: Option<DcFft>,
+}
+
+impl ContactOperators {
+    /// Solves one contact with or without the coupling term, as set up.
+    pub fn solve(
+        &mut self,
+        problem: &ContactProblem,
+        options: &SolverOptions,
+        warm_start: Option<&[f64]>,
+    ) -> Result<ContactSolution, ContactError> {
+        match &mut self.coupling {
+            Some(coupling) => {
+                solve_coupled(&mut self.normal, coupling, problem, options, warm_start)
+            }
+            None => solve(&mut self.normal, problem, options, warm_start),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::parse_scene_str;
+
+    #[test]
+    fn fft_friendly_sizes() {
+        assert_eq!(fft_friendly(255), 256);
+        assert_eq!(fft_friendly(257), 288);
+        assert_eq!(fft_friendly(100), 108);
+        assert_eq!(fft_friendly(8), 8);
+    }
+
+    #[test]
+    fn paper_scene_gets_the_paper_grid_and_both_models() {
+        let scene = parse_scene_str(r#"{"preset": "dalmau2018-316l"}"#).expect("valid");
+        let setup = Setup::new(&scene).expect("valid");
+        assert_eq!(setup.grid.nx, 256);
+        assert!(
+            (setup.grid.dx * 1e6 - 1.0).abs() < 0.01,
+            "1 um cells like the paper"
+        );
+        assert!(setup.plasticity, "p0 1221 MPa > Y 883 MPa");
+        assert!(setup.coupling, "|mu delta-nu| = 1.8e-2");
+    }
+
+    #[test]
+    fn identical_materials_or_no_friction_leave_the_coupling_out() {
+        let scene = parse_scene_str(
+            r#"{"ball": {"youngs_modulus_gpa": 205, "poisson_ratio": 0.28},
+                "test": {"friction_coefficient": 0.45}}"#,
+        )
+        .expect("valid");
+        assert!(!Setup::new(&scene).expect("valid").coupling);
+        let scene = parse_scene_str(r#"{"test": {"friction_coefficient": 0}}"#).expect("valid");
+        assert!(!Setup::new(&scene).expect("valid").coupling);
+    }
+
+    #[test]
+    fn light_load_on_hard_disc_is_elastic() {
+        let scene = parse_scene_str(r#"{"test": {"load_n": 0.1}}"#).expect("valid");
+        let setup = Setup::new(&scene).expect("valid");
+        assert!(!setup.plasticity);
+        assert!(setup.yield_pressure_pa(1.0).is_infinite());
+    }
+}
