@@ -4,8 +4,10 @@
 //! The numerical core (`contact`, `hardness`, `corrosion`, `scene`) is plain synchronous Rust
 //! in SI units; nothing here knows about HTTP or async runtimes.
 
+pub mod bench;
 pub mod contact;
 pub mod corrosion;
 pub mod hardness;
 pub mod scene;
 pub mod simulation;
+pub mod wear;

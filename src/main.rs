@@ -1,3 +1,108 @@
-//! The `tribosim` command line.
+//! The `tribosim` command line: run a scene, inspect its first contact, list presets, or
+//! print the speed-against-error tables.
 
-fn main() {}
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::AtomicBool;
+
+use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
+
+use tribosim::bench::{self, BenchTarget};
+use tribosim::scene::{Scene, parse_scene_str, presets};
+use tribosim::simulation::{first_contact, run};
+
+#[derive(Parser)]
+#[command(
+    version,
+    about = "Ball-on-disc tribocorrosion wear simulation (Dalmau et al., Wear 2018)"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run one scene offline and write the result JSON.
+    Run {
+        /// The scene (JSON; may be {"preset": ..., "overrides": ...}).
+        scene: PathBuf,
+        /// Where to write the result; standard output if absent.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+    /// Solve the first cycle's contact alone and print it as JSON.
+    Contact {
+        /// The scene (JSON).
+        scene: PathBuf,
+    },
+    /// Print the built-in scenes as JSON.
+    Presets,
+    /// Print the speed-against-error tables.
+    Bench {
+        /// Which tables.
+        #[arg(value_enum, default_value = "contact")]
+        target: BenchTarget,
+        /// One JSON object per row instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn read_scene(path: &Path) -> Result<Scene, String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    parse_scene_str(&text).map_err(|errors| {
+        let lines: Vec<String> = errors.0.iter().map(|e| format!("  {e}")).collect();
+        format!("invalid scene {}:\n{}", path.display(), lines.join("\n"))
+    })
+}
+
+fn write_json(value: &impl serde::Serialize, output: Option<&Path>) -> Result<(), String> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())?;
+    match output {
+        Some(path) => std::fs::write(path, text + "\n")
+            .map_err(|e| format!("cannot write {}: {e}", path.display())),
+        None => writeln!(std::io::stdout(), "{text}").map_err(|e| e.to_string()),
+    }
+}
+
+fn run_scene(path: &Path, output: Option<&Path>) -> Result<(), String> {
+    let scene = read_scene(path)?;
+    let bar = ProgressBar::new(scene.test.cycles);
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{elapsed_precise} [{bar:40}] {pos}/{len} cycles, eta {eta} {msg}",
+        )
+        .map_err(|e| e.to_string())?,
+    );
+    let mut on_cycle = |record: &tribosim::simulation::CycleRecord| {
+        bar.set_position(record.cycle);
+        bar.set_message(format!("V = {:.3e} mm3", record.wear_volume_mm3));
+    };
+    let result = run(&scene, &mut on_cycle, &AtomicBool::new(false));
+    bar.finish_and_clear();
+    let result = result.map_err(|e| e.to_string())?;
+    write_json(&result, output)
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let outcome = match cli.command {
+        Command::Run { scene, output } => run_scene(&scene, output.as_deref()),
+        Command::Contact { scene } => read_scene(&scene)
+            .and_then(|s| first_contact(&s).map_err(|e| e.to_string()))
+            .and_then(|c| write_json(&c, None)),
+        Command::Presets => write_json(&presets(), None),
+        Command::Bench { target, json } => bench::print(target, json),
+    };
+    match outcome {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("tribosim: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -16,7 +16,11 @@
 //! column start to the same cache sets, which made the transposes several times slower.
 //!
 //! The kernel spectrum is computed once per operator and includes the `1 / (4 nx ny)`
-//! normalisation. Nothing is allocated per apply.
+//! normalisation. Arranged by wrap-around, an even kernel is a real even sequence, so its
+//! spectrum is real; an odd one gives a purely imaginary spectrum. Only that one part is
+//! stored and the product is two real multiplications, not a complex one (the part
+//! dropped is round-off; the direct-summation test bounds the result). Nothing is allocated
+//! per apply.
 
 use std::sync::Arc;
 
@@ -24,6 +28,7 @@ use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
+use super::influence::Symmetry;
 use super::{Kernel, Operator};
 
 /// Rows moved per block between the row and the column layouts.
@@ -46,8 +51,10 @@ pub struct DcFft {
     row_inverse: Arc<dyn ComplexToReal<f64>>,
     col_forward: Arc<dyn Fft<f64>>,
     col_inverse: Arc<dyn Fft<f64>>,
-    /// Kernel spectrum, transposed: entry `(kx, ky)` at `kx * stride + ky`.
-    spectrum: Vec<Complex<f64>>,
+    /// The real (even kernel) or imaginary (odd kernel) part of the kernel spectrum,
+    /// transposed: entry `(kx, ky)` at `kx * stride + ky`.
+    spectrum: Vec<f64>,
+    symmetry: Symmetry,
     /// Work buffer in the same transposed layout.
     columns: Vec<Complex<f64>>,
     row_real: Vec<f64>,
@@ -94,6 +101,7 @@ impl DcFft {
             col_forward,
             col_inverse,
             spectrum: Vec::new(),
+            symmetry: kernel.symmetry(),
             columns: vec![Complex::default(); half * stride],
             row_real: vec![0.0; row_len],
             row_block: vec![Complex::default(); BLOCK * half],
@@ -107,7 +115,7 @@ impl DcFft {
     /// The kernel arranged by wrap-around on the padded grid (index `i < n` holds offset
     /// `i`, `i > n` holds offset `i - 2n`; the entry at `i = n` multiplies only padding and
     /// is set to zero, which also keeps odd kernels odd), transformed.
-    fn kernel_spectrum(&mut self, kernel: &Kernel) -> Vec<Complex<f64>> {
+    fn kernel_spectrum(&mut self, kernel: &Kernel) -> Vec<f64> {
         let (nx, ny) = (self.nx, self.ny);
         let offset = |i: usize, n: usize| -> Option<isize> {
             match i.cmp(&n) {
@@ -134,7 +142,11 @@ impl DcFft {
             self.col_forward
                 .process_with_scratch(&mut column[..self.col_len], &mut self.complex_scratch);
         }
-        self.columns.clone()
+        let part = match self.symmetry {
+            Symmetry::EvenInX => |c: &Complex<f64>| c.re,
+            Symmetry::OddInX => |c: &Complex<f64>| c.im,
+        };
+        self.columns.iter().map(part).collect()
     }
 
     /// Real-to-complex transform of `row_real` into slot `slot` of the row block.
@@ -191,8 +203,11 @@ impl Operator for DcFft {
             column[ny..].fill(Complex::default());
             self.col_forward
                 .process_with_scratch(column, &mut self.complex_scratch);
-            for (c, k) in column.iter_mut().zip(kernel) {
-                *c *= *k;
+            match self.symmetry {
+                Symmetry::EvenInX => column.iter_mut().zip(kernel).for_each(|(c, &k)| *c *= k),
+                Symmetry::OddInX => column.iter_mut().zip(kernel).for_each(|(c, &k)| {
+                    *c = Complex::new(-c.im * k, c.re * k);
+                }),
             }
             self.col_inverse
                 .process_with_scratch(column, &mut self.complex_scratch);

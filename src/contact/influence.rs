@@ -74,6 +74,17 @@ pub struct Kernel {
     nx: usize,
     ny: usize,
     values: Vec<f64>,
+    symmetry: Symmetry,
+}
+
+/// The kernel's parity under `x -> -x` (both kernels are even in y). It fixes the spectrum's
+/// type: an even real kernel has a real spectrum, an odd one a purely imaginary spectrum.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Symmetry {
+    /// `K(-x, y) = K(x, y)`: the normal kernel.
+    EvenInX,
+    /// `K(-x, y) = -K(x, y)`: the coupling kernel.
+    OddInX,
 }
 
 impl Kernel {
@@ -88,6 +99,13 @@ impl Kernel {
         (x_parity, y_parity): (f64, f64),
         scale: f64,
     ) -> Self {
+        // F's parity is the opposite of the kernel's: a corner sum differences F once in
+        // each direction.
+        let symmetry = if x_parity < 0.0 {
+            Symmetry::EvenInX
+        } else {
+            Symmetry::OddInX
+        };
         let (nx, ny) = (grid.nx, grid.ny);
         let (cx, cy) = (2 * nx, 2 * ny);
         // Corner (k, l) sits at ((k - nx + 1/2) dx, (l - ny + 1/2) dy): x + a and x - a of
@@ -121,7 +139,12 @@ impl Kernel {
                 values.push(scale * sum);
             }
         }
-        Self { nx, ny, values }
+        Self {
+            nx,
+            ny,
+            values,
+            symmetry,
+        }
     }
 
     /// The normal (Boussinesq) kernel: `I_n / (pi E*)`, metres per pascal.
@@ -136,6 +159,11 @@ impl Kernel {
         let scale = 0.5 * pair.delta_nu * friction_coefficient
             / (2.0 * std::f64::consts::PI * pair.reduced_shear_modulus_pa);
         Self::build(grid, coupling_antiderivative, (1.0, -1.0), scale)
+    }
+
+    /// Parity in x.
+    pub fn symmetry(&self) -> Symmetry {
+        self.symmetry
     }
 
     /// Cells along x and y of the grid this kernel was built for.

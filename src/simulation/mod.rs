@@ -2,8 +2,11 @@
 //! synchronous code; a caller (the command line, the service) drives it through a callback
 //! and a cancel flag.
 
+mod first;
 mod result;
+mod run;
 mod setup;
+mod stepping;
 
 use thiserror::Error;
 
@@ -12,11 +15,14 @@ use crate::corrosion::CorrosionError;
 use crate::hardness::HardnessError;
 use crate::scene::SceneErrors;
 
+pub use first::{FirstContact, first_contact};
 pub use result::{CycleRecord, ModelChoice, PressureMap, Profile, SimulationResult, Summary};
+pub use run::run;
 pub use setup::{
     CELLS_PER_CONTACT_RADIUS, COUPLING_SENSITIVITY, ContactOperators, DOMAIN_PER_CONTACT_RADIUS,
     Setup,
 };
+pub use stepping::{MAX_STEP, STEP_CHANGE_BOUND};
 
 /// Why a run stopped without a result.
 #[derive(Debug, Error)]

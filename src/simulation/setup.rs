@@ -58,7 +58,7 @@ fn choice(name: &str, active: bool, reason: String) -> ModelChoice {
 }
 
 /// Smallest `2^i 3^j >= n`: sizes rustfft transforms fastest.
-fn fft_friendly(n: usize) -> usize {
+pub(crate) fn fft_friendly(n: usize) -> usize {
     let mut best = usize::MAX;
     let mut three = 1;
     while three < 2 * n {

@@ -1,0 +1,278 @@
+//! The cycle loop (paper Fig. 4): solve the contact on the current surface, deepen the groove
+//! by yielding and by Archard wear, estimate the corrosion, record, repeat.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use crate::contact::{ContactProblem, ContactSolution, Grid};
+use crate::scene::{AnodicArea, DomainSize, Scene};
+use crate::wear::{Groove, pass_pressure_integral, yield_depth};
+
+use super::setup::fft_friendly;
+use super::stepping::{STEP_CHANGE_BOUND, Stepper};
+use super::{
+    CycleRecord, ModelChoice, PressureMap, Profile, Setup, SimulationError, SimulationResult,
+    Summary,
+};
+
+/// The domain grows when pressure reaches this fraction of the half-width from the centre.
+const GROW_AT_FRACTION: f64 = 0.8;
+
+/// Growth factor of the domain side (then rounded up to an FFT-friendly size).
+const GROWTH: f64 = 1.25;
+
+/// Cycles at which the depth profile is kept (paper Figs. 12 and 15 use 10 and 300; Table 3
+/// times at 60 rpm are 10, 60, 300, 1800 and 3600), plus the last cycle.
+const PROFILE_CYCLES: [u64; 16] = [
+    1, 2, 5, 10, 20, 50, 60, 100, 200, 300, 500, 1000, 1800, 2000, 3600, 5000,
+];
+
+/// Runs `scene`. Calls `on_cycle` after every solved cycle and stops with
+/// [`SimulationError::Cancelled`] once `cancel` is set (checked once per solved cycle).
+pub fn run(
+    scene: &Scene,
+    on_cycle: &mut dyn FnMut(&CycleRecord),
+    cancel: &AtomicBool,
+) -> Result<SimulationResult, SimulationError> {
+    let started = Instant::now();
+    let setup = Setup::new(scene)?;
+    let scene = &setup.scene;
+    let corrosion = scene.corrosion.as_ref().map(|c| (c.model(), c));
+    let mut models = setup.models.clone();
+    let mut grid = setup.grid;
+    let mut operators = setup.operators(&grid);
+    let mut ball = setup.ball_separation(&grid);
+    let mut groove = Groove::new(&grid);
+    let mut stepper = Stepper::new(scene.numerics.cycle_step);
+    let mut warm: Option<Vec<f64>> = None;
+    let (period, track_length) = (scene.cycle_period_s(), scene.track_length_m());
+    let total = scene.test.cycles;
+    let grows = scene.numerics.domain_um == DomainSize::Auto;
+
+    let mut records = Vec::new();
+    let mut profiles = Vec::new();
+    let mut maps = Vec::new();
+    let (mut wac_m3, mut solves, mut iterations, mut max_step) = (0.0, 0usize, 0usize, 1u64);
+    let mut last: Option<(Grid, ContactSolution)> = None;
+    let mut cycle = 1;
+    while cycle <= total {
+        if cancel.load(Ordering::Relaxed) {
+            return Err(SimulationError::Cancelled {
+                cycles_done: cycle - 1,
+            });
+        }
+        let n = cycle as f64;
+        let cap = setup.yield_pressure_pa(n);
+        let separation = groove.separation(&ball, &grid);
+        let problem = ContactProblem {
+            grid,
+            separation: &separation,
+            load_n: scene.load_n(),
+            yield_pressure_pa: cap,
+        };
+        let solution = operators
+            .solve(&problem, &setup.options, warm.as_deref())
+            .map_err(|source| SimulationError::Contact { cycle, source })?;
+        solves += 1;
+        iterations += solution.iterations;
+
+        let plastic = yield_depth(&grid, &solution, &separation, cap);
+        let is_plastic = plastic.iter().any(|&d| d > 0.0);
+        let pass = pass_pressure_integral(&grid, &solution.pressure);
+        let step = stepper.next(cycle, total, is_plastic, &pass);
+        max_step = max_step.max(step);
+
+        // This cycle: yielding, then one pass of Archard wear at this cycle's hardness.
+        groove.deepen(&plastic, 1.0);
+        groove.deepen(&pass, setup.archard_k / setup.hardness.hardness_pa(n));
+        let contact_area = solution.contact_area_m2(&grid);
+        let anodic = corrosion.as_ref().map(|(_, c)| {
+            let area = match c.anodic_area {
+                AnodicArea::WearTrack => groove.worn_width_m() * track_length,
+                AnodicArea::RealContact => crate::corrosion::real_contact_area_m2(
+                    scene.load_n(),
+                    setup.hardness.hardness_pa(n),
+                ),
+                AnodicArea::BemContact => contact_area,
+            };
+            area * c.anodic_area_factor
+        });
+        let potential = match (&corrosion, anodic) {
+            (Some((model, _)), Some(area)) => {
+                wac_m3 += model.wac_volume_m3(area, period);
+                Some(
+                    model
+                        .potential_v(area)
+                        .map_err(|source| SimulationError::Corrosion { cycle, source })?,
+                )
+            }
+            _ => None,
+        };
+        let record = CycleRecord {
+            cycle,
+            time_s: n * period,
+            wear_volume_mm3: groove.area_m2() * track_length * 1e9,
+            max_depth_um: groove.max_depth_m() * 1e6,
+            max_pressure_mpa: solution.max_pressure_pa() / 1e6,
+            contact_area_mm2: contact_area * 1e6,
+            plastic_area_mm2: solution.plastic_area_m2(&grid, cap) * 1e6,
+            hardness_mpa: setup.hardness.hardness_pa(n) / 1e6,
+            approach_um: solution.approach_m * 1e6,
+            iterations: solution.iterations,
+            potential_v: potential,
+            anodic_area_mm2: anodic.map(|a| a * 1e6),
+            wac_volume_mm3: potential.map(|_| wac_m3 * 1e9),
+        };
+        on_cycle(&record);
+        records.push(record);
+        if cycle == 1 {
+            maps.push(pressure_map(cycle, &grid, &solution.pressure));
+        }
+        if PROFILE_CYCLES.contains(&cycle) || cycle == total {
+            profiles.push(profile(cycle, &grid, &groove));
+        }
+
+        // The cycles this solve stands for, after the first.
+        let skipped = (cycle + 1..cycle + step)
+            .map(|j| setup.archard_k / setup.hardness.hardness_pa(j as f64));
+        groove.deepen(&pass, skipped.sum());
+        if let (Some((model, _)), Some(area)) = (&corrosion, anodic) {
+            wac_m3 += model.wac_volume_m3(area, (step - 1) as f64 * period);
+        }
+
+        let mut pressure = solution.pressure.clone();
+        if grows && near_edge(&grid, &pressure) {
+            if let Some(wider) = widen(&grid) {
+                let offset = (wider.nx - grid.nx) / 2;
+                pressure = embed(&pressure, &grid, &wider, offset);
+                groove = groove.widened(offset);
+                grid = wider;
+                operators = setup.operators(&grid);
+                ball = setup.ball_separation(&grid);
+                models.push(ModelChoice {
+                    name: "domain_growth".to_owned(),
+                    active: true,
+                    reason: format!(
+                        "at cycle {cycle} the contact came within {:.0}% of the edge: grown to {} x {} cells ({:.1} um)",
+                        100.0 * (1.0 - GROW_AT_FRACTION),
+                        grid.nx,
+                        grid.ny,
+                        grid.nx as f64 * grid.dx * 1e6
+                    ),
+                });
+            }
+        }
+        warm = Some(pressure);
+        last = Some((problem.grid, solution));
+        cycle += step;
+    }
+
+    if let Some((last_grid, solution)) = &last {
+        if records.last().map(|r| r.cycle) != Some(1) {
+            let final_cycle = records.last().map_or(total, |r| r.cycle);
+            maps.push(pressure_map(final_cycle, last_grid, &solution.pressure));
+        }
+    }
+    models.push(ModelChoice {
+        name: "cycle_step".to_owned(),
+        active: max_step > 1,
+        reason: format!(
+            "{:?}: {solves} solves for {total} cycles, longest step {max_step}; a step keeps the per-pass wear profile within {:.0}% of the solved one",
+            scene.numerics.cycle_step,
+            STEP_CHANGE_BOUND * 100.0
+        ),
+    });
+    models.push(ModelChoice {
+        name: "archard".to_owned(),
+        active: setup.archard_k > 0.0,
+        reason: format!("k = {:.4e}", setup.archard_k),
+    });
+    models.push(ModelChoice {
+        name: "corrosion".to_owned(),
+        active: corrosion.is_some(),
+        reason: match &corrosion {
+            Some((_, c)) => format!(
+                "eq. 18 galvanic coupling, anodic area {:?} x {}",
+                c.anodic_area, c.anodic_area_factor
+            ),
+            None => "no corrosion section in the scene".to_owned(),
+        },
+    });
+    let summary = Summary {
+        cycles: total,
+        wear_volume_mm3: groove.area_m2() * track_length * 1e9,
+        max_depth_um: groove.max_depth_m() * 1e6,
+        wac_volume_mm3: corrosion.as_ref().map(|_| wac_m3 * 1e9),
+        wall_s: started.elapsed().as_secs_f64(),
+        solves,
+        iterations,
+    };
+    Ok(SimulationResult {
+        scene: scene.clone(),
+        models,
+        cycles: records,
+        profiles,
+        pressure_maps: maps,
+        summary,
+    })
+}
+
+/// Whether any loaded cell lies outside `GROW_AT_FRACTION` of the half-width.
+fn near_edge(grid: &Grid, pressure: &[f64]) -> bool {
+    let limit_x = GROW_AT_FRACTION * grid.nx as f64 * grid.dx / 2.0;
+    let limit_y = GROW_AT_FRACTION * grid.ny as f64 * grid.dy / 2.0;
+    pressure.iter().enumerate().any(|(i, &p)| {
+        p > 0.0 && (grid.x(i % grid.nx).abs() > limit_x || grid.y(i / grid.nx).abs() > limit_y)
+    })
+}
+
+/// A grid with the same cells and about `GROWTH` times the side, or `None` at the size limit.
+fn widen(grid: &Grid) -> Option<Grid> {
+    let n = fft_friendly((grid.nx as f64 * GROWTH).ceil() as usize).min(Grid::MAX_CELLS_PER_SIDE);
+    // Square grids with FFT-friendly (even) sizes: the growth is an even number of cells.
+    (n > grid.nx)
+        .then(|| Grid::new(n, n, grid.dx, grid.dy).ok())
+        .flatten()
+}
+
+fn embed(field: &[f64], from: &Grid, to: &Grid, offset: usize) -> Vec<f64> {
+    let mut out = vec![0.0; to.len()];
+    for (iy, row) in field.chunks_exact(from.nx).enumerate() {
+        let start = (iy + offset) * to.nx + offset;
+        out[start..start + from.nx].copy_from_slice(row);
+    }
+    out
+}
+
+fn profile(cycle: u64, grid: &Grid, groove: &Groove) -> Profile {
+    Profile {
+        cycle,
+        y_um: (0..grid.ny).map(|iy| grid.y(iy) * 1e6).collect(),
+        depth_um: groove.depth_m().iter().map(|d| d * 1e6).collect(),
+    }
+}
+
+/// The pressure over the contact's bounding box plus two cells, MPa.
+fn pressure_map(cycle: u64, grid: &Grid, pressure: &[f64]) -> PressureMap {
+    let (mut x0, mut x1, mut y0, mut y1) = (grid.nx, 0, grid.ny, 0);
+    for (i, &p) in pressure.iter().enumerate() {
+        if p > 0.0 {
+            let (ix, iy) = (i % grid.nx, i / grid.nx);
+            (x0, x1, y0, y1) = (x0.min(ix), x1.max(ix), y0.min(iy), y1.max(iy));
+        }
+    }
+    let (x0, y0) = (x0.saturating_sub(2), y0.saturating_sub(2));
+    let (x1, y1) = ((x1 + 2).min(grid.nx - 1), (y1 + 2).min(grid.ny - 1));
+    PressureMap {
+        cycle,
+        x_um: (x0..=x1).map(|ix| grid.x(ix) * 1e6).collect(),
+        y_um: (y0..=y1).map(|iy| grid.y(iy) * 1e6).collect(),
+        pressure_mpa: (y0..=y1)
+            .map(|iy| {
+                (x0..=x1)
+                    .map(|ix| pressure[iy * grid.nx + ix] / 1e6)
+                    .collect()
+            })
+            .collect(),
+    }
+}

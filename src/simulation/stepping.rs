@@ -1,0 +1,109 @@
+//! Cycle stepping: when the surface changes slowly, one contact solve stands for several
+//! cycles. The wear of the skipped cycles uses the pressure of the last solve, which is
+//! forward Euler on the groove with step `m`. Its error per step is about half the change of
+//! the per-pass wear profile across the step, so the controller keeps that change, measured
+//! between consecutive solves, below [`STEP_CHANGE_BOUND`].
+
+use crate::scene::CycleStep;
+
+/// Largest relative change of the per-pass wear profile allowed across one step. The final
+/// volume error it gives is measured by `tribosim bench wear` against every-cycle solving.
+pub const STEP_CHANGE_BOUND: f64 = 0.01;
+
+/// The longest step, cycles: keeps a record at least this often.
+pub const MAX_STEP: u64 = 50;
+
+/// Chooses how many cycles the next solve stands for.
+#[derive(Debug, Clone)]
+pub struct Stepper {
+    mode: CycleStep,
+    previous: Option<(u64, Vec<f64>)>,
+    step: u64,
+}
+
+impl Stepper {
+    /// A controller for `mode`.
+    pub fn new(mode: CycleStep) -> Self {
+        Self {
+            mode,
+            previous: None,
+            step: 1,
+        }
+    }
+
+    /// Cycles the solve at `cycle` stands for (itself included), given its per-pass wear
+    /// profile and whether any pressure sat at the cap. Never steps past `total`, so the last
+    /// cycle is always solved.
+    pub fn next(&mut self, cycle: u64, total: u64, plastic: bool, profile: &[f64]) -> u64 {
+        let wanted = match self.mode {
+            CycleStep::EveryCycle => 1,
+            // Yielding reshapes the groove within a cycle or two: solve every one.
+            CycleStep::Auto if plastic => 1,
+            CycleStep::Auto => match &self.previous {
+                None => 1,
+                Some((before, old)) => {
+                    let scale = profile.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                    let change = profile
+                        .iter()
+                        .zip(old)
+                        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+                        / scale;
+                    let per_cycle = change / (cycle - before) as f64;
+                    let allowed = if per_cycle > 0.0 {
+                        (STEP_CHANGE_BOUND / per_cycle).floor() as u64
+                    } else {
+                        MAX_STEP
+                    };
+                    allowed.clamp(1, (2 * self.step).min(MAX_STEP))
+                }
+            },
+        };
+        self.previous = (self.mode == CycleStep::Auto).then(|| (cycle, profile.to_vec()));
+        let remaining = total - cycle;
+        self.step = if remaining == 0 {
+            1
+        } else {
+            wanted.min(remaining)
+        };
+        self.step
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_cycle_mode_steps_by_one() {
+        let mut s = Stepper::new(CycleStep::EveryCycle);
+        assert_eq!(s.next(1, 100, false, &[1.0]), 1);
+        assert_eq!(s.next(2, 100, false, &[1.0]), 1);
+    }
+
+    #[test]
+    fn auto_grows_by_doubling_while_the_profile_is_steady_and_lands_on_the_last_cycle() {
+        let mut s = Stepper::new(CycleStep::Auto);
+        let mut cycle = 1;
+        let mut steps = Vec::new();
+        while cycle <= 100 {
+            let step = s.next(cycle, 100, false, &[1.0, 2.0]);
+            steps.push(step);
+            cycle += step;
+        }
+        assert_eq!(&steps[..5], &[1, 2, 4, 8, 16]);
+        assert_eq!(
+            steps.iter().sum::<u64>(),
+            100,
+            "ends exactly at the last cycle"
+        );
+    }
+
+    #[test]
+    fn auto_solves_every_cycle_while_plastic_and_limits_fast_change() {
+        let mut s = Stepper::new(CycleStep::Auto);
+        assert_eq!(s.next(1, 100, true, &[1.0]), 1);
+        assert_eq!(s.next(2, 100, false, &[1.0]), 1);
+        // 0.5% change in one cycle: at most 2 cycles for a 1% bound.
+        assert_eq!(s.next(3, 100, false, &[1.005]), 2);
+    }
+}
