@@ -58,7 +58,9 @@ impl Stepper {
                 }
             },
         };
-        self.previous = (self.mode == CycleStep::Auto).then(|| (cycle, profile.to_vec()));
+        // A plastic cycle is no reference: the groove it cut changes the next profile.
+        self.previous =
+            (self.mode == CycleStep::Auto && !plastic).then(|| (cycle, profile.to_vec()));
         let remaining = total - cycle;
         self.step = if remaining == 0 {
             1
