@@ -44,7 +44,7 @@ pub fn run(
     let mut ball = setup.ball_separation(&grid);
     let mut groove = Groove::new(&grid);
     let mut stepper = Stepper::new(scene.numerics.cycle_step);
-    let mut warm: Option<Vec<f64>> = None;
+    let mut history = WarmStart::default();
     let (period, track_length) = (scene.cycle_period_s(), scene.track_length_m());
     let total = scene.test.cycles;
     let grows = scene.numerics.domain_um == DomainSize::Auto;
@@ -71,7 +71,11 @@ pub fn run(
             yield_pressure_pa: cap,
         };
         let solution = operators
-            .solve(&problem, &setup.options, warm.as_deref())
+            .solve(
+                &problem,
+                &setup.options,
+                history.guess(cycle, cap).as_deref(),
+            )
             .map_err(|source| SimulationError::Contact { cycle, source })?;
         solves += 1;
         iterations += solution.iterations;
@@ -145,6 +149,7 @@ pub fn run(
             if let Some(wider) = widen(&grid) {
                 let offset = (wider.nx - grid.nx) / 2;
                 pressure = embed(&pressure, &grid, &wider, offset);
+                history.clear();
                 groove = groove.widened(offset);
                 grid = wider;
                 operators = setup.operators(&grid);
@@ -162,7 +167,7 @@ pub fn run(
                 });
             }
         }
-        warm = Some(pressure);
+        history.push(cycle, pressure);
         last = Some((problem.grid, solution));
         cycle += step;
     }
@@ -215,6 +220,40 @@ pub fn run(
         pressure_maps: maps,
         summary,
     })
+}
+
+/// The warm start of the next solve. Between solves the surface changes smoothly (Archard
+/// wear nearly constant per cycle), so a linear extrapolation of the last two pressures in
+/// the cycle number starts much closer than the last pressure alone; while the groove is
+/// being cut by yielding, or right after a regrid, the last pressure is used as it is.
+#[derive(Debug, Default)]
+struct WarmStart {
+    last: Option<(u64, Vec<f64>)>,
+    before: Option<(u64, Vec<f64>)>,
+}
+
+impl WarmStart {
+    fn push(&mut self, cycle: u64, pressure: Vec<f64>) {
+        self.before = self.last.replace((cycle, pressure));
+    }
+
+    fn clear(&mut self) {
+        self.before = None;
+    }
+
+    fn guess(&self, cycle: u64, cap: f64) -> Option<Vec<f64>> {
+        let (c1, p1) = self.last.as_ref()?;
+        let Some((c0, p0)) = self.before.as_ref() else {
+            return Some(p1.clone());
+        };
+        let ratio = (cycle - c1) as f64 / (c1 - c0) as f64;
+        Some(
+            p1.iter()
+                .zip(p0)
+                .map(|(&a, &b)| (a + ratio * (a - b)).clamp(0.0, cap))
+                .collect(),
+        )
+    }
 }
 
 /// Whether any loaded cell lies outside `GROW_AT_FRACTION` of the half-width.
