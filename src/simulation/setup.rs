@@ -60,12 +60,13 @@ fn choice(name: &str, active: bool, reason: String) -> ModelChoice {
     }
 }
 
-/// Smallest `2^i 3^j >= n`: sizes rustfft transforms fastest.
+/// Smallest even `2^i 3^j >= n` (`i >= 1`): sizes rustfft transforms fastest, and even so
+/// the apex sits on a cell corner and a grown grid adds the same cells on both sides.
 pub(crate) fn fft_friendly(n: usize) -> usize {
     let mut best = usize::MAX;
     let mut three = 1;
     while three < 2 * n {
-        let mut size = three;
+        let mut size = 2 * three;
         while size < n {
             size *= 2;
         }
@@ -329,6 +330,8 @@ mod tests {
         assert_eq!(fft_friendly(257), 288);
         assert_eq!(fft_friendly(100), 108);
         assert_eq!(fft_friendly(8), 8);
+        assert_eq!(fft_friendly(80), 96, "81 = 3^4 is odd");
+        assert_eq!(fft_friendly(3), 4);
     }
 
     #[test]

@@ -1,0 +1,258 @@
+//! The wear simulation against Archard's law, the paper's observations and its failure modes.
+
+use std::f64::consts::PI;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use tribosim::contact::ContactError;
+use tribosim::scene::{Scene, parse_scene_str};
+use tribosim::simulation::{CycleRecord, SimulationError, SimulationResult, run};
+
+fn scene(json: &str) -> Scene {
+    parse_scene_str(json).expect("valid scene")
+}
+
+fn simulate(scene: &Scene) -> SimulationResult {
+    run(scene, &mut |_| {}, &AtomicBool::new(false)).expect("runs")
+}
+
+/// Archard's volume per cycle, eq. 14 with s = one lap of the track, mm^3.
+fn archard_lap_mm3(scene: &Scene, k: f64, hardness_pa: f64) -> f64 {
+    k * scene.load_n() * 2.0 * PI * scene.track_radius_m() / hardness_pa * 1e9
+}
+
+/// Each pass removes (k / H) sum p dx dy = k F L / H exactly, since the solved pressures carry
+/// the load to 1e-11 (the solver's load tolerance); over hundreds of cycles only summation
+/// round-off adds to that. 1e-9 is the bound this derivation allows with margin.
+const ARCHARD_EXACT: f64 = 1e-9;
+
+#[test]
+fn elastic_wear_is_linear_and_equals_archard() {
+    let s = scene(
+        r#"{"preset": "dalmau2018-316l", "overrides": {
+            "disc": {"hardness_table": null},
+            "wear": {"plasticity": "off"},
+            "numerics": {"grid": 64, "cycle_step": 1}}}"#,
+    );
+    let result = simulate(&s);
+    let volume = |cycle: u64| {
+        result
+            .cycles
+            .iter()
+            .find(|r| r.cycle == cycle)
+            .expect("every cycle solved")
+            .wear_volume_mm3
+    };
+    // Issue 3 asks for V(300) / V(150) = 2 within 1%; it holds to round-off.
+    assert!((volume(300) / volume(150) - 2.0).abs() < ARCHARD_EXACT);
+    let expected = 300.0 * archard_lap_mm3(&s, 1.19e-4, 2473e6);
+    assert!((volume(300) / expected - 1.0).abs() < ARCHARD_EXACT);
+    assert!(result.cycles.iter().all(|r| r.plastic_area_mm2 == 0.0));
+}
+
+fn last_plastic_cycle(records: &[CycleRecord]) -> u64 {
+    records
+        .iter()
+        .filter(|r| r.plastic_area_mm2 > 0.0)
+        .map(|r| r.cycle)
+        .max()
+        .unwrap_or(0)
+}
+
+/// x and y extents of the loaded cells of a pressure map, um.
+fn extents(map: &tribosim::simulation::PressureMap) -> (f64, f64) {
+    let rows: Vec<usize> = (0..map.y_um.len())
+        .filter(|&i| map.pressure_mpa[i].iter().any(|&p| p > 0.0))
+        .collect();
+    let cols: Vec<usize> = (0..map.x_um.len())
+        .filter(|&j| map.pressure_mpa.iter().any(|row| row[j] > 0.0))
+        .collect();
+    (
+        map.x_um[cols[cols.len() - 1]] - map.x_um[cols[0]],
+        map.y_um[rows[rows.len() - 1]] - map.y_um[rows[0]],
+    )
+}
+
+#[test]
+fn paper_scene_yields_first_then_wears_by_archard() {
+    // The preset (plasticity and coupling on) on a coarse grid to keep the test short; the
+    // grid refinement is in `tribosim bench wear`.
+    let s = scene(r#"{"preset": "dalmau2018-316l", "overrides": {"numerics": {"grid": 64}}}"#);
+    let result = simulate(&s);
+    let records = &result.cycles;
+    let law = s.hardness_law().expect("valid table");
+
+    // Yielding stops early (paper: about 10 cycles; measured 11 at grids 64 to 144).
+    let plastic_until = last_plastic_cycle(records);
+    assert!(
+        (2..=30).contains(&plastic_until),
+        "last plastic cycle {plastic_until}"
+    );
+    for r in records.iter().filter(|r| r.cycle > plastic_until) {
+        assert!(
+            r.max_pressure_mpa < r.hardness_mpa / 2.8,
+            "cycle {}",
+            r.cycle
+        );
+    }
+
+    // Fast growth first: the first 10 cycles wear over 3 times faster than cycles 200-300
+    // (measured 5.5 times).
+    let at = |c: u64| {
+        records
+            .iter()
+            .rev()
+            .find(|r| r.cycle <= c)
+            .expect("cycle 1 is solved")
+    };
+    let early = at(10).wear_volume_mm3 / at(10).cycle as f64;
+    let late = (at(300).wear_volume_mm3 - at(200).wear_volume_mm3)
+        / (at(300).cycle - at(200).cycle) as f64;
+    assert!(early > 3.0 * late, "early {early:e}, late {late:e}");
+
+    // Then linear: between solved cycles after the yielding, exactly Archard's increments.
+    for pair in records.windows(2).filter(|p| p[0].cycle > plastic_until) {
+        let expected: f64 = (pair[0].cycle + 1..=pair[1].cycle)
+            .map(|j| archard_lap_mm3(&s, 1.19e-4, law.hardness_pa(j as f64)))
+            .sum();
+        let grown = pair[1].wear_volume_mm3 - pair[0].wear_volume_mm3;
+        assert!(
+            (grown / expected - 1.0).abs() < ARCHARD_EXACT,
+            "cycle {}",
+            pair[1].cycle
+        );
+    }
+
+    // Paper Fig. 10: the contact widens across the track and shortens along it.
+    let first = extents(&result.pressure_maps[0]);
+    let last = extents(&result.pressure_maps[result.pressure_maps.len() - 1]);
+    assert!(last.1 > 1.3 * first.1, "width {first:?} -> {last:?}");
+    assert!(last.0 < 0.9 * first.0, "length {first:?} -> {last:?}");
+
+    // Paper Fig. 12b: under 1 um deep after 300 cycles.
+    assert!(result.summary.max_depth_um < 1.0);
+    assert!(result.summary.max_depth_um > 0.3, "a groove formed");
+
+    // The track outgrew the first domain and the run grew it instead of failing.
+    assert!(result.models.iter().any(|m| m.name == "domain_growth"));
+}
+
+#[test]
+fn corrosion_follows_eq18_and_faraday_in_the_users_units() {
+    // Hand formulas in the scene's units (V, A/cm2, cm2, g/mol, g/cm3), independent of the
+    // SI conversions inside.
+    let s = scene(
+        r#"{"preset": "dalmau2018-316l", "overrides": {
+            "test": {"cycles": 40}, "numerics": {"grid": 48}}}"#,
+    );
+    let result = simulate(&s);
+    let last = result.cycles.last().expect("records");
+    let before = &result.cycles[result.cycles.len() - 2];
+    let area_cm2 = last.anodic_area_mm2.expect("corrosion on") / 100.0;
+    let potential = -0.10 - 3.31 - 0.56 * (0.01 * area_cm2 / (2.56 - area_cm2)).log10();
+    assert!((last.potential_v.expect("corrosion on") - potential).abs() < 1e-12);
+    let rate_cm3_s = 0.01 * area_cm2 * 55.85 / (2.0 * 96_485.332_12 * 7.9);
+    let dt = last.time_s - before.time_s;
+    let grown_mm3 = last.wac_volume_mm3.expect("on") - before.wac_volume_mm3.expect("on");
+    assert!((grown_mm3 / (rate_cm3_s * dt * 1e3) - 1.0).abs() < 1e-12);
+    // The depassivated track widens, so the potential falls during rubbing (paper Fig. 6).
+    let first = result.cycles[0].potential_v.expect("on");
+    assert!(last.potential_v.expect("on") < first);
+}
+
+#[test]
+fn cancel_stops_within_a_cycle() {
+    let s = scene(r#"{"preset": "dalmau2018-316l", "overrides": {"numerics": {"grid": 32}}}"#);
+    let cancel = AtomicBool::new(false);
+    let mut seen = 0;
+    let outcome = run(
+        &s,
+        &mut |record| {
+            seen = record.cycle;
+            if record.cycle == 5 {
+                cancel.store(true, Ordering::Relaxed);
+            }
+        },
+        &cancel,
+    );
+    assert!(matches!(
+        outcome,
+        Err(SimulationError::Cancelled { cycles_done: 5 })
+    ));
+    assert_eq!(seen, 5);
+}
+
+#[test]
+fn invalid_scene_lists_every_field() {
+    let mut s = Scene::default();
+    s.test.load_n = -1.0;
+    s.ball.poisson_ratio = 0.7;
+    match run(&s, &mut |_| {}, &AtomicBool::new(false)) {
+        Err(SimulationError::Scene(errors)) => {
+            let paths: Vec<&str> = errors.0.iter().map(|e| e.path.as_str()).collect();
+            assert!(paths.contains(&"test.load_n"), "{paths:?}");
+            assert!(paths.contains(&"ball.poisson_ratio"), "{paths:?}");
+        }
+        other => panic!("expected scene errors, got {:?}", other.map(|r| r.summary)),
+    }
+}
+
+#[test]
+fn a_fixed_domain_too_small_for_the_track_fails_by_name() {
+    // The user fixed the domain, so it does not grow: the widening track reaches its edge.
+    let s = scene(
+        r#"{"preset": "dalmau2018-316l", "overrides": {
+            "numerics": {"grid": 48, "domain_um": 110}}}"#,
+    );
+    match run(&s, &mut |_| {}, &AtomicBool::new(false)) {
+        Err(SimulationError::Contact {
+            cycle,
+            source: ContactError::ContactAtEdge { .. },
+        }) => assert!(cycle > 1, "fits at first, then the track widens"),
+        other => panic!("expected ContactAtEdge, got {:?}", other.map(|r| r.summary)),
+    }
+}
+
+#[test]
+fn zero_archard_coefficient_leaves_only_the_yield_groove() {
+    let s = scene(
+        r#"{"preset": "dalmau2018-316l", "overrides": {
+            "wear": {"archard_k": 0}, "test": {"cycles": 60}, "numerics": {"grid": 48}}}"#,
+    );
+    let result = simulate(&s);
+    let plastic_until = last_plastic_cycle(&result.cycles);
+    let settled: Vec<f64> = result
+        .cycles
+        .iter()
+        .filter(|r| r.cycle >= plastic_until)
+        .map(|r| r.wear_volume_mm3)
+        .collect();
+    assert!(settled[0] > 0.0, "yielding cut a groove");
+    #[expect(
+        clippy::float_cmp,
+        reason = "k = 0 adds exactly 0.0 to the groove each cycle"
+    )]
+    let unchanged = settled.iter().all(|&v| v == settled[0]);
+    assert!(unchanged, "no wear after yielding");
+}
+
+#[test]
+fn softening_table_runs_and_is_reported() {
+    let s = scene(
+        r#"{"preset": "dalmau2018-316l", "overrides": {
+            "disc": {"hardness_table": [[10, 2400], [100, 2300]]},
+            "test": {"cycles": 30}, "numerics": {"grid": 48}}}"#,
+    );
+    let result = simulate(&s);
+    let hardening = result
+        .models
+        .iter()
+        .find(|m| m.name == "work_hardening")
+        .expect("reported");
+    assert!(
+        hardening.reason.contains("softening"),
+        "{}",
+        hardening.reason
+    );
+    let h: Vec<f64> = result.cycles.iter().map(|r| r.hardness_mpa).collect();
+    assert!(h.windows(2).all(|w| w[1] <= w[0]));
+}
