@@ -445,3 +445,43 @@ fn paper_coupling_shifts_pressure_towards_the_leading_edge() {
         "spurious shift {spurious:e} m"
     );
 }
+
+#[test]
+fn coupled_solver_takes_the_direct_route_when_it_converges_and_falls_back_when_not() {
+    use tribosim::contact::CoupledSolver;
+    for (pair, friction, direct) in [
+        (paper_pair(), 0.45, true),
+        (strongly_coupled_pair(), 1.0, false),
+    ] {
+        let grid = Grid::square(64, DOMAIN_M).expect("valid");
+        let separation = grid.sample(|x, y| hertz(&pair, LOAD_N).separation_m(x, y));
+        let (normal, coupling) = (
+            Kernel::normal(&grid, &pair),
+            Kernel::coupling(&grid, &pair, friction),
+        );
+        let problem = ContactProblem {
+            grid,
+            separation: &separation,
+            load_n: LOAD_N,
+            yield_pressure_pa: f64::INFINITY,
+        };
+        let options = SolverOptions::default();
+        let mut solver = CoupledSolver::new(&normal, &coupling);
+        let solution = solver.solve(&problem, &options, None).expect("converges");
+        assert_eq!(solver.direct_works(), direct);
+        let mut full = SumOperator::new(DenseOperator::new(normal), DenseOperator::new(coupling));
+        let check = verify(&mut full, &problem, &solution);
+        assert!(
+            check.passes(check_tolerance(&options), LOAD_CHECK),
+            "{check:?}"
+        );
+        // A fallback counts the direct attempt's iterations as work done.
+        let budget = tribosim::contact::coupled::DIRECT_BUDGET;
+        assert_eq!(
+            solution.iterations > budget,
+            !direct,
+            "{}",
+            solution.iterations
+        );
+    }
+}

@@ -4,17 +4,23 @@
 
 mod contact;
 mod fft_pair;
+mod wear;
 
 use std::time::Instant;
 
 pub use contact::{ContactRow, contact_rows};
 pub use fft_pair::FftPair;
+pub use wear::{WearRow, wear_rows};
 
 /// Which tables to print.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum BenchTarget {
     /// The Hertz contact: grid size against error and time.
     Contact,
+    /// The paper scene: cycle step, grid and tolerance against error and time.
+    Wear,
+    /// Both.
+    All,
 }
 
 /// Median wall time of `reps` calls of `f`, s.
@@ -32,17 +38,28 @@ pub fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
 
 /// Runs the chosen benchmark and prints it as a table or as JSON lines.
 pub fn print(target: BenchTarget, json: bool) -> Result<(), String> {
-    match target {
-        BenchTarget::Contact => {
-            let rows = contact_rows(&[64, 128, 256, 512, 1024]).map_err(|e| e.to_string())?;
-            if json {
-                for row in &rows {
-                    println!("{}", serde_json::to_string(row).map_err(|e| e.to_string())?);
-                }
-            } else {
-                print!("{}", contact::table(&rows));
-            }
+    if matches!(target, BenchTarget::Contact | BenchTarget::All) {
+        let rows = contact_rows(&[64, 128, 256, 512, 1024]).map_err(|e| e.to_string())?;
+        emit(&rows, json, contact::table)?;
+    }
+    if matches!(target, BenchTarget::Wear | BenchTarget::All) {
+        let rows = wear_rows().map_err(|e| e.to_string())?;
+        emit(&rows, json, wear::table)?;
+    }
+    Ok(())
+}
+
+fn emit<R: serde::Serialize>(
+    rows: &[R],
+    json: bool,
+    table: fn(&[R]) -> String,
+) -> Result<(), String> {
+    if json {
+        for row in rows {
+            println!("{}", serde_json::to_string(row).map_err(|e| e.to_string())?);
         }
+    } else {
+        print!("{}", table(rows));
     }
     Ok(())
 }

@@ -51,16 +51,22 @@ pub struct DcFft {
     row_inverse: Arc<dyn ComplexToReal<f64>>,
     col_forward: Arc<dyn Fft<f64>>,
     col_inverse: Arc<dyn Fft<f64>>,
-    /// The real (even kernel) or imaginary (odd kernel) part of the kernel spectrum,
-    /// transposed: entry `(kx, ky)` at `kx * stride + ky`.
-    spectrum: Vec<f64>,
-    symmetry: Symmetry,
+    /// The kernel spectrum, transposed: entry `(kx, ky)` at `kx * stride + ky`.
+    spectrum: Spectrum,
     /// Work buffer in the same transposed layout.
     columns: Vec<Complex<f64>>,
     row_real: Vec<f64>,
     row_block: Vec<Complex<f64>>,
     real_scratch: Vec<Complex<f64>>,
     complex_scratch: Vec<Complex<f64>>,
+}
+
+/// The kernel spectrum, stored by what it can hold: real for an even kernel, imaginary for
+/// an odd one, complex for their sum.
+enum Spectrum {
+    Real(Vec<f64>),
+    Imaginary(Vec<f64>),
+    Complex(Vec<Complex<f64>>),
 }
 
 impl std::fmt::Debug for DcFft {
@@ -75,7 +81,29 @@ impl std::fmt::Debug for DcFft {
 impl DcFft {
     /// Plans the transforms and computes the spectrum of `kernel`.
     pub fn new(kernel: &Kernel) -> Self {
-        let (nx, ny) = kernel.shape();
+        let mut op = Self::planned(kernel.shape());
+        let spectrum = op.kernel_spectrum(kernel);
+        op.spectrum = match kernel.symmetry() {
+            Symmetry::EvenInX => Spectrum::Real(spectrum.iter().map(|c| c.re).collect()),
+            Symmetry::OddInX => Spectrum::Imaginary(spectrum.iter().map(|c| c.im).collect()),
+        };
+        op
+    }
+
+    /// The operator of `first + second` (e.g. the normal and the coupling kernels), for the
+    /// cost of one: the sum of the two spectra is applied in one pass.
+    pub fn sum(first: &Kernel, second: &Kernel) -> Self {
+        assert_eq!(first.shape(), second.shape(), "kernel shapes differ");
+        let mut op = Self::planned(first.shape());
+        let mut spectrum = op.kernel_spectrum(first);
+        for (s, t) in spectrum.iter_mut().zip(op.kernel_spectrum(second)) {
+            *s += t;
+        }
+        op.spectrum = Spectrum::Complex(spectrum);
+        op
+    }
+
+    fn planned((nx, ny): (usize, usize)) -> Self {
         let (row_len, col_len, half) = (2 * nx, 2 * ny, nx + 1);
         let mut real_planner = RealFftPlanner::<f64>::new();
         let row_forward = real_planner.plan_fft_forward(row_len);
@@ -90,7 +118,7 @@ impl DcFft {
             .get_inplace_scratch_len()
             .max(col_inverse.get_inplace_scratch_len());
         let stride = col_len + STRIDE_PAD;
-        let mut op = Self {
+        Self {
             nx,
             ny,
             col_len,
@@ -100,22 +128,19 @@ impl DcFft {
             row_inverse,
             col_forward,
             col_inverse,
-            spectrum: Vec::new(),
-            symmetry: kernel.symmetry(),
+            spectrum: Spectrum::Real(Vec::new()),
             columns: vec![Complex::default(); half * stride],
             row_real: vec![0.0; row_len],
             row_block: vec![Complex::default(); BLOCK * half],
             real_scratch: vec![Complex::default(); real_scratch_len],
             complex_scratch: vec![Complex::default(); complex_scratch_len],
-        };
-        op.spectrum = op.kernel_spectrum(kernel);
-        op
+        }
     }
 
     /// The kernel arranged by wrap-around on the padded grid (index `i < n` holds offset
     /// `i`, `i > n` holds offset `i - 2n`; the entry at `i = n` multiplies only padding and
     /// is set to zero, which also keeps odd kernels odd), transformed.
-    fn kernel_spectrum(&mut self, kernel: &Kernel) -> Vec<f64> {
+    fn kernel_spectrum(&mut self, kernel: &Kernel) -> Vec<Complex<f64>> {
         let (nx, ny) = (self.nx, self.ny);
         let offset = |i: usize, n: usize| -> Option<isize> {
             match i.cmp(&n) {
@@ -142,11 +167,7 @@ impl DcFft {
             self.col_forward
                 .process_with_scratch(&mut column[..self.col_len], &mut self.complex_scratch);
         }
-        let part = match self.symmetry {
-            Symmetry::EvenInX => |c: &Complex<f64>| c.re,
-            Symmetry::OddInX => |c: &Complex<f64>| c.im,
-        };
-        self.columns.iter().map(part).collect()
+        self.columns.clone()
     }
 
     /// Real-to-complex transform of `row_real` into slot `slot` of the row block.
@@ -197,17 +218,18 @@ impl Operator for DcFft {
             }
             self.scatter_block(first, rows);
         }
-        let columns = self.columns.chunks_exact_mut(self.stride);
-        for (column, kernel) in columns.zip(self.spectrum.chunks_exact(self.stride)) {
+        for (k, column) in self.columns.chunks_exact_mut(self.stride).enumerate() {
             let column = &mut column[..self.col_len];
             column[ny..].fill(Complex::default());
             self.col_forward
                 .process_with_scratch(column, &mut self.complex_scratch);
-            match self.symmetry {
-                Symmetry::EvenInX => column.iter_mut().zip(kernel).for_each(|(c, &k)| *c *= k),
-                Symmetry::OddInX => column.iter_mut().zip(kernel).for_each(|(c, &k)| {
+            let range = k * self.stride..k * self.stride + self.col_len;
+            match &self.spectrum {
+                Spectrum::Real(s) => column.iter_mut().zip(&s[range]).for_each(|(c, &k)| *c *= k),
+                Spectrum::Imaginary(s) => column.iter_mut().zip(&s[range]).for_each(|(c, &k)| {
                     *c = Complex::new(-c.im * k, c.re * k);
                 }),
+                Spectrum::Complex(s) => column.iter_mut().zip(&s[range]).for_each(|(c, k)| *c *= k),
             }
             self.col_inverse
                 .process_with_scratch(column, &mut self.complex_scratch);
@@ -270,6 +292,24 @@ mod tests {
                 let error = max_relative_difference(kernel, nx, ny, 7);
                 assert!(error < 1e-12, "{name} {nx}x{ny}: {error:e}");
             }
+        }
+    }
+
+    #[test]
+    fn summed_operator_equals_the_sum_of_direct_summations() {
+        let grid = Grid::new(12, 10, 1e-6, 1.2e-6).expect("valid");
+        let pair = pair(0.21, 0.28, 205e9);
+        let normal = Kernel::normal(&grid, &pair);
+        let coupling = Kernel::coupling(&grid, &pair, 0.45);
+        let input: Vec<f64> = (0..120).map(|i| ((i * 37) % 11) as f64 * 1e8).collect();
+        let mut fast = vec![0.0; 120];
+        DcFft::sum(&normal, &coupling).apply(&input, &mut fast);
+        let mut slow = vec![0.0; 120];
+        crate::contact::SumOperator::new(DenseOperator::new(normal), DenseOperator::new(coupling))
+            .apply(&input, &mut slow);
+        let scale = slow.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (f, s) in fast.iter().zip(&slow) {
+            assert!((f - s).abs() < 1e-12 * scale);
         }
     }
 

@@ -17,7 +17,7 @@ mod operator;
 pub mod solver;
 
 pub use check::{Verification, verify};
-pub use coupled::solve_coupled;
+pub use coupled::{CoupledSolver, solve_coupled};
 pub use error::ContactError;
 pub use fft::DcFft;
 pub use grid::Grid;

@@ -145,12 +145,13 @@ pub fn run(
         }
 
         let mut pressure = solution.pressure.clone();
-        if grows && near_edge(&grid, &pressure) {
-            if let Some(wider) = widen(&grid) {
-                let offset = (wider.nx - grid.nx) / 2;
+        let crowded = near_edges(&grid, &pressure);
+        if grows && (crowded.0 || crowded.1) {
+            if let Some(wider) = widen(&grid, crowded) {
+                let offset = ((wider.nx - grid.nx) / 2, (wider.ny - grid.ny) / 2);
                 pressure = embed(&pressure, &grid, &wider, offset);
                 history.clear();
-                groove = groove.widened(offset);
+                groove = groove.widened(offset.1);
                 grid = wider;
                 operators = setup.operators(&grid);
                 ball = setup.ball_separation(&grid);
@@ -158,11 +159,12 @@ pub fn run(
                     name: "domain_growth".to_owned(),
                     active: true,
                     reason: format!(
-                        "at cycle {cycle} the contact came within {:.0}% of the edge: grown to {} x {} cells ({:.1} um)",
+                        "at cycle {cycle} the contact came within {:.0}% of the edge: grown to {} x {} cells ({:.1} x {:.1} um)",
                         100.0 * (1.0 - GROW_AT_FRACTION),
                         grid.nx,
                         grid.ny,
-                        grid.nx as f64 * grid.dx * 1e6
+                        grid.nx as f64 * grid.dx * 1e6,
+                        grid.ny as f64 * grid.dy * 1e6
                     ),
                 });
             }
@@ -256,28 +258,43 @@ impl WarmStart {
     }
 }
 
-/// Whether any loaded cell lies outside `GROW_AT_FRACTION` of the half-width.
-fn near_edge(grid: &Grid, pressure: &[f64]) -> bool {
+/// Whether loaded cells lie outside `GROW_AT_FRACTION` of the half-width, along x and
+/// along y. The axes grow separately: as the groove deepens the contact widens across the
+/// track but shortens along it (paper Fig. 10), so only y keeps growing.
+fn near_edges(grid: &Grid, pressure: &[f64]) -> (bool, bool) {
     let limit_x = GROW_AT_FRACTION * grid.nx as f64 * grid.dx / 2.0;
     let limit_y = GROW_AT_FRACTION * grid.ny as f64 * grid.dy / 2.0;
-    pressure.iter().enumerate().any(|(i, &p)| {
-        p > 0.0 && (grid.x(i % grid.nx).abs() > limit_x || grid.y(i / grid.nx).abs() > limit_y)
-    })
+    let mut near = (false, false);
+    for (i, &p) in pressure.iter().enumerate() {
+        if p > 0.0 {
+            near.0 |= grid.x(i % grid.nx).abs() > limit_x;
+            near.1 |= grid.y(i / grid.nx).abs() > limit_y;
+        }
+    }
+    near
 }
 
-/// A grid with the same cells and about `GROWTH` times the side, or `None` at the size limit.
-fn widen(grid: &Grid) -> Option<Grid> {
-    let n = fft_friendly((grid.nx as f64 * GROWTH).ceil() as usize).min(Grid::MAX_CELLS_PER_SIDE);
-    // Square grids with FFT-friendly (even) sizes: the growth is an even number of cells.
-    (n > grid.nx)
-        .then(|| Grid::new(n, n, grid.dx, grid.dy).ok())
+/// The grid with the same cells and about `GROWTH` times the side along the crowded axes, or
+/// `None` when neither can grow (the size limit).
+fn widen(grid: &Grid, (grow_x, grow_y): (bool, bool)) -> Option<Grid> {
+    // FFT-friendly sizes are even, so each axis grows by the same cells on both sides.
+    let grown = |n: usize, grow: bool| {
+        if grow {
+            fft_friendly((n as f64 * GROWTH).ceil() as usize).min(Grid::MAX_CELLS_PER_SIDE)
+        } else {
+            n
+        }
+    };
+    let (nx, ny) = (grown(grid.nx, grow_x), grown(grid.ny, grow_y));
+    (nx > grid.nx || ny > grid.ny)
+        .then(|| Grid::new(nx, ny, grid.dx, grid.dy).ok())
         .flatten()
 }
 
-fn embed(field: &[f64], from: &Grid, to: &Grid, offset: usize) -> Vec<f64> {
+fn embed(field: &[f64], from: &Grid, to: &Grid, (ox, oy): (usize, usize)) -> Vec<f64> {
     let mut out = vec![0.0; to.len()];
     for (iy, row) in field.chunks_exact(from.nx).enumerate() {
-        let start = (iy + offset) * to.nx + offset;
+        let start = (iy + oy) * to.nx + ox;
         out[start..start + from.nx].copy_from_slice(row);
     }
     out

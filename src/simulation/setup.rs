@@ -2,8 +2,8 @@
 //! the decisions of what to model, each recorded with its reason.
 
 use crate::contact::{
-    ContactError, ContactProblem, ContactSolution, DcFft, ElasticPair, Grid, Hertz, Kernel,
-    Material, SolverOptions, solve, solve_coupled,
+    ContactError, ContactProblem, ContactSolution, CoupledSolver, DcFft, ElasticPair, Grid, Hertz,
+    Kernel, Material, SolverOptions, solve,
 };
 use crate::hardness::HardnessLaw;
 use crate::scene::{GridSize, Scene, Switch};
@@ -281,25 +281,23 @@ impl Setup {
 
     /// The influence operators for `grid`.
     pub fn operators(&self, grid: &Grid) -> ContactOperators {
-        let coupling = self.coupling.then(|| {
-            DcFft::new(&Kernel::coupling(
-                grid,
-                &self.pair,
-                self.scene.test.friction_coefficient,
-            ))
-        });
-        ContactOperators {
-            normal: DcFft::new(&Kernel::normal(grid, &self.pair)),
-            coupling,
+        let normal = Kernel::normal(grid, &self.pair);
+        if self.coupling {
+            let coupling = Kernel::coupling(grid, &self.pair, self.scene.test.friction_coefficient);
+            ContactOperators::Coupled(Box::new(CoupledSolver::new(&normal, &coupling)))
+        } else {
+            ContactOperators::Normal(Box::new(DcFft::new(&normal)))
         }
     }
 }
 
-/// The operators of one grid: the normal kernel and, when modelled, the coupling kernel.
+/// The operators of one grid: the normal kernel alone, or with the coupling kernel.
 #[derive(Debug)]
-pub struct ContactOperators {
-    normal: DcFft,
-    coupling: Option<DcFft>,
+pub enum ContactOperators {
+    /// Frictionless or similar materials: the symmetric normal operator.
+    Normal(Box<DcFft>),
+    /// With the friction coupling term.
+    Coupled(Box<CoupledSolver>),
 }
 
 impl ContactOperators {
@@ -310,11 +308,9 @@ impl ContactOperators {
         options: &SolverOptions,
         warm_start: Option<&[f64]>,
     ) -> Result<ContactSolution, ContactError> {
-        match &mut self.coupling {
-            Some(coupling) => {
-                solve_coupled(&mut self.normal, coupling, problem, options, warm_start)
-            }
-            None => solve(&mut self.normal, problem, options, warm_start),
+        match self {
+            Self::Normal(normal) => solve(normal.as_mut(), problem, options, warm_start),
+            Self::Coupled(coupled) => coupled.solve(problem, options, warm_start),
         }
     }
 }
