@@ -20,7 +20,7 @@ mod routes;
 mod store;
 
 use std::future::Future;
-use std::io;
+use std::io::{self, IsTerminal};
 use std::net::SocketAddr;
 use std::num::NonZeroUsize;
 use std::path::{Path, PathBuf};
@@ -270,6 +270,8 @@ fn init_tracing() {
     let _ = tracing_subscriber::fmt()
         .with_env_filter(filter)
         .with_writer(io::stderr)
+        // Colour codes only for a terminal, not in files or container logs.
+        .with_ansi(io::stderr().is_terminal())
         .try_init();
 }
 
