@@ -86,9 +86,9 @@ impl Cursor {
         }
     }
 
-    /// The cycles after `self.after` of a job that finished before this process started.
-    /// An unreadable log ends the cycles there (the status event still follows); the result
-    /// download holds every cycle in any case.
+    /// The cycles after `self.after` of a finished job, from its durable log. An unreadable
+    /// log ends the cycles there (the status event still follows); the result download holds
+    /// every cycle in any case.
     async fn cycles_on_disk(&self) -> Vec<Cycle> {
         let path = self.jobs.store().cycles_path(self.job.id);
         let text = match tokio::fs::read_to_string(&path).await {

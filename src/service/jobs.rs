@@ -99,8 +99,8 @@ pub struct Cycle {
 /// A job's mutable state.
 struct JobState {
     record: JobRecord,
-    /// The cycles solved so far, or `None` when they are only on disk (a job that had
-    /// finished before this process started).
+    /// The cycles solved so far, or `None` once the job has finished (they are then read
+    /// from `cycles.jsonl`).
     cycles: Option<Vec<Cycle>>,
     /// When the current run started, for the ETA.
     started: Option<Instant>,
@@ -556,10 +556,11 @@ impl Jobs {
         if let Some(error) = storage_error {
             return Err(error);
         }
+        // Whatever the outcome, the final status will say the log is complete.
+        writer.finish().map_err(|e| format!("storage: {e}"))?;
         match outcome {
             Ok(result) => {
                 let json = serde_json::to_vec(&result).map_err(|e| format!("result: {e}"))?;
-                writer.finish().map_err(|e| format!("storage: {e}"))?;
                 self.store
                     .write_result(job.id, &json)
                     .map_err(|e| format!("storage: {e}"))?;
@@ -589,9 +590,12 @@ impl Jobs {
             Some(error) => tracing::warn!(id = %job.id, status = ?status, %error, "job finished"),
             None => tracing::info!(id = %job.id, status = ?status, "job finished"),
         }
+        // The cycles are in `cycles.jsonl` now; event streams read them from there, so memory
+        // holds the cycles of running jobs only.
         job.update(|state| {
             state.record = record;
             state.started = None;
+            state.cycles = None;
         });
     }
 }

@@ -127,9 +127,10 @@ impl Store {
         fs::remove_dir_all(doomed)
     }
 
-    /// Every job on disk. Directories whose name is not a UUID are not jobs and are skipped;
-    /// a job whose record cannot be read is logged and skipped (the record is written
-    /// atomically, so this means outside damage).
+    /// Every job on disk, with interrupted writes' temporary files swept. Entries that are not
+    /// directories named by a UUID are not jobs and are skipped; a job whose record cannot be
+    /// read is logged and skipped (the record is written atomically, so this means outside
+    /// damage).
     pub fn load(&self) -> io::Result<Vec<StoredJob>> {
         let mut jobs = Vec::new();
         for entry in fs::read_dir(&self.jobs_dir)? {
@@ -141,6 +142,10 @@ impl Store {
             else {
                 continue;
             };
+            if !path.is_dir() {
+                continue;
+            }
+            sweep_temporaries(&path)?;
             let record = fs::read(path.join(STATUS)).and_then(|bytes| {
                 serde_json::from_slice::<JobRecord>(&bytes).map_err(io::Error::other)
             });
@@ -162,6 +167,19 @@ impl Store {
         }
         Ok(jobs)
     }
+}
+
+/// Removes the temporary files of writes a crash interrupted.
+fn sweep_temporaries(job_dir: &Path) -> io::Result<()> {
+    for entry in fs::read_dir(job_dir)? {
+        let entry = entry?;
+        let name = entry.file_name();
+        let name = name.to_string_lossy();
+        if name.starts_with('.') && name.ends_with(".tmp") {
+            fs::remove_file(entry.path())?;
+        }
+    }
+    Ok(())
 }
 
 /// Appends cycle records to a job's `cycles.jsonl`.
