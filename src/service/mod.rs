@@ -53,7 +53,7 @@ pub struct ServeArgs {
     /// Directory for jobs and results (created if missing).
     #[arg(long, default_value = "data")]
     pub data_dir: PathBuf,
-    /// Simulations run at once, each on its own thread (default: the number of cores).
+    /// Simulations run at once, each on its own thread (one per core by default).
     #[arg(long, default_value_t = default_workers())]
     pub workers: NonZeroUsize,
     /// Jobs that may wait for a worker; further submissions get 429.
