@@ -9,5 +9,6 @@ pub mod contact;
 pub mod corrosion;
 pub mod hardness;
 pub mod scene;
+pub mod service;
 pub mod simulation;
 pub mod wear;

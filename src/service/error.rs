@@ -1,0 +1,147 @@
+//! The one error type of the HTTP API. Every error leaves the server as JSON
+//! `{"error": "...", "fields": [{"path": "...", "message": "..."}]}`; `fields` is empty except
+//! for an invalid scene (422), where it lists every bad field with its allowed range.
+
+use axum::Json;
+use axum::extract::rejection::{BytesRejection, PathRejection};
+use axum::http::{HeaderValue, StatusCode, header};
+use axum::response::{IntoResponse, Response};
+use serde::Serialize;
+
+use crate::scene::{FieldError, SceneErrors};
+
+/// An HTTP error answer: status, message, located fields and an optional Retry-After.
+#[derive(Debug)]
+pub struct ApiError {
+    status: StatusCode,
+    message: String,
+    fields: Vec<FieldError>,
+    retry_after_s: Option<u64>,
+}
+
+/// The JSON body of every error.
+#[derive(Serialize)]
+struct ErrorBody<'a> {
+    error: &'a str,
+    fields: &'a [FieldError],
+}
+
+impl ApiError {
+    fn new(status: StatusCode, message: impl Into<String>) -> Self {
+        Self {
+            status,
+            message: message.into(),
+            fields: Vec::new(),
+            retry_after_s: None,
+        }
+    }
+
+    /// 400: the request is malformed (not JSON, not a job id, ...).
+    pub fn bad_request(message: impl Into<String>) -> Self {
+        Self::new(StatusCode::BAD_REQUEST, message)
+    }
+
+    /// 401: the bearer token is missing or wrong.
+    pub fn unauthorized() -> Self {
+        Self::new(
+            StatusCode::UNAUTHORIZED,
+            "missing or wrong bearer token (send `Authorization: Bearer <token>`)",
+        )
+    }
+
+    /// 404: no such job, or no such route.
+    pub fn not_found(message: impl Into<String>) -> Self {
+        Self::new(StatusCode::NOT_FOUND, message)
+    }
+
+    /// 405: the path exists but not with this method.
+    pub fn method_not_allowed() -> Self {
+        Self::new(
+            StatusCode::METHOD_NOT_ALLOWED,
+            "method not allowed on this path",
+        )
+    }
+
+    /// 409: the job exists but is not in a state that has what was asked for.
+    pub fn conflict(message: impl Into<String>) -> Self {
+        Self::new(StatusCode::CONFLICT, message)
+    }
+
+    /// 415: the body is not declared as JSON.
+    pub fn unsupported_media_type() -> Self {
+        Self::new(
+            StatusCode::UNSUPPORTED_MEDIA_TYPE,
+            "the scene must be sent with `Content-Type: application/json`",
+        )
+    }
+
+    /// 422: the scene is well-formed JSON but has invalid fields, all of them listed.
+    pub fn invalid_scene(errors: SceneErrors) -> Self {
+        let message = match errors.0.len() {
+            1 => "invalid scene: 1 problem".to_owned(),
+            n => format!("invalid scene: {n} problems"),
+        };
+        Self {
+            fields: errors.0,
+            ..Self::new(StatusCode::UNPROCESSABLE_ENTITY, message)
+        }
+    }
+
+    /// 429: the queue is full; try again after `retry_after_s` seconds.
+    pub fn queue_full(capacity: usize, retry_after_s: u64) -> Self {
+        Self {
+            retry_after_s: Some(retry_after_s),
+            ..Self::new(
+                StatusCode::TOO_MANY_REQUESTS,
+                format!("the job queue is full ({capacity} jobs waiting); retry later"),
+            )
+        }
+    }
+
+    /// 500: a fault of the server (its storage), never of the request. The cause goes to the
+    /// log; the client learns only that the server failed.
+    pub fn internal(context: &str, cause: &dyn std::fmt::Display) -> Self {
+        tracing::error!("{context}: {cause}");
+        Self::new(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            format!("internal error: {context}"),
+        )
+    }
+}
+
+impl IntoResponse for ApiError {
+    fn into_response(self) -> Response {
+        let body = ErrorBody {
+            error: &self.message,
+            fields: &self.fields,
+        };
+        let mut response = (self.status, Json(body)).into_response();
+        if let Some(seconds) = self.retry_after_s {
+            response
+                .headers_mut()
+                .insert(header::RETRY_AFTER, HeaderValue::from(seconds));
+        }
+        response
+    }
+}
+
+/// axum's own body rejections (413 over the size limit, 400 for an unreadable body) keep
+/// their status but get the JSON shape.
+impl From<BytesRejection> for ApiError {
+    fn from(rejection: BytesRejection) -> Self {
+        let status = rejection.status();
+        let message = if status == StatusCode::PAYLOAD_TOO_LARGE {
+            "request body too large".to_owned()
+        } else {
+            rejection.body_text()
+        };
+        Self::new(status, message)
+    }
+}
+
+/// A path segment that is not valid UTF-8 or percent-encoding.
+impl From<PathRejection> for ApiError {
+    fn from(rejection: PathRejection) -> Self {
+        Self::bad_request(rejection.body_text())
+    }
+}

@@ -1,0 +1,304 @@
+//! The HTTP service (`tribosim serve`): a durable job queue for simulations, run by a fixed
+//! pool of worker threads, with progress streamed as server-sent events.
+//!
+//! - [`serve`] is the whole server: it builds its own tokio runtime, so the command line
+//!   stays synchronous. [`serve_on`] runs on a listener the caller bound (tests bind port 0).
+//! - Routes are listed once in [`ROUTES`]; `openapi.yaml` at the crate root describes them
+//!   and is served at `/api/v1/openapi.yaml`.
+//! - Jobs live in `<data-dir>/jobs/<uuid>/` (see `store`); after a restart finished jobs are
+//!   served as before, and queued or interrupted ones run (again, from scratch).
+//! - Shutdown (SIGINT, SIGTERM): the listener closes, event streams end, running jobs are
+//!   interrupted within a cycle and keep their persisted status, so they run again at the
+//!   next start. Waiting for them instead could take minutes, longer than a container
+//!   runtime waits before killing the process anyway.
+
+mod error;
+mod events;
+mod export;
+mod jobs;
+mod routes;
+mod store;
+
+use std::future::Future;
+use std::io::{self, IsTerminal};
+use std::net::SocketAddr;
+use std::num::NonZeroUsize;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use axum::Router;
+use axum::extract::DefaultBodyLimit;
+use axum::http::{HeaderName, HeaderValue, Method, header};
+use thiserror::Error;
+use tokio::net::TcpListener;
+use tokio::sync::watch;
+use tower_http::cors::CorsLayer;
+use tower_http::trace::{DefaultMakeSpan, DefaultOnResponse, TraceLayer};
+use tracing::Level;
+
+pub use routes::{OPENAPI_YAML, ROUTES, Route, Verb};
+
+use jobs::Jobs;
+use store::Store;
+
+/// Largest request body accepted (a scene is a few kilobytes).
+pub const BODY_LIMIT_BYTES: usize = 1 << 20;
+
+/// Options of `tribosim serve`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ServeArgs {
+    /// Address to listen on. Any address other than loopback requires a token.
+    #[arg(long, default_value = "127.0.0.1:8080")]
+    pub addr: SocketAddr,
+    /// Directory for jobs and results (created if missing).
+    #[arg(long, default_value = "data")]
+    pub data_dir: PathBuf,
+    /// Simulations run at once, each on its own thread (one per core by default).
+    #[arg(long, default_value_t = default_workers())]
+    pub workers: NonZeroUsize,
+    /// Jobs that may wait for a worker; further submissions get 429.
+    #[arg(long, default_value_t = NonZeroUsize::new(64).unwrap_or(NonZeroUsize::MIN))]
+    pub queue_capacity: NonZeroUsize,
+    /// Bearer token required on every API call (`Authorization: Bearer <token>`).
+    #[arg(long, env = "TRIBOSIM_TOKEN", hide_env_values = true)]
+    pub token: Option<String>,
+    /// Origin allowed to call the API from a browser (repeatable); CORS is off without one.
+    #[arg(long = "cors-origin", value_name = "ORIGIN")]
+    pub cors_origins: Vec<String>,
+    /// Directory holding the web page (`index.html`).
+    #[arg(long, default_value = "static")]
+    pub static_dir: PathBuf,
+}
+
+fn default_workers() -> NonZeroUsize {
+    std::thread::available_parallelism().unwrap_or(NonZeroUsize::MIN)
+}
+
+/// Why the server did not start or stopped with an error.
+#[derive(Debug, Error)]
+pub enum ServeError {
+    /// A non-loopback address without a token.
+    #[error(
+        "refusing to listen on {0} without a token: pass --token or set TRIBOSIM_TOKEN \
+         (clients then send `Authorization: Bearer <token>`), or listen on a loopback \
+         address such as 127.0.0.1"
+    )]
+    TokenRequired(SocketAddr),
+    /// A `--cors-origin` that is not a valid header value.
+    #[error("invalid --cors-origin {0:?}")]
+    CorsOrigin(String),
+    /// The data directory cannot be used.
+    #[error("data directory {}: {source}", path.display())]
+    DataDir {
+        /// The directory.
+        path: PathBuf,
+        /// What failed.
+        #[source]
+        source: io::Error,
+    },
+    /// The address cannot be bound.
+    #[error("cannot listen on {addr}: {source}")]
+    Bind {
+        /// The address.
+        addr: SocketAddr,
+        /// What failed.
+        #[source]
+        source: io::Error,
+    },
+    /// The runtime, a worker thread or the listener failed.
+    #[error(transparent)]
+    Io(#[from] io::Error),
+}
+
+/// What every handler shares.
+#[derive(Clone)]
+struct AppState {
+    jobs: Arc<Jobs>,
+    token: Option<Arc<str>>,
+    static_dir: Arc<Path>,
+    /// Turns true when the server shuts down, ending event streams.
+    shutdown: watch::Receiver<bool>,
+}
+
+/// Runs the service until SIGINT or SIGTERM: logs to stderr (filter with `RUST_LOG`, default
+/// `info`), builds a tokio runtime, listens on `args.addr`.
+pub fn serve(args: ServeArgs) -> Result<(), ServeError> {
+    check_exposure(args.addr, args.token.as_deref())?;
+    init_tracing();
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()?;
+    runtime.block_on(async {
+        let listener = TcpListener::bind(args.addr)
+            .await
+            .map_err(|source| ServeError::Bind {
+                addr: args.addr,
+                source,
+            })?;
+        serve_on(args, listener, shutdown_signal()).await
+    })
+}
+
+/// Runs the service on `listener` until `shutdown` completes (the address in `args` is not
+/// used). On return every worker has stopped.
+pub async fn serve_on(
+    args: ServeArgs,
+    listener: TcpListener,
+    shutdown: impl Future<Output = ()> + Send + 'static,
+) -> Result<(), ServeError> {
+    let addr = listener.local_addr()?;
+    let token = check_exposure(addr, args.token.as_deref())?;
+    let cors = cors_layer(&args.cors_origins)?;
+    let data_dir = args.data_dir.clone();
+    let capacity = args.queue_capacity.get();
+    let jobs = tokio::task::spawn_blocking(move || {
+        Store::open(&data_dir).and_then(|store| Jobs::open(store, capacity))
+    })
+    .await
+    .map_err(io::Error::other)?
+    .map_err(|source| ServeError::DataDir {
+        path: args.data_dir.clone(),
+        source,
+    })?;
+    let workers = jobs.start_workers(args.workers.get())?;
+    let (stop, stopped) = watch::channel(false);
+    let app = AppState {
+        jobs: Arc::clone(&jobs),
+        token: token.map(Arc::from),
+        static_dir: Arc::from(args.static_dir.as_path()),
+        shutdown: stopped,
+    };
+    tracing::info!(
+        %addr,
+        workers = args.workers.get(),
+        data_dir = %args.data_dir.display(),
+        "tribosim serving on http://{addr}"
+    );
+    let served = axum::serve(listener, router(app, cors))
+        .with_graceful_shutdown(async move {
+            shutdown.await;
+            tracing::info!("shutting down");
+            stop.send_replace(true);
+        })
+        .await;
+    jobs.stop();
+    tokio::task::spawn_blocking(move || {
+        for worker in workers {
+            if worker.join().is_err() {
+                tracing::error!("a worker thread panicked");
+            }
+        }
+    })
+    .await
+    .map_err(io::Error::other)?;
+    served?;
+    tracing::info!("stopped");
+    Ok(())
+}
+
+/// The token to require, if any; an error for a non-loopback address without one. An empty
+/// token (say, an empty `TRIBOSIM_TOKEN`) counts as none.
+fn check_exposure(addr: SocketAddr, token: Option<&str>) -> Result<Option<String>, ServeError> {
+    match token.filter(|token| !token.is_empty()) {
+        Some(token) => Ok(Some(token.to_owned())),
+        None if addr.ip().is_loopback() => Ok(None),
+        None => Err(ServeError::TokenRequired(addr)),
+    }
+}
+
+fn cors_layer(origins: &[String]) -> Result<Option<CorsLayer>, ServeError> {
+    if origins.is_empty() {
+        return Ok(None);
+    }
+    let origins = origins
+        .iter()
+        .map(|origin| {
+            HeaderValue::from_str(origin).map_err(|_| ServeError::CorsOrigin(origin.clone()))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Some(
+        CorsLayer::new()
+            .allow_origin(origins)
+            .allow_methods([Method::GET, Method::POST, Method::DELETE])
+            .allow_headers([
+                header::AUTHORIZATION,
+                header::CONTENT_TYPE,
+                HeaderName::from_static("last-event-id"),
+            ])
+            .expose_headers([header::LOCATION, header::RETRY_AFTER]),
+    ))
+}
+
+/// The router: every route of [`ROUTES`], the token check on those that need it, JSON
+/// answers for unknown paths and methods, the body limit, one log line per request.
+fn router(app: AppState, cors: Option<CorsLayer>) -> Router {
+    let (mut public, mut protected) = (Router::new(), Router::new());
+    for route in ROUTES {
+        if route.auth {
+            protected = protected.route(route.path, route.method_router());
+        } else {
+            public = public.route(route.path, route.method_router());
+        }
+    }
+    let protected = protected.route_layer(axum::middleware::from_fn_with_state(
+        app.clone(),
+        routes::require_token,
+    ));
+    let router = public
+        .merge(protected)
+        .fallback(routes::no_route)
+        .method_not_allowed_fallback(routes::wrong_method)
+        .layer(DefaultBodyLimit::max(BODY_LIMIT_BYTES))
+        .layer(
+            TraceLayer::new_for_http()
+                .make_span_with(DefaultMakeSpan::new().level(Level::INFO))
+                .on_request(())
+                .on_response(DefaultOnResponse::new().level(Level::INFO)),
+        )
+        .with_state(app);
+    match cors {
+        Some(cors) => router.layer(cors),
+        None => router,
+    }
+}
+
+fn init_tracing() {
+    let filter = tracing_subscriber::EnvFilter::try_from_default_env()
+        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info"));
+    // Fails only when a subscriber is already installed (by an embedding program), which
+    // is then used instead.
+    let _ = tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(io::stderr)
+        // Colour codes only for a terminal, not in files or container logs.
+        .with_ansi(io::stderr().is_terminal())
+        .try_init();
+}
+
+/// Completes at the first SIGINT or SIGTERM.
+async fn shutdown_signal() {
+    let interrupt = async {
+        if let Err(e) = tokio::signal::ctrl_c().await {
+            tracing::error!("cannot listen for SIGINT: {e}");
+            std::future::pending::<()>().await;
+        }
+    };
+    #[cfg(unix)]
+    let terminate = async {
+        match tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate()) {
+            Ok(mut signal) => {
+                signal.recv().await;
+            }
+            Err(e) => {
+                tracing::error!("cannot listen for SIGTERM: {e}");
+                std::future::pending::<()>().await;
+            }
+        }
+    };
+    #[cfg(not(unix))]
+    let terminate = std::future::pending::<()>();
+    tokio::select! {
+        () = interrupt => {}
+        () = terminate => {}
+    }
+}

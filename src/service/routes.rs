@@ -1,0 +1,374 @@
+//! The route table and its handlers. Handlers only translate between HTTP and the plain
+//! functions of `jobs`, `store`, `events` and `export`; the route table is the single list
+//! from which the router is built and against which `openapi.yaml` is checked.
+
+use std::sync::Arc;
+
+use axum::Json;
+use axum::body::Bytes;
+use axum::extract::rejection::BytesRejection;
+use axum::extract::{FromRequestParts, Path, Request, State};
+use axum::http::request::Parts;
+use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
+use axum::middleware::Next;
+use axum::response::sse::{KeepAlive, Sse};
+use axum::response::{Html, IntoResponse, Response};
+use axum::routing::{MethodFilter, MethodRouter, on};
+use serde_json::{Value, json};
+use uuid::Uuid;
+
+use super::AppState;
+use super::error::ApiError;
+use super::events;
+use super::export;
+use super::jobs::{Deletion, JobStatus, SubmitError};
+use crate::scene::{parse_scene, presets};
+
+/// The OpenAPI description, served as is.
+pub const OPENAPI_YAML: &str = include_str!("../../openapi.yaml");
+
+/// An HTTP method used by the route table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Verb {
+    /// GET.
+    Get,
+    /// POST.
+    Post,
+    /// DELETE.
+    Delete,
+}
+
+impl Verb {
+    /// The method's name as OpenAPI spells it (lower case).
+    pub fn openapi_name(self) -> &'static str {
+        match self {
+            Self::Get => "get",
+            Self::Post => "post",
+            Self::Delete => "delete",
+        }
+    }
+
+    fn filter(self) -> MethodFilter {
+        match self {
+            Self::Get => MethodFilter::GET,
+            Self::Post => MethodFilter::POST,
+            Self::Delete => MethodFilter::DELETE,
+        }
+    }
+}
+
+/// One route of the service.
+pub struct Route {
+    /// The method.
+    pub verb: Verb,
+    /// The path; axum's `{id}` syntax is also OpenAPI's.
+    pub path: &'static str,
+    /// Whether the bearer token (when configured) is required.
+    pub auth: bool,
+    handler: fn(MethodFilter) -> MethodRouter<AppState>,
+}
+
+impl Route {
+    /// This route's method router.
+    pub(super) fn method_router(&self) -> MethodRouter<AppState> {
+        (self.handler)(self.verb.filter())
+    }
+}
+
+/// Every route. The page, the health check and the API description are public (a health
+/// check and documentation carry no data); every other API call needs the token when one is
+/// configured.
+pub const ROUTES: &[Route] = &[
+    Route {
+        verb: Verb::Get,
+        path: "/",
+        auth: false,
+        handler: |f| on(f, index),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/healthz",
+        auth: false,
+        handler: |f| on(f, healthz),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/openapi.yaml",
+        auth: false,
+        handler: |f| on(f, openapi),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/presets",
+        auth: true,
+        handler: |f| on(f, list_presets),
+    },
+    Route {
+        verb: Verb::Post,
+        path: "/api/v1/jobs",
+        auth: true,
+        handler: |f| on(f, submit),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/jobs",
+        auth: true,
+        handler: |f| on(f, list_jobs),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/jobs/{id}",
+        auth: true,
+        handler: |f| on(f, get_job),
+    },
+    Route {
+        verb: Verb::Delete,
+        path: "/api/v1/jobs/{id}",
+        auth: true,
+        handler: |f| on(f, delete_job),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/jobs/{id}/events",
+        auth: true,
+        handler: |f| on(f, job_events),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/jobs/{id}/result",
+        auth: true,
+        handler: |f| on(f, job_result),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/jobs/{id}/result.csv",
+        auth: true,
+        handler: |f| on(f, job_result_csv),
+    },
+];
+
+/// A job id from the path, parsed as a UUID before anything else looks at it.
+struct JobId(Uuid);
+
+impl<S: Send + Sync> FromRequestParts<S> for JobId {
+    type Rejection = ApiError;
+
+    async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
+        let Path(raw) = Path::<String>::from_request_parts(parts, state).await?;
+        Uuid::try_parse(&raw)
+            .map(JobId)
+            .map_err(|_| ApiError::bad_request(format!("{raw:?} is not a job id (a UUID)")))
+    }
+}
+
+/// Rejects API calls without the configured bearer token.
+pub(super) async fn require_token(
+    State(app): State<AppState>,
+    request: Request,
+    next: Next,
+) -> Response {
+    if let Some(token) = &app.token {
+        let given = request
+            .headers()
+            .get(header::AUTHORIZATION)
+            .and_then(|value| value.to_str().ok())
+            .and_then(|value| value.strip_prefix("Bearer "));
+        if !given.is_some_and(|given| constant_time_eq(given.as_bytes(), token.as_bytes())) {
+            let mut response = ApiError::unauthorized().into_response();
+            response
+                .headers_mut()
+                .insert(header::WWW_AUTHENTICATE, HeaderValue::from_static("Bearer"));
+            return response;
+        }
+    }
+    next.run(request).await
+}
+
+/// Compares without an early exit, so the time taken does not reveal how much of a guessed
+/// token was right.
+fn constant_time_eq(a: &[u8], b: &[u8]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).fold(0u8, |acc, (x, y)| acc | (x ^ y)) == 0
+}
+
+/// 404 for paths no route matches.
+pub(super) async fn no_route() -> ApiError {
+    ApiError::not_found("no such route")
+}
+
+/// 405 for a known path with another method.
+pub(super) async fn wrong_method() -> ApiError {
+    ApiError::method_not_allowed()
+}
+
+async fn index(State(app): State<AppState>) -> Result<Html<Vec<u8>>, ApiError> {
+    let path = app.static_dir.join("index.html");
+    match tokio::fs::read(&path).await {
+        Ok(page) => Ok(Html(page)),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(ApiError::not_found(format!(
+            "no page: {} is missing (see --static-dir)",
+            path.display()
+        ))),
+        Err(e) => Err(ApiError::internal("reading the page", &e)),
+    }
+}
+
+async fn healthz() -> Json<Value> {
+    Json(json!({"status": "ok"}))
+}
+
+async fn openapi() -> impl IntoResponse {
+    ([(header::CONTENT_TYPE, "application/yaml")], OPENAPI_YAML)
+}
+
+async fn list_presets() -> impl IntoResponse {
+    Json(presets())
+}
+
+async fn submit(
+    State(app): State<AppState>,
+    headers: HeaderMap,
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Response, ApiError> {
+    if !is_json(&headers) {
+        return Err(ApiError::unsupported_media_type());
+    }
+    let body = body?;
+    let document: Value = serde_json::from_slice(&body)
+        .map_err(|e| ApiError::bad_request(format!("malformed JSON: {e}")))?;
+    let scene = parse_scene(&document).map_err(ApiError::invalid_scene)?;
+    let jobs = Arc::clone(&app.jobs);
+    let record = tokio::task::spawn_blocking(move || jobs.submit(scene))
+        .await
+        .map_err(|e| ApiError::internal("submitting a job", &e))?
+        .map_err(|e| match e {
+            SubmitError::QueueFull {
+                capacity,
+                retry_after_s,
+            } => ApiError::queue_full(capacity, retry_after_s),
+            SubmitError::Storage(e) => ApiError::internal("storing the job", &e),
+        })?;
+    let location = format!("/api/v1/jobs/{}", record.id);
+    Ok((
+        StatusCode::ACCEPTED,
+        [(header::LOCATION, location)],
+        Json(record),
+    )
+        .into_response())
+}
+
+/// `application/json`, any parameters, or a `+json` type.
+fn is_json(headers: &HeaderMap) -> bool {
+    headers
+        .get(header::CONTENT_TYPE)
+        .and_then(|value| value.to_str().ok())
+        .and_then(|value| value.split(';').next())
+        .map(|essence| essence.trim().to_ascii_lowercase())
+        .is_some_and(|essence| essence == "application/json" || essence.ends_with("+json"))
+}
+
+async fn list_jobs(State(app): State<AppState>) -> impl IntoResponse {
+    Json(app.jobs.list())
+}
+
+fn unknown_job(id: Uuid) -> ApiError {
+    ApiError::not_found(format!("no job {id}"))
+}
+
+async fn get_job(State(app): State<AppState>, JobId(id): JobId) -> Result<Response, ApiError> {
+    let job = app.jobs.get(id).ok_or_else(|| unknown_job(id))?;
+    Ok(Json(job.record()).into_response())
+}
+
+async fn delete_job(State(app): State<AppState>, JobId(id): JobId) -> Result<Response, ApiError> {
+    let jobs = Arc::clone(&app.jobs);
+    let deletion = tokio::task::spawn_blocking(move || jobs.delete(id))
+        .await
+        .map_err(|e| ApiError::internal("deleting a job", &e))?
+        .ok_or_else(|| unknown_job(id))?
+        .map_err(|e| ApiError::internal("deleting a job", &e))?;
+    Ok(match deletion {
+        Deletion::Cancelled(record) => (StatusCode::OK, Json(record)).into_response(),
+        Deletion::Cancelling(record) => (StatusCode::ACCEPTED, Json(record)).into_response(),
+        Deletion::Removed => StatusCode::NO_CONTENT.into_response(),
+    })
+}
+
+async fn job_events(
+    State(app): State<AppState>,
+    JobId(id): JobId,
+    headers: HeaderMap,
+) -> Result<Response, ApiError> {
+    let job = app.jobs.get(id).ok_or_else(|| unknown_job(id))?;
+    // An unreadable Last-Event-ID is treated as absent: the client gets the whole stream,
+    // which is more useful than an error from a reconnecting EventSource.
+    let after = headers
+        .get("last-event-id")
+        .and_then(|value| value.to_str().ok())
+        .and_then(|value| value.trim().parse::<u64>().ok())
+        .unwrap_or(0);
+    let stream = events::follow(Arc::clone(&app.jobs), job, after, app.shutdown.clone());
+    Ok(Sse::new(stream)
+        .keep_alive(KeepAlive::default())
+        .into_response())
+}
+
+/// The bytes of a succeeded job's `result.json`; 409 while it has none.
+async fn result_bytes(app: &AppState, id: Uuid) -> Result<Vec<u8>, ApiError> {
+    let job = app.jobs.get(id).ok_or_else(|| unknown_job(id))?;
+    let record = job.record();
+    match (record.status, record.error) {
+        (JobStatus::Succeeded, _) => {}
+        (JobStatus::Failed, Some(error)) => {
+            return Err(ApiError::conflict(format!("job failed: {error}")));
+        }
+        (status, _) => {
+            return Err(ApiError::conflict(format!(
+                "job is {}; only a succeeded job has a result",
+                status.name()
+            )));
+        }
+    }
+    match tokio::fs::read(app.jobs.store().result_path(id)).await {
+        Ok(bytes) => Ok(bytes),
+        // Deleted between the status check and the read.
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(unknown_job(id)),
+        Err(e) => Err(ApiError::internal("reading a result", &e)),
+    }
+}
+
+fn attachment(content_type: &'static str, filename: &str, body: impl IntoResponse) -> Response {
+    let disposition = format!("attachment; filename=\"{filename}\"");
+    (
+        [
+            (header::CONTENT_TYPE, content_type.to_owned()),
+            (header::CONTENT_DISPOSITION, disposition),
+        ],
+        body,
+    )
+        .into_response()
+}
+
+async fn job_result(State(app): State<AppState>, JobId(id): JobId) -> Result<Response, ApiError> {
+    let bytes = result_bytes(&app, id).await?;
+    Ok(attachment(
+        "application/json",
+        &format!("tribosim-{id}.json"),
+        bytes,
+    ))
+}
+
+async fn job_result_csv(
+    State(app): State<AppState>,
+    JobId(id): JobId,
+) -> Result<Response, ApiError> {
+    let bytes = result_bytes(&app, id).await?;
+    let csv = tokio::task::spawn_blocking(move || export::cycles_csv(&bytes))
+        .await
+        .map_err(|e| ApiError::internal("exporting a result", &e))?
+        .map_err(|e| ApiError::internal("exporting a result", &e))?;
+    Ok(attachment(
+        "text/csv; charset=utf-8",
+        &format!("tribosim-{id}.csv"),
+        csv,
+    ))
+}
