@@ -1,5 +1,5 @@
-//! The `tribosim` command line: run a scene, inspect its first contact, list presets, or
-//! print the speed-against-error tables.
+//! The `tribosim` command line: serve the HTTP API and page (the default), run a scene,
+//! inspect its first contact, list presets, or print the speed-against-error tables.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -18,13 +18,19 @@ use tribosim::simulation::{first_contact, run};
     version,
     about = "Ball-on-disc tribocorrosion wear simulation (Dalmau et al., Wear 2018)"
 )]
+#[command(args_conflicts_with_subcommands = true)]
 struct Cli {
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
+    /// `tribosim` alone serves, with these options.
+    #[command(flatten)]
+    serve: tribosim::service::ServeArgs,
 }
 
 #[derive(Subcommand)]
 enum Command {
+    /// Serve the HTTP API and the web page (the default).
+    Serve(tribosim::service::ServeArgs),
     /// Run one scene offline and write the result JSON.
     Run {
         /// The scene (JSON; may be {"preset": ..., "overrides": ...}).
@@ -90,7 +96,8 @@ fn run_scene(path: &Path, output: Option<&Path>) -> Result<(), String> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let outcome = match cli.command {
+    let outcome = match cli.command.unwrap_or(Command::Serve(cli.serve)) {
+        Command::Serve(args) => tribosim::service::serve(args).map_err(|e| e.to_string()),
         Command::Run { scene, output } => run_scene(&scene, output.as_deref()),
         Command::Contact { scene } => read_scene(&scene)
             .and_then(|s| first_contact(&s).map_err(|e| e.to_string()))
