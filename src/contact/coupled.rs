@@ -199,3 +199,14 @@ impl CoupledSolver {
         self.direct_works
     }
 }
+
+/// The full operator `K_n + K_c`, applied in one pass.
+impl Operator for CoupledSolver {
+    fn shape(&self) -> (usize, usize) {
+        self.summed.shape()
+    }
+
+    fn apply(&mut self, input: &[f64], output: &mut [f64]) {
+        self.summed.apply(input, output);
+    }
+}

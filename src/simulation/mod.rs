@@ -7,6 +7,7 @@ mod result;
 mod run;
 mod setup;
 mod stepping;
+mod window;
 
 use thiserror::Error;
 

@@ -3,7 +3,7 @@
 
 use crate::contact::{
     ContactError, ContactProblem, ContactSolution, CoupledSolver, DcFft, ElasticPair, Grid, Hertz,
-    Kernel, Material, SolverOptions, solve,
+    Kernel, Material, Operator, SolverOptions, solve,
 };
 use crate::hardness::HardnessLaw;
 use crate::scene::{GridSize, Scene, Switch};
@@ -298,6 +298,23 @@ pub enum ContactOperators {
     Normal(Box<DcFft>),
     /// With the friction coupling term.
     Coupled(Box<CoupledSolver>),
+}
+
+/// The full operator of the grid: normal, plus coupling when modelled.
+impl Operator for ContactOperators {
+    fn shape(&self) -> (usize, usize) {
+        match self {
+            Self::Normal(normal) => normal.shape(),
+            Self::Coupled(coupled) => coupled.shape(),
+        }
+    }
+
+    fn apply(&mut self, input: &[f64], output: &mut [f64]) {
+        match self {
+            Self::Normal(normal) => normal.apply(input, output),
+            Self::Coupled(coupled) => coupled.apply(input, output),
+        }
+    }
 }
 
 impl ContactOperators {
