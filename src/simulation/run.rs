@@ -154,7 +154,6 @@ pub fn run(
             if let Some(wider) = widen(&grid, crowded) {
                 let offset = ((wider.nx - grid.nx) / 2, (wider.ny - grid.ny) / 2);
                 pressure = embed(&pressure, &grid, &wider, offset);
-                history.clear();
                 groove = groove.widened(offset.1);
                 grid = wider;
                 window_fraction_sum += solver.window_fraction_sum;
@@ -251,12 +250,14 @@ struct WarmStart {
 }
 
 impl WarmStart {
+    /// Records the pressure of `cycle`; a pressure from before a regrid (another size)
+    /// cannot be extrapolated from and is forgotten.
     fn push(&mut self, cycle: u64, pressure: Vec<f64>) {
-        self.before = self.last.replace((cycle, pressure));
-    }
-
-    fn clear(&mut self) {
-        self.before = None;
+        let size = pressure.len();
+        self.before = self
+            .last
+            .replace((cycle, pressure))
+            .filter(|(_, p)| p.len() == size);
     }
 
     fn last(&self) -> Option<&[f64]> {
