@@ -70,21 +70,19 @@ fn row(
 pub fn wear_rows() -> Result<Vec<WearRow>, SimulationError> {
     let mut rows = Vec::new();
 
-    // Cycle stepping, on a coarse grid so that the every-cycle reference stays affordable.
+    // Cycle stepping with the scene's own (auto) grid and domain.
     for cycles in [300, 3600] {
         let every = simulate(&format!(
-            r#"{{"test": {{"cycles": {cycles}}}, "numerics": {{"grid": 64, "cycle_step": 1}}}}"#
+            r#"{{"test": {{"cycles": {cycles}}}, "numerics": {{"cycle_step": 1}}}}"#
         ))?;
-        let auto = simulate(&format!(
-            r#"{{"test": {{"cycles": {cycles}}}, "numerics": {{"grid": 64, "cycle_step": "auto"}}}}"#
-        ))?;
+        let auto = simulate(&format!(r#"{{"test": {{"cycles": {cycles}}}}}"#))?;
         rows.push(row(
             "cycle_step",
-            "every cycle (reference), grid 64".into(),
+            "every cycle (reference)".into(),
             &every,
             &every,
         ));
-        rows.push(row("cycle_step", "auto, grid 64".into(), &auto, &every));
+        rows.push(row("cycle_step", "auto".into(), &auto, &every));
     }
 
     // Grid: cells across the first domain (3 contact radii, growing with the track).

@@ -60,6 +60,23 @@ fn choice(name: &str, active: bool, reason: String) -> ModelChoice {
     }
 }
 
+/// Resolves an on/off/auto switch (auto: `needed`) and records it with its reason.
+fn decide(
+    models: &mut Vec<ModelChoice>,
+    name: &str,
+    switch: Switch,
+    needed: bool,
+    reason: String,
+) -> bool {
+    let (active, reason) = match switch {
+        Switch::On => (true, format!("on by request; {reason}")),
+        Switch::Off => (false, format!("off by request; {reason}")),
+        Switch::Auto => (needed, reason),
+    };
+    models.push(choice(name, active, reason));
+    active
+}
+
 /// Smallest even `2^i 3^j >= n` (`i >= 1`): sizes rustfft transforms fastest, and even so
 /// the apex sits on a cell corner and a grown grid adds the same cells on both sides.
 pub(crate) fn fft_friendly(n: usize) -> usize {
@@ -124,29 +141,13 @@ impl Setup {
             if p0 >= lowest_yield { ">=" } else { "<" },
             lowest_yield / 1e6
         );
-        let plasticity = match scene.wear.plasticity {
-            Switch::On => {
-                models.push(choice(
-                    "plasticity",
-                    true,
-                    format!("on by request; {reach}"),
-                ));
-                true
-            }
-            Switch::Off => {
-                models.push(choice(
-                    "plasticity",
-                    false,
-                    format!("off by request; {reach}"),
-                ));
-                false
-            }
-            Switch::Auto => {
-                let active = p0 >= lowest_yield;
-                models.push(choice("plasticity", active, reach));
-                active
-            }
-        };
+        let plasticity = decide(
+            &mut models,
+            "plasticity",
+            scene.wear.plasticity,
+            p0 >= lowest_yield,
+            reach,
+        );
 
         let mu = scene.test.friction_coefficient;
         let strength = (mu * pair.delta_nu).abs();
@@ -154,29 +155,13 @@ impl Setup {
             "|mu delta-nu| = {strength:.3e}; it moves pressures by >= {COUPLING_SENSITIVITY} times that, against tolerance {:.0e}",
             options.tolerance
         );
-        let coupling = match scene.numerics.coupling {
-            Switch::On => {
-                models.push(choice(
-                    "coupling",
-                    true,
-                    format!("on by request; {measured}"),
-                ));
-                true
-            }
-            Switch::Off => {
-                models.push(choice(
-                    "coupling",
-                    false,
-                    format!("off by request; {measured}"),
-                ));
-                false
-            }
-            Switch::Auto => {
-                let active = COUPLING_SENSITIVITY * strength >= options.tolerance;
-                models.push(choice("coupling", active, measured));
-                active
-            }
-        };
+        let coupling = decide(
+            &mut models,
+            "coupling",
+            scene.numerics.coupling,
+            COUPLING_SENSITIVITY * strength >= options.tolerance,
+            measured,
+        );
 
         let radius = if plasticity {
             let punch = (scene.load_n() / (std::f64::consts::PI * lowest_yield)).sqrt();
