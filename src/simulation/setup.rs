@@ -97,24 +97,20 @@ impl Setup {
     /// Checks the scene and makes every decision. Fails with the scene's field errors.
     pub fn new(scene: &Scene) -> Result<Self, SimulationError> {
         scene.validate()?;
+        // Errors while setting up are reported as cycle 0.
+        let setting_up = |source| SimulationError::Contact { cycle: 0, source };
         let ball = Material::new(
             scene.ball.youngs_modulus_pa(),
             scene.ball.poisson_ratio,
             "ball",
         )
-        .map_err(|e| SimulationError::Contact {
-            cycle: 0,
-            source: e,
-        })?;
+        .map_err(setting_up)?;
         let disc = Material::new(
             scene.disc.youngs_modulus_pa(),
             scene.disc.poisson_ratio,
             "disc",
         )
-        .map_err(|e| SimulationError::Contact {
-            cycle: 0,
-            source: e,
-        })?;
+        .map_err(setting_up)?;
         let pair = ElasticPair::new(ball, disc);
         let hardness = scene.hardness_law()?;
         let archard_k = scene.archard_k()?;
@@ -200,10 +196,7 @@ impl Setup {
                 )
             }
         };
-        let grid = Grid::square(cells, domain).map_err(|e| SimulationError::Contact {
-            cycle: 0,
-            source: e,
-        })?;
+        let grid = Grid::square(cells, domain).map_err(setting_up)?;
         models.push(choice(
             "grid",
             true,
