@@ -6,7 +6,8 @@
 # also writes docs/screenshots/*.png), and stops the server. Exits non-zero on failure.
 #
 # Environment: TRIBOSIM_BIN (a built binary; default: cargo build --release),
-# E2E_CYCLES (cycles of the test run, default 600).
+# E2E_GRID and E2E_CYCLES (the test run's grid and cycles, default 64 and 3600),
+# SCREENSHOT_DIR (default docs/screenshots).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repo="$(pwd)"
@@ -64,7 +65,7 @@ done
 echo "== the page test against $base"
 
 status=0
-(cd tests/e2e && TRIBOSIM_URL="$base" SCREENSHOT_DIR="$repo/docs/screenshots" node page.test.mjs) || status=$?
+(cd tests/e2e && TRIBOSIM_URL="$base" SCREENSHOT_DIR="${SCREENSHOT_DIR:-$repo/docs/screenshots}" node page.test.mjs) || status=$?
 
 if ! kill -0 "$server_pid" 2>/dev/null; then
     echo "the server died during the run" >&2

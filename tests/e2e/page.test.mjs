@@ -77,6 +77,11 @@ try {
     const p = document.getElementById("run-progress");
     return p.value > 0 && p.value < p.max && Number(document.getElementById("plot-volume").dataset.points) > 0;
   }, null, { polling: "raf" });
+  // For the screenshot only: a third of the way in, if the run has not ended by then.
+  await page.waitForFunction(() => {
+    const p = document.getElementById("run-progress");
+    return p.value >= p.max / 3 || !document.getElementById("run-status").textContent.startsWith("running");
+  }, null, { polling: "raf" });
   console.log(`   during the run: ${await page.$eval("#run-status", (el) => el.textContent)}`);
   await page.screenshot({ path: path.join(shots, "during-run.png"), fullPage: true });
 
