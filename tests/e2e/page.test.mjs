@@ -51,6 +51,14 @@ try {
   assert.equal(await page.getAttribute("#f-test-load_n", "aria-invalid"), "true");
   await page.screenshot({ path: path.join(shots, "validation-error.png"), clip: { x: 0, y: 0, width: 720, height: 760 } });
 
+  step("a pasted scene with a bad field: the error is listed under the JSON box");
+  await page.check("#use-json");
+  await page.fill("#scene-json", JSON.stringify({ preset: "dalmau2018-316l", overrides: { test: { speed_rpm: -5 } } }));
+  await page.click("#submit");
+  await page.locator("#json-errors", { hasText: "test.speed_rpm" }).waitFor();
+  console.log(`   json error: ${await page.textContent("#json-errors")}`);
+  await page.uncheck("#use-json");
+
   step("start the preset on a small grid, driven by the keyboard-usable form");
   await page.fill("#f-test-load_n", "5");
   await page.fill("#f-numerics-grid", process.env.E2E_GRID || "64");
