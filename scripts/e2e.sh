@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# End-to-end test of the results page (static/index.html) in headless Chromium: Debian's
+# chromium (installed with apt-get when /usr/bin/chromium is missing; needs root), driven
+# by playwright-core from tests/e2e (npm ci). Starts the release binary on a free loopback
+# port with a temporary data directory, runs tests/e2e/page.test.mjs against it (which
+# also writes docs/screenshots/*.png), and stops the server. Exits non-zero on failure.
+#
+# Environment: TRIBOSIM_BIN (a built binary; default: cargo build --release),
+# E2E_GRID and E2E_CYCLES (the test run's grid and cycles, default 64 and 3600),
+# SCREENSHOT_DIR (default docs/screenshots).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+repo="$(pwd)"
+
+# The page carries uPlot inline (the service serves only index.html): it must be the
+# vendored files, byte for byte.
+python3 - <<'PY'
+import re, sys
+page = open("static/index.html", encoding="utf-8").read()
+for tag, ident, name in [("style", "vendor-uplot-css", "uPlot.min.css"), ("script", "vendor-uplot-js", "uPlot.iife.min.js")]:
+    m = re.search(r'<%s id="%s">(.*?)</%s>' % (tag, ident, tag), page, re.S)
+    vendored = open("static/vendor/uplot/" + name, encoding="utf-8").read().rstrip("\n")
+    if not m or m.group(1) != vendored:
+        sys.exit("static/index.html: the inline %s differs from static/vendor/uplot/%s" % (ident, name))
+print("== the inline uPlot matches static/vendor/uplot/")
+PY
+
+if [ ! -x /usr/bin/chromium ]; then
+    echo "== installing Debian's chromium"
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null
+fi
+
+echo "== npm ci in tests/e2e"
+(cd tests/e2e && npm ci --no-audit --no-fund --loglevel=error)
+
+if [ -z "${TRIBOSIM_BIN:-}" ]; then
+    cargo build --release --quiet --bin tribosim
+    TRIBOSIM_BIN="$(realpath -m "${CARGO_TARGET_DIR:-target}")/release/tribosim"
+fi
+
+work="$(mktemp -d)"
+server_pid=""
+cleanup() {
+    if [ -n "$server_pid" ]; then
+        kill -TERM "$server_pid" 2>/dev/null || true
+        wait "$server_pid" 2>/dev/null || true
+    fi
+    rm -rf "$work"
+}
+trap cleanup EXIT
+
+# Port 0: the kernel picks a free port, and the server logs the one it got.
+"$TRIBOSIM_BIN" serve --addr 127.0.0.1:0 --data-dir "$work/data" --static-dir "$repo/static" \
+    --workers 1 2>"$work/server.log" &
+server_pid=$!
+base=""
+for _ in $(seq 600); do
+    base="$(grep -o 'serving on http://[0-9.:]*' "$work/server.log" | head -n1 | cut -d' ' -f3 || true)"
+    [ -n "$base" ] && break
+    kill -0 "$server_pid" 2>/dev/null || { cat "$work/server.log"; echo "server exited" >&2; exit 1; }
+    sleep 0.1
+done
+[ -n "$base" ] || { cat "$work/server.log"; echo "server did not start" >&2; exit 1; }
+echo "== the page test against $base"
+
+status=0
+(cd tests/e2e && TRIBOSIM_URL="$base" SCREENSHOT_DIR="${SCREENSHOT_DIR:-$repo/docs/screenshots}" node page.test.mjs) || status=$?
+
+if ! kill -0 "$server_pid" 2>/dev/null; then
+    echo "the server died during the run" >&2
+    status=1
+fi
+if grep -q "panicked" "$work/server.log"; then
+    grep -B2 -A5 "panicked" "$work/server.log" >&2
+    status=1
+fi
+[ "$status" = 0 ] || tail -n 30 "$work/server.log" >&2
+exit "$status"
