@@ -39,41 +39,13 @@ if [ -z "${TRIBOSIM_BIN:-}" ]; then
     TRIBOSIM_BIN="$(realpath -m "${CARGO_TARGET_DIR:-target}")/release/tribosim"
 fi
 
-work="$(mktemp -d)"
-server_pid=""
-cleanup() {
-    if [ -n "$server_pid" ]; then
-        kill -TERM "$server_pid" 2>/dev/null || true
-        wait "$server_pid" 2>/dev/null || true
-    fi
-    rm -rf "$work"
-}
-trap cleanup EXIT
-
-# Port 0: the kernel picks a free port, and the server logs the one it got.
-"$TRIBOSIM_BIN" serve --addr 127.0.0.1:0 --data-dir "$work/data" --static-dir "$repo/static" \
-    --workers 1 2>"$work/server.log" &
-server_pid=$!
-base=""
-for _ in $(seq 600); do
-    base="$(grep -o 'serving on http://[0-9.:]*' "$work/server.log" | head -n1 | cut -d' ' -f3 || true)"
-    [ -n "$base" ] && break
-    kill -0 "$server_pid" 2>/dev/null || { cat "$work/server.log"; echo "server exited" >&2; exit 1; }
-    sleep 0.1
-done
-[ -n "$base" ] || { cat "$work/server.log"; echo "server did not start" >&2; exit 1; }
+source scripts/lib/server.sh
+start_server --static-dir "$repo/static" --workers 1
 echo "== the page test against $base"
 
 status=0
 (cd tests/e2e && TRIBOSIM_URL="$base" SCREENSHOT_DIR="${SCREENSHOT_DIR:-$repo/docs/screenshots}" node page.test.mjs) || status=$?
 
-if ! kill -0 "$server_pid" 2>/dev/null; then
-    echo "the server died during the run" >&2
-    status=1
-fi
-if grep -q "panicked" "$work/server.log"; then
-    grep -B2 -A5 "panicked" "$work/server.log" >&2
-    status=1
-fi
+status="$(server_status "$status")"
 [ "$status" = 0 ] || tail -n 30 "$work/server.log" >&2
 exit "$status"

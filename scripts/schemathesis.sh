@@ -26,30 +26,10 @@ if [ -z "${TRIBOSIM_BIN:-}" ]; then
     TRIBOSIM_BIN="$target_dir/release/tribosim"
 fi
 
-work="$(mktemp -d)"
-server_pid=""
-cleanup() {
-    if [ -n "$server_pid" ]; then
-        kill -TERM "$server_pid" 2>/dev/null || true
-        wait "$server_pid" 2>/dev/null || true
-    fi
-    rm -rf "$work"
-}
-trap cleanup EXIT
-
-# Port 0: the kernel picks a free port, and the server logs the one it got. One worker and
-# a small queue: generated scenes can be valid and long, and must not starve the machine.
-"$TRIBOSIM_BIN" serve --addr 127.0.0.1:0 --data-dir "$work/data" --workers 1 \
-    --queue-capacity 4 2>"$work/server.log" &
-server_pid=$!
-base=""
-for _ in $(seq 600); do
-    base="$(grep -o 'serving on http://[0-9.:]*' "$work/server.log" | head -n1 | cut -d' ' -f3 || true)"
-    [ -n "$base" ] && break
-    kill -0 "$server_pid" 2>/dev/null || { cat "$work/server.log"; echo "server exited" >&2; exit 1; }
-    sleep 0.1
-done
-[ -n "$base" ] || { cat "$work/server.log"; echo "server did not start" >&2; exit 1; }
+source scripts/lib/server.sh
+# One worker and a small queue: generated scenes can be valid and long, and must not
+# starve the machine.
+start_server --workers 1 --queue-capacity 4
 echo "== schemathesis against $base"
 
 # The event stream is left out: on a generated job it stays open until the job ends, which
@@ -67,13 +47,6 @@ status=0
     --seed 1) \
     || status=$?
 
-if ! kill -0 "$server_pid" 2>/dev/null; then
-    echo "the server died during the run" >&2
-    status=1
-fi
-if grep -q "panicked" "$work/server.log"; then
-    grep -B2 -A5 "panicked" "$work/server.log" >&2
-    status=1
-fi
+status="$(server_status "$status")"
 echo "== server: $(grep -c "finished processing request" "$work/server.log") requests; statuses: $(grep -o "status=[0-9][0-9]*" "$work/server.log" | sort | uniq -c | tr -s " \n" " ")"
 exit "$status"
