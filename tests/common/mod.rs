@@ -196,14 +196,15 @@ pub async fn submit(client: &reqwest::Client, base: &str, scene: &Value) -> Valu
     response.json().await.expect("job JSON")
 }
 
+/// GET `url`, expect 200, parse the JSON body.
+pub async fn get_json(client: &reqwest::Client, url: &str) -> Value {
+    let response = client.get(url).send().await.expect("GET");
+    assert_eq!(response.status(), 200, "GET {url}");
+    response.json().await.expect("JSON body")
+}
+
 pub async fn get_job(client: &reqwest::Client, base: &str, id: &str) -> Value {
-    let response = client
-        .get(format!("{base}/api/v1/jobs/{id}"))
-        .send()
-        .await
-        .expect("get job");
-    assert_eq!(response.status(), 200, "job status");
-    response.json().await.expect("job JSON")
+    get_json(client, &format!("{base}/api/v1/jobs/{id}")).await
 }
 
 /// Polls a job until `done` holds for it.
