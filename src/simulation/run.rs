@@ -4,7 +4,7 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use crate::contact::{ContactProblem, ContactSolution, Grid};
+use crate::contact::{ContactProblem, Grid};
 use crate::scene::{AnodicArea, DomainSize, Scene};
 use crate::wear::{Groove, pass_pressure_integral, yield_depth};
 
@@ -55,7 +55,6 @@ pub fn run(
     let mut maps = Vec::new();
     let (mut wac_m3, mut solves, mut iterations, mut max_step) = (0.0, 0usize, 0usize, 1u64);
     let mut window_fraction_sum = 0.0;
-    let mut last: Option<(Grid, ContactSolution)> = None;
     let mut cycle = 1;
     while cycle <= total {
         if cancel.load(Ordering::Relaxed) {
@@ -148,7 +147,7 @@ pub fn run(
             wac_m3 += model.wac_volume_m3(area, (step - 1) as f64 * period);
         }
 
-        let mut pressure = solution.pressure.clone();
+        let mut pressure = solution.pressure;
         let crowded = near_edges(&grid, &pressure);
         if grows && (crowded.0 || crowded.1) {
             if let Some(wider) = widen(&grid, crowded) {
@@ -174,14 +173,13 @@ pub fn run(
             }
         }
         history.push(cycle, pressure);
-        last = Some((problem.grid, solution));
         cycle += step;
     }
 
-    if let Some((last_grid, solution)) = &last {
-        if records.last().map(|r| r.cycle) != Some(1) {
-            let final_cycle = records.last().map_or(total, |r| r.cycle);
-            maps.push(pressure_map(final_cycle, last_grid, &solution.pressure));
+    // The last solved pressure, on the grid as it ended (embedded if the domain grew).
+    if let (Some(record), Some(pressure)) = (records.last(), history.last()) {
+        if record.cycle != 1 {
+            maps.push(pressure_map(record.cycle, &grid, pressure));
         }
     }
     models.push(ModelChoice {
