@@ -14,6 +14,7 @@ mod hertz;
 pub mod influence;
 mod material;
 mod operator;
+mod precondition;
 pub mod solver;
 
 pub use check::{Verification, verify};
@@ -25,4 +26,5 @@ pub use hertz::Hertz;
 pub use influence::Kernel;
 pub use material::{ElasticPair, Material};
 pub use operator::{DenseOperator, Operator, SumOperator};
+pub use precondition::FourierInverse;
 pub use solver::{ContactProblem, ContactSolution, SolverOptions, solve};

@@ -2,7 +2,7 @@
 //! `apply`, so it runs unchanged on the fast [`super::DcFft`], on the [`DenseOperator`]
 //! reference, or on a [`SumOperator`] of both kernels.
 
-use super::Kernel;
+use super::{FourierInverse, Kernel};
 
 /// A linear operator on fields over an `nx` x `ny` grid (row-major, x fastest).
 pub trait Operator {
@@ -12,6 +12,12 @@ pub trait Operator {
     /// `output = K input`. Takes `&mut self` so implementations keep their scratch buffers
     /// and allocate nothing per call.
     fn apply(&mut self, input: &[f64], output: &mut [f64]);
+
+    /// An approximate inverse the solver may precondition with; `None` (the default)
+    /// runs plain conjugate gradients.
+    fn preconditioner(&mut self) -> Option<&mut FourierInverse> {
+        None
+    }
 }
 
 /// Direct summation `u_I = sum_J K(I - J) p_J`, O(N^4): the reference the FFT operator is

@@ -11,6 +11,15 @@
 //! pressure but penetrating, or at the cap but open) re-enter `F` by the Polonsky-Keer
 //! rule and restart the conjugacy.
 //!
+//! # Preconditioning
+//! When the operator offers one ([`Operator::preconditioner`]; [`super::DcFft`] does), the
+//! direction is built from `z = M^-1 g` over the free cells instead of `g`, with the
+//! Fletcher-Reeves ratio `(g.z) / (g.z)_old`: preconditioned CG on the free set. `M^-1` is
+//! the inverse of the kernel wrapped onto the grid ([`super::FourierInverse`]), which
+//! undoes the `1 / |k|` spread of the half-space's spectrum. Measured on the paper's Hertz
+//! case (`tribosim bench contact`): 42 -> 21 iterations at N = 256, 72 -> 27 at N = 1024;
+//! a warm-started wear cycle of the paper scene: about 37 -> 9.
+//!
 //! # Cost: one operator apply per iteration
 //! The displacement `u = K p` is updated as `u - tau K t`, reusing the `K t` that the step
 //! length needs, whenever the step changed no bound. Only iterations that moved a cell onto
@@ -266,7 +275,16 @@ pub fn solve(
     let mut fresh = true;
 
     let (mut t, mut r, mut g) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let mut g_norm_old = 0.0;
+    let preconditioned = operator.preconditioner().is_some();
+    let mut z = if preconditioned {
+        vec![0.0; n]
+    } else {
+        Vec::new()
+    };
+    // A re-entering cell gets the pressure a step would give it: `tau` times its
+    // preconditioned gap, estimated cell by cell with the preconditioner's diagonal.
+    let entry_scale = operator.preconditioner().map_or(1.0, |m| m.diagonal());
+    let mut rho_old = 0.0;
     let mut restart = true;
     let mut tau_last = 0.0;
     let mut residual = f64::INFINITY;
@@ -324,22 +342,41 @@ pub fn solve(
             continue;
         }
 
-        // Conjugate direction over the free cells, projected to sum to zero there, so a
-        // step keeps the load. (g sums to zero by the choice of delta, up to round-off.)
-        let beta = if restart || g_norm_old == 0.0 {
+        // The preconditioned gap z = M^-1 g over the free cells (z = g without one), then
+        // the conjugate direction over the free cells, projected to sum to zero there, so
+        // a step keeps the load. (g sums to zero by the choice of delta, up to round-off.)
+        let (rho, z_sum) = match operator.preconditioner() {
+            Some(inverse) => {
+                for ((ri, &gi), &pi) in r.iter_mut().zip(&g).zip(&p) {
+                    *ri = if is_free(pi) { gi } else { 0.0 };
+                }
+                inverse.apply(&r, &mut z);
+                let (mut rho, mut z_sum) = (0.0, 0.0);
+                for ((&zi, &gi), &pi) in z.iter().zip(&g).zip(&p) {
+                    if is_free(pi) {
+                        rho += gi * zi;
+                        z_sum += zi;
+                    }
+                }
+                (rho, z_sum)
+            }
+            None => (g_norm, g_sum),
+        };
+        let beta = if restart || rho_old == 0.0 {
             0.0
         } else {
-            g_norm / g_norm_old
+            rho / rho_old
         };
-        g_norm_old = g_norm;
+        rho_old = rho;
         let t_mean = if n_free > 0 {
-            (g_sum + beta * t_old_sum) / n_free as f64
+            (z_sum + beta * t_old_sum) / n_free as f64
         } else {
             0.0
         };
-        for ((ti, &gi), &pi) in t.iter_mut().zip(&g).zip(&p) {
+        let source = if preconditioned { &z } else { &g };
+        for ((ti, &si), &pi) in t.iter_mut().zip(source).zip(&p) {
             *ti = if is_free(pi) {
-                gi + beta * *ti - t_mean
+                si + beta * *ti - t_mean
             } else {
                 0.0
             };
@@ -369,10 +406,10 @@ pub fn solve(
                     bounds_hit = true;
                 }
             } else if *pi <= 0.0 && g[i] < 0.0 {
-                *pi = (-tau_last * g[i]).min(cap);
+                *pi = (-tau_last * entry_scale * g[i]).min(cap);
                 entered = true;
             } else if *pi >= cap && g[i] > 0.0 {
-                *pi = (cap - tau_last * g[i]).max(0.0);
+                *pi = (cap - tau_last * entry_scale * g[i]).max(0.0);
                 entered = true;
             }
             u[i] -= tau * r[i];
