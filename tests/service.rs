@@ -75,6 +75,36 @@ async fn a_streamed_and_downloaded_run_equals_the_library_run() {
     );
     let downloaded: Value = response.json().await.expect("result JSON");
 
+    // Asked for gzip, the same result comes compressed.
+    let response = client
+        .get(server.url(&format!("{location}/result")))
+        .header("accept-encoding", "gzip")
+        .send()
+        .await
+        .expect("result");
+    assert_eq!(response.headers()["content-encoding"], "gzip");
+    let events_response = client
+        .get(&events_url)
+        .header("accept-encoding", "gzip")
+        .send()
+        .await
+        .expect("events");
+    assert!(
+        !events_response.headers().contains_key("content-encoding"),
+        "an event stream is never compressed (it would be buffered)"
+    );
+    let compressed = response.bytes().await.expect("body");
+    let mut text = String::new();
+    std::io::Read::read_to_string(
+        &mut flate2::read::GzDecoder::new(compressed.as_ref()),
+        &mut text,
+    )
+    .expect("valid gzip");
+    assert_eq!(
+        serde_json::from_str::<Value>(&text).expect("result JSON"),
+        downloaded
+    );
+
     let parsed = parse_scene(&scene).expect("valid scene");
     let direct = tribosim::simulation::run(&parsed, &mut |_| {}, &AtomicBool::new(false))
         .expect("direct run");
