@@ -4,12 +4,14 @@
 
 mod contact;
 mod fft_pair;
+mod plot;
 mod wear;
 
 use std::time::Instant;
 
 pub use contact::{ContactRow, contact_rows};
 pub use fft_pair::FftPair;
+pub use plot::{LogAxis, LogLogPlot, Point, Series};
 pub use wear::{WearRow, wear_rows};
 
 /// Which tables to print.
