@@ -2,6 +2,7 @@
 //! medians of repeated runs; speeds are reported as ratios to a baseline measured in the
 //! same run (one padded FFT round trip), so they compare across machines.
 
+mod auto;
 mod contact;
 mod fft_pair;
 mod plot;
@@ -9,6 +10,7 @@ mod wear;
 
 use std::time::Instant;
 
+pub use auto::{AutoGrid, AutoStudies, CouplingRow, auto_studies};
 pub use contact::{ContactRow, contact_rows};
 pub use fft_pair::FftPair;
 pub use plot::{LogAxis, LogLogPlot, Point, Series};
@@ -21,7 +23,9 @@ pub enum BenchTarget {
     Contact,
     /// The paper scene: cycle step, grid and tolerance against error and time.
     Wear,
-    /// Both.
+    /// The measurements behind the auto choices: coupling, domain, plasticity.
+    Auto,
+    /// All three.
     All,
 }
 
@@ -47,6 +51,21 @@ pub fn print(target: BenchTarget, json: bool) -> Result<(), String> {
     if matches!(target, BenchTarget::Wear | BenchTarget::All) {
         let rows = wear_rows().map_err(|e| e.to_string())?;
         emit(&rows, json, wear::table)?;
+    }
+    if matches!(target, BenchTarget::Auto | BenchTarget::All) {
+        let studies = auto_studies().map_err(|e| e.to_string())?;
+        emit(&studies.coupling, json, auto::coupling_table)?;
+        emit(&studies.wear, json, wear::table)?;
+        if json {
+            let facts = serde_json::json!({
+                "grid": studies.grid,
+                "domain_growth": studies.domain_growth,
+                "plasticity": studies.plasticity,
+            });
+            println!("{facts}");
+        } else {
+            print!("{}", auto::facts(&studies));
+        }
     }
     Ok(())
 }
