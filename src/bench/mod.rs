@@ -81,7 +81,7 @@ pub fn print(target: BenchTarget, json: bool, markdown: Option<&Path>) -> Result
             "cargo run --release -- bench {name} --markdown {}",
             path.display()
         );
-        let plots = report::write(path, &measured, &Machine::detect(), &command)?;
+        let plots = report::write(path, &measured, &Machine::detect(path), &command)?;
         eprintln!("wrote {} and {plots} plots", path.display());
     }
     Ok(())

@@ -161,6 +161,8 @@ impl LogLogPlot {
         let mut chart = ChartBuilder::on(&root)
             .caption(&self.title, ("sans-serif", 18))
             .margin(12)
+            // Room for the labels of the rightmost points.
+            .margin_right(48)
             .x_label_area_size(42)
             .y_label_area_size(64)
             .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())
@@ -177,6 +179,9 @@ impl LogLogPlot {
         let mut drawn = 0;
         for (i, series) in self.series.iter().enumerate() {
             let colour = COLOURS[i % COLOURS.len()];
+            // Labels above the markers, every other series below, so coinciding points stay
+            // readable.
+            let label_dy = if i % 2 == 0 { -14 } else { 6 };
             let placed: Vec<(f64, f64, bool, &str)> = series
                 .points
                 .iter()
@@ -210,7 +215,7 @@ impl LogLogPlot {
                     };
                     EmptyElement::at((x, y))
                         + Circle::new((0, 0), 4, marker)
-                        + Text::new(text, (6, -14), ("sans-serif", 12).into_font())
+                        + Text::new(text, (6, label_dy), ("sans-serif", 12).into_font())
                 }))
                 .map_err(|e| fail(&e))?;
         }

@@ -37,13 +37,15 @@ pub struct Machine {
     pub cpu: String,
     /// Logical cores.
     pub cores: usize,
-    /// `git describe`-like commit, `+ uncommitted changes` when the tree was dirty.
+    /// Short commit hash, with ` + uncommitted changes` when tracked files other than the
+    /// report's own differ from it.
     pub commit: Option<String>,
 }
 
 impl Machine {
-    /// Reads `/proc/cpuinfo`, the clock and `git` (each optional).
-    pub fn detect() -> Self {
+    /// Reads `/proc/cpuinfo`, the clock and `git` (each optional); the report at `report`
+    /// and its plots do not count as changes (a second run would see the first one's).
+    pub fn detect(report: &Path) -> Self {
         let cpuinfo = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
         let (cpu, cores) = parse_cpuinfo(&cpuinfo);
         let cores = if cores > 0 {
@@ -55,7 +57,7 @@ impl Machine {
             date: time::OffsetDateTime::now_utc().date().to_string(),
             cpu: cpu.unwrap_or_else(|| "unknown CPU".to_owned()),
             cores,
-            commit: git_commit(),
+            commit: git_commit(report),
         }
     }
 }
@@ -81,10 +83,20 @@ fn git(args: &[&str]) -> Option<String> {
         .then(|| String::from_utf8_lossy(&out.stdout).trim().to_owned())
 }
 
-fn git_commit() -> Option<String> {
+fn git_commit(report: &Path) -> Option<String> {
     let commit = git(&["rev-parse", "--short=10", "HEAD"]).filter(|c| !c.is_empty())?;
-    let dirty =
-        git(&["status", "--porcelain", "--untracked-files=no"]).is_some_and(|s| !s.is_empty());
+    let exclude = |p: &Path| format!(":(exclude){}", p.display());
+    let (own, plots) = (exclude(report), exclude(&report.with_extension("")));
+    let args = [
+        "status",
+        "--porcelain",
+        "--untracked-files=no",
+        "--",
+        ".",
+        &own,
+        &plots,
+    ];
+    let dirty = git(&args).is_some_and(|s| !s.is_empty());
     Some(if dirty {
         format!("{commit} + uncommitted changes")
     } else {
@@ -682,17 +694,24 @@ fn step_choice(report: &mut Report, measured: &Measurements) {
         .filter(|r| !r.reference)
         .map(|r| {
             format!(
-                "{} cycles: {} solves, {} of them standing for `MAX_STEP` cycles ({:.0}% of the \
-                 cycles); the bound, the doubling limit or yielding (steps of 1 while pressures \
-                 sit at Y) set the others.",
+                "{} cycles: {} solves, the longest step {} cycles; {} solves stood for `MAX_STEP` \
+                 cycles ({:.0}% of the cycles), the bound, the doubling limit or yielding (steps \
+                 of 1 while pressures sit at Y) set the others.",
                 r.cycles,
                 r.solves,
+                r.longest_step,
                 r.steps_at_max,
                 100.0 * (r.steps_at_max as u64 * MAX_STEP) as f64 / r.cycles as f64
             )
         })
         .collect();
     report.push(&bullets(&lines));
+    if steps.iter().all(|r| r.longest_step < MAX_STEP) {
+        report.push(
+            "No step reached `MAX_STEP` here: in the paper scene it only bounds how rarely a \
+             cycle is recorded, so the accuracy above is the bound's.",
+        );
+    }
 }
 
 fn plasticity_choice(report: &mut Report, auto: &AutoStudies, rows: &[&WearRow]) {
