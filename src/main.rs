@@ -54,6 +54,10 @@ enum Command {
         /// One JSON object per row instead of a table.
         #[arg(long)]
         json: bool,
+        /// Also write a markdown report here, its SVG plots in the folder of the same name
+        /// (`docs/accuracy.md` puts them in `docs/accuracy/`).
+        #[arg(long, value_name = "PATH")]
+        markdown: Option<PathBuf>,
     },
 }
 
@@ -103,7 +107,11 @@ fn main() -> ExitCode {
             .and_then(|s| first_contact(&s).map_err(|e| e.to_string()))
             .and_then(|c| write_json(&c, None)),
         Command::Presets => write_json(&presets(), None),
-        Command::Bench { target, json } => bench::print(target, json),
+        Command::Bench {
+            target,
+            json,
+            markdown,
+        } => bench::print(target, json, markdown.as_deref()),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

@@ -2,14 +2,21 @@
 //! medians of repeated runs; speeds are reported as ratios to a baseline measured in the
 //! same run (one padded FFT round trip), so they compare across machines.
 
+mod auto;
 mod contact;
 mod fft_pair;
+mod plot;
+mod report;
 mod wear;
 
+use std::path::Path;
 use std::time::Instant;
 
+pub use auto::{AutoGrid, AutoStudies, CouplingRow, auto_studies};
 pub use contact::{ContactRow, contact_rows};
 pub use fft_pair::FftPair;
+pub use plot::{LogAxis, LogLogPlot, Point, Series};
+pub use report::{Machine, Measurements};
 pub use wear::{WearRow, wear_rows};
 
 /// Which tables to print.
@@ -19,7 +26,9 @@ pub enum BenchTarget {
     Contact,
     /// The paper scene: cycle step, grid and tolerance against error and time.
     Wear,
-    /// Both.
+    /// The measurements behind the auto choices: coupling, domain, plasticity.
+    Auto,
+    /// All three.
     All,
 }
 
@@ -36,15 +45,44 @@ pub fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
     times[times.len() / 2]
 }
 
-/// Runs the chosen benchmark and prints it as a table or as JSON lines.
-pub fn print(target: BenchTarget, json: bool) -> Result<(), String> {
-    if matches!(target, BenchTarget::Contact | BenchTarget::All) {
-        let rows = contact_rows(&[64, 128, 256, 512, 1024]).map_err(|e| e.to_string())?;
-        emit(&rows, json, contact::table)?;
+/// Runs the chosen benchmark and prints it as a table or as JSON lines; with `markdown`, also
+/// writes the report there and its plots beside it.
+pub fn print(target: BenchTarget, json: bool, markdown: Option<&Path>) -> Result<(), String> {
+    let wanted = |t: BenchTarget| target == t || target == BenchTarget::All;
+    let mut measured = Measurements::default();
+    if wanted(BenchTarget::Contact) {
+        measured.contact = contact_rows(&[64, 128, 256, 512, 1024]).map_err(|e| e.to_string())?;
+        emit(&measured.contact, json, contact::table)?;
     }
-    if matches!(target, BenchTarget::Wear | BenchTarget::All) {
-        let rows = wear_rows().map_err(|e| e.to_string())?;
-        emit(&rows, json, wear::table)?;
+    if wanted(BenchTarget::Wear) {
+        measured.wear = wear_rows().map_err(|e| e.to_string())?;
+        emit(&measured.wear, json, wear::table)?;
+    }
+    if wanted(BenchTarget::Auto) {
+        let studies = auto_studies().map_err(|e| e.to_string())?;
+        emit(&studies.coupling, json, auto::coupling_table)?;
+        emit(&studies.wear, json, wear::table)?;
+        if json {
+            let facts = serde_json::json!({
+                "grid": studies.grid,
+                "domain_growth": studies.domain_growth,
+                "plasticity": studies.plasticity,
+            });
+            println!("{facts}");
+        } else {
+            print!("{}", auto::facts(&studies));
+        }
+        measured.auto = Some(studies);
+    }
+    if let Some(path) = markdown {
+        let name = clap::ValueEnum::to_possible_value(&target)
+            .map_or_else(|| "all".to_owned(), |v| v.get_name().to_owned());
+        let command = format!(
+            "cargo run --release -- bench {name} --markdown {}",
+            path.display()
+        );
+        let plots = report::write(path, &measured, &Machine::detect(path), &command)?;
+        eprintln!("wrote {} and {plots} plots", path.display());
     }
     Ok(())
 }

@@ -7,7 +7,7 @@ use std::sync::atomic::AtomicBool;
 use serde::Serialize;
 
 use crate::scene::parse_scene_str;
-use crate::simulation::{SimulationError, SimulationResult, run};
+use crate::simulation::{MAX_STEP, Setup, SimulationError, SimulationResult, run};
 
 /// One run of the wear benchmark, with its errors against the reference of its table.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -18,6 +18,8 @@ pub struct WearRow {
     pub setting: String,
     /// Cycles simulated.
     pub cycles: u64,
+    /// Cells per side of the first grid.
+    pub grid: usize,
     /// Wall time of the run, s.
     pub wall_s: f64,
     /// Contact solves.
@@ -34,15 +36,24 @@ pub struct WearRow {
     pub err_depth: f64,
     /// Reference wall time over this row's wall time.
     pub speedup: f64,
+    /// Whether this row is its study's reference (errors 0 by definition).
+    pub reference: bool,
+    /// Longest cycle step, cycles.
+    pub longest_step: u64,
+    /// Solves that stood for [`MAX_STEP`] cycles.
+    pub steps_at_max: usize,
 }
 
-fn simulate(overrides: &str) -> Result<SimulationResult, SimulationError> {
+/// Runs the paper scene (`dalmau2018-316l`) with `overrides` (a JSON object).
+pub(super) fn simulate(overrides: &str) -> Result<SimulationResult, SimulationError> {
     let json = format!(r#"{{"preset": "dalmau2018-316l", "overrides": {overrides}}}"#);
     let scene = parse_scene_str(&json)?;
     run(&scene, &mut |_| {}, &AtomicBool::new(false))
 }
 
-fn row(
+/// The row of `result` in `study`, with its errors against `reference` (the same run for the
+/// reference row itself).
+pub(super) fn row(
     study: &'static str,
     setting: String,
     result: &SimulationResult,
@@ -50,10 +61,18 @@ fn row(
 ) -> WearRow {
     let s = &result.summary;
     let r = &reference.summary;
+    // Solved cycles are recorded; the gaps between them are the steps (the last is 1).
+    let steps: Vec<u64> = result
+        .cycles
+        .windows(2)
+        .map(|w| w[1].cycle - w[0].cycle)
+        .collect();
     WearRow {
         study,
         setting,
         cycles: s.cycles,
+        // The scene as run always sets up again.
+        grid: Setup::new(&result.scene).map_or(0, |setup| setup.grid.nx),
         wall_s: s.wall_s,
         solves: s.solves,
         iterations: s.iterations,
@@ -62,6 +81,9 @@ fn row(
         err_volume: s.wear_volume_mm3 / r.wear_volume_mm3 - 1.0,
         err_depth: s.max_depth_um / r.max_depth_um - 1.0,
         speedup: r.wall_s / s.wall_s,
+        reference: std::ptr::eq(result, reference),
+        longest_step: steps.iter().copied().max().unwrap_or(1),
+        steps_at_max: steps.iter().filter(|&&m| m == MAX_STEP).count(),
     }
 }
 
@@ -151,20 +173,19 @@ pub fn wear_rows() -> Result<Vec<WearRow>, SimulationError> {
         let Some(record) = calibrated.cycles.iter().rev().find(|r| r.cycle <= cycle) else {
             continue;
         };
+        let whole_run = row("table3", String::new(), &calibrated, &calibrated);
         rows.push(WearRow {
-            study: "table3",
             setting: format!(
                 "{cycle} s: measured {measured:.2e} mm3, k from the 3600 s point, grid 64"
             ),
             cycles: record.cycle,
-            wall_s: calibrated.summary.wall_s,
-            solves: calibrated.summary.solves,
-            iterations: calibrated.summary.iterations,
             wear_volume_mm3: record.wear_volume_mm3,
             max_depth_um: record.max_depth_um,
             err_volume: record.wear_volume_mm3 / measured - 1.0,
             err_depth: f64::NAN,
             speedup: f64::NAN,
+            reference: false,
+            ..whole_run
         });
     }
     Ok(rows)
@@ -174,15 +195,16 @@ pub fn wear_rows() -> Result<Vec<WearRow>, SimulationError> {
 pub fn table(rows: &[WearRow]) -> String {
     let mut out = String::from(
         "Wear, paper scene (dalmau2018-316l); errors relative to each study's reference\n\
-         study           cycles   wall s  solves   iters   V mm3       depth um  err V      err depth  speed-up  setting\n",
+         study           cycles   wall s  solves  step   iters   V mm3       depth um  err V      err depth  speed-up  setting\n",
     );
     for r in rows {
         out += &format!(
-            "{:<15} {:>6} {:>8.2} {:>7} {:>7}   {:<10.4e}  {:<8.4}  {:>+9.2e}  {:>+9.2e}  {:>7.1}  {}\n",
+            "{:<15} {:>6} {:>8.2} {:>7} {:>5} {:>7}   {:<10.4e}  {:<8.4}  {:>+9.2e}  {:>+9.2e}  {:>7.1}  {}\n",
             r.study,
             r.cycles,
             r.wall_s,
             r.solves,
+            r.longest_step,
             r.iterations,
             r.wear_volume_mm3,
             r.max_depth_um,
