@@ -677,8 +677,9 @@ fn step_choice(report: &mut Report, measured: &Measurements) {
         "### Cycle step: `STEP_CHANGE_BOUND` = {STEP_CHANGE_BOUND}, `MAX_STEP` = {MAX_STEP}\n\n\
          A solve stands for the next cycles while the per-pass wear profile changes by less than \
          the bound (relative, L1) per step, the step at most doubling each time and never \
-         beyond `MAX_STEP`. Both are constants (no scene field), so the cycle-step study above \
-         measures the setting in use against solving every cycle:"
+         beyond `MAX_STEP`. The bound is the scene's `numerics.cycle_step_bound` (default \
+         {STEP_CHANGE_BOUND}); the cycle-step study above sweeps it against solving every \
+         cycle:"
     ));
     let steps: Vec<&WearRow> = measured
         .wear

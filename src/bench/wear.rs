@@ -7,7 +7,9 @@ use std::sync::atomic::AtomicBool;
 use serde::Serialize;
 
 use crate::scene::parse_scene_str;
-use crate::simulation::{MAX_STEP, Setup, SimulationError, SimulationResult, run};
+use crate::simulation::{
+    MAX_STEP, STEP_CHANGE_BOUND, Setup, SimulationError, SimulationResult, run,
+};
 
 /// One run of the wear benchmark, with its errors against the reference of its table.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -97,14 +99,29 @@ pub fn wear_rows() -> Result<Vec<WearRow>, SimulationError> {
         let every = simulate(&format!(
             r#"{{"test": {{"cycles": {cycles}}}, "numerics": {{"cycle_step": 1}}}}"#
         ))?;
-        let auto = simulate(&format!(r#"{{"test": {{"cycles": {cycles}}}}}"#))?;
         rows.push(row(
             "cycle_step",
             "every cycle (reference)".into(),
             &every,
             &every,
         ));
-        rows.push(row("cycle_step", "auto".into(), &auto, &every));
+        // The step bound (`numerics.cycle_step_bound`) around its default.
+        for bound in [0.003, STEP_CHANGE_BOUND, 0.03] {
+            let auto = simulate(&format!(
+                r#"{{"test": {{"cycles": {cycles}}}, "numerics": {{"cycle_step_bound": {bound}}}}}"#
+            ))?;
+            let default = if bound == STEP_CHANGE_BOUND {
+                " (default)"
+            } else {
+                ""
+            };
+            rows.push(row(
+                "cycle_step",
+                format!("bound {bound}{default}, auto"),
+                &auto,
+                &every,
+            ));
+        }
     }
 
     // Grid: cells across the first domain (3 contact radii, growing with the track).

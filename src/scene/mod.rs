@@ -295,6 +295,9 @@ pub struct Numerics {
     pub tolerance: f64,
     /// Which cycles are solved.
     pub cycle_step: CycleStep,
+    /// With `cycle_step: "auto"`, the largest relative (L1) change of the per-pass wear
+    /// profile one step may span.
+    pub cycle_step_bound: f64,
     /// The mu * delta-nu coupling of normal and tangential tractions (eq. 7).
     pub coupling: Switch,
 }
@@ -306,6 +309,7 @@ impl Default for Numerics {
             domain_um: DomainSize::Auto,
             tolerance: 1e-8,
             cycle_step: CycleStep::Auto,
+            cycle_step_bound: crate::simulation::STEP_CHANGE_BOUND,
             coupling: Switch::Auto,
         }
     }

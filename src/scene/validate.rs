@@ -13,6 +13,9 @@ const MAX_DOMAIN_UM: f64 = 100_000.0;
 /// Solver tolerance bounds: below 1e-14 round-off of the FFT convolution dominates; above 1e-2
 /// the pressures are too rough to wear with.
 const TOLERANCE: (f64, f64) = (1e-14, 1e-2);
+/// Cycle-step bound: above 0.1 a step skipped the end of the yielding phase (volume error
+/// 1.6e-3 at 300 cycles); below 1e-4 no step is ever taken.
+const CYCLE_STEP_BOUND: (f64, f64) = (1e-4, 0.1);
 
 /// All problems with `scene`, empty when it is valid.
 pub(super) fn check(scene: &Scene) -> Vec<FieldError> {
@@ -198,6 +201,13 @@ fn check_numerics(c: &mut Checks, scene: &Scene) {
         TOLERANCE.1,
         "",
     );
+    c.closed(
+        "numerics.cycle_step_bound",
+        numerics.cycle_step_bound,
+        CYCLE_STEP_BOUND.0,
+        CYCLE_STEP_BOUND.1,
+        "",
+    );
 }
 
 fn check_corrosion(c: &mut Checks, scene: &Scene) {
@@ -357,6 +367,7 @@ mod tests {
         scene.test.cycles = MAX_CYCLES;
         scene.numerics.grid = GridSize::Cells(2048);
         scene.numerics.tolerance = 1e-14;
+        scene.numerics.cycle_step_bound = CYCLE_STEP_BOUND.1;
         scene.numerics.domain_um = DomainSize::Micrometres(MAX_DOMAIN_UM);
         scene.ball.poisson_ratio = -0.99;
         assert!(check(&scene).is_empty(), "{:?}", check(&scene));
@@ -365,6 +376,7 @@ mod tests {
         scene.test.cycles = MAX_CYCLES + 1;
         scene.numerics.grid = GridSize::Cells(7);
         scene.numerics.tolerance = 0.99e-14;
+        scene.numerics.cycle_step_bound = 0.11;
         scene.numerics.domain_um = DomainSize::Micrometres(0.0);
         scene.ball.poisson_ratio = -1.0;
         assert_eq!(
@@ -376,6 +388,7 @@ mod tests {
                 "numerics.grid",
                 "numerics.domain_um",
                 "numerics.tolerance",
+                "numerics.cycle_step_bound",
             ]
         );
     }

@@ -9,7 +9,7 @@ use crate::scene::{AnodicArea, DomainSize, Scene};
 use crate::wear::{Groove, pass_pressure_integral, yield_depth};
 
 use super::setup::fft_friendly;
-use super::stepping::{STEP_CHANGE_BOUND, Stepper};
+use super::stepping::Stepper;
 use super::window::{MARGIN_FRACTION, MIN_MARGIN, WindowedSolver};
 use super::{
     CycleRecord, ModelChoice, PressureMap, Profile, Setup, SimulationError, SimulationResult,
@@ -44,7 +44,7 @@ pub fn run(
     let mut solver = WindowedSolver::new(&setup, grid);
     let mut ball = setup.ball_separation(&grid);
     let mut groove = Groove::new(&grid);
-    let mut stepper = Stepper::new(scene.numerics.cycle_step);
+    let mut stepper = Stepper::new(scene.numerics.cycle_step, scene.numerics.cycle_step_bound);
     let mut history = WarmStart::default();
     let (period, track_length) = (scene.cycle_period_s(), scene.track_length_m());
     let total = scene.test.cycles;
@@ -186,9 +186,9 @@ pub fn run(
         name: "cycle_step".to_owned(),
         active: max_step > 1,
         reason: format!(
-            "{:?}: {solves} solves for {total} cycles, longest step {max_step}; a step keeps the per-pass wear profile within {:.0}% of the solved one",
+            "{:?}: {solves} solves for {total} cycles, longest step {max_step}; a step keeps the per-pass wear profile within {:.2}% of the solved one",
             scene.numerics.cycle_step,
-            STEP_CHANGE_BOUND * 100.0
+            scene.numerics.cycle_step_bound * 100.0
         ),
     });
     window_fraction_sum += solver.window_fraction_sum;

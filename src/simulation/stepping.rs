@@ -3,7 +3,8 @@
 //! forward Euler on the groove with step `m`; its error is about half the change of the
 //! per-pass wear profile across the step. The controller measures that change between
 //! consecutive solves in the L1 norm relative to the profile (the share of the wear that
-//! moves), and keeps it below [`STEP_CHANGE_BOUND`] per step.
+//! moves), and keeps it below a bound per step: the scene's `numerics.cycle_step_bound`,
+//! by default [`STEP_CHANGE_BOUND`].
 //!
 //! The wear volume does not depend on the step in the Archard phase (each pass removes
 //! `k F L / H` whatever the pressure shape); stepping moves wear across the track. A
@@ -19,7 +20,7 @@
 
 use crate::scene::CycleStep;
 
-/// Largest relative (L1) change of the per-pass wear profile allowed across one step.
+/// The default largest relative (L1) change of the per-pass wear profile across one step.
 pub const STEP_CHANGE_BOUND: f64 = 0.01;
 
 /// The longest step, cycles: keeps a record at least this often.
@@ -29,15 +30,17 @@ pub const MAX_STEP: u64 = 50;
 #[derive(Debug, Clone)]
 pub struct Stepper {
     mode: CycleStep,
+    bound: f64,
     previous: Option<(u64, Vec<f64>)>,
     step: u64,
 }
 
 impl Stepper {
-    /// A controller for `mode`.
-    pub fn new(mode: CycleStep) -> Self {
+    /// A controller for `mode` keeping each step's relative profile change within `bound`.
+    pub fn new(mode: CycleStep, bound: f64) -> Self {
         Self {
             mode,
+            bound,
             previous: None,
             step: 1,
         }
@@ -63,7 +66,7 @@ impl Stepper {
                         / total;
                     let per_cycle = change / (cycle - before) as f64;
                     let allowed = if per_cycle > 0.0 {
-                        (STEP_CHANGE_BOUND / per_cycle).floor() as u64
+                        (self.bound / per_cycle).floor() as u64
                     } else {
                         MAX_STEP
                     };
@@ -90,14 +93,14 @@ mod tests {
 
     #[test]
     fn every_cycle_mode_steps_by_one() {
-        let mut s = Stepper::new(CycleStep::EveryCycle);
+        let mut s = Stepper::new(CycleStep::EveryCycle, STEP_CHANGE_BOUND);
         assert_eq!(s.next(1, 100, false, &[1.0]), 1);
         assert_eq!(s.next(2, 100, false, &[1.0]), 1);
     }
 
     #[test]
     fn auto_grows_by_doubling_while_the_profile_is_steady_and_lands_on_the_last_cycle() {
-        let mut s = Stepper::new(CycleStep::Auto);
+        let mut s = Stepper::new(CycleStep::Auto, STEP_CHANGE_BOUND);
         let mut cycle = 1;
         let mut steps = Vec::new();
         while cycle <= 100 {
@@ -115,13 +118,17 @@ mod tests {
 
     #[test]
     fn auto_solves_every_cycle_while_plastic_and_limits_fast_change() {
-        let mut s = Stepper::new(CycleStep::Auto);
+        let mut s = Stepper::new(CycleStep::Auto, STEP_CHANGE_BOUND);
         assert_eq!(s.next(1, 100, true, &[1.0]), 1);
         assert_eq!(s.next(2, 100, false, &[1.0]), 1);
         // 0.5% change in one cycle: at most 2 cycles for a 1% bound.
         assert_eq!(s.next(3, 100, false, &[1.005]), 2);
+        // The same change under a 0.4% bound: no step beyond the solved cycle.
+        let mut tight = Stepper::new(CycleStep::Auto, 0.004);
+        tight.next(2, 100, false, &[1.0]);
+        assert_eq!(tight.next(3, 100, false, &[1.005]), 1);
         // L1-relative: a change confined to a small part of the profile counts for its share.
-        let mut s = Stepper::new(CycleStep::Auto);
+        let mut s = Stepper::new(CycleStep::Auto, STEP_CHANGE_BOUND);
         let flat = vec![1.0; 100];
         s.next(1, 1000, false, &flat);
         let mut rim = flat.clone();
