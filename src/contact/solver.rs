@@ -297,9 +297,9 @@ pub fn solve(
     } else {
         Vec::new()
     };
-    // A re-entering cell gets the pressure a step would give it: `tau` times its
-    // preconditioned gap, estimated cell by cell with the preconditioner's diagonal.
-    let entry_scale = operator.preconditioner().map_or(1.0, |m| m.diagonal());
+    // Pressure per unit of gap given to a re-entering cell (Polonsky-Keer: the last step
+    // length, for a direction made of gaps).
+    let mut entry_rate = 0.0;
     let mut rho_old = 0.0;
     let mut restart = true;
     let mut tau_last = 0.0;
@@ -391,6 +391,21 @@ pub fn solve(
         if tau > 0.0 {
             tau_last = tau;
         }
+        // A preconditioned direction is not made of gaps, so its step length is no
+        // pressure per gap; the direction's own compliance t.t / t.Kt is, and matches
+        // Polonsky-Keer's rate when t is the gap.
+        // With no direction left (one free cell or none) the last rate stands: a step length
+        // of a preconditioned direction has other units and would stall re-entry.
+        let rate = if !preconditioned {
+            tau
+        } else if den > 0.0 {
+            dot(&t, &t) / den
+        } else {
+            entry_rate
+        };
+        if rate > 0.0 {
+            entry_rate = rate;
+        }
 
         // Step, truncation at the bounds, re-entry of wrongly bounded cells; u follows the
         // step and is recomputed below if any bound changed.
@@ -407,10 +422,10 @@ pub fn solve(
                     bounds_hit = true;
                 }
             } else if *pi <= 0.0 && g[i] < 0.0 {
-                *pi = (-tau_last * entry_scale * g[i]).min(cap);
+                *pi = (-entry_rate * g[i]).min(cap);
                 entered = true;
             } else if *pi >= cap && g[i] > 0.0 {
-                *pi = (cap - tau_last * entry_scale * g[i]).max(0.0);
+                *pi = (cap - entry_rate * g[i]).max(0.0);
                 entered = true;
             }
             u[i] -= tau * r[i];
