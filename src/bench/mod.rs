@@ -8,14 +8,17 @@ mod wear;
 
 use std::time::Instant;
 
-pub use contact::{ContactRow, contact_rows};
+pub use contact::{
+    CAPPED_REFERENCE_N, CAPPED_YIELD_PRESSURE_PA, ContactCase, ContactRow, Measures, Reference,
+    ToleranceRow, contact_rows, contact_rows_against, tolerance_rows,
+};
 pub use fft_pair::FftPair;
 pub use wear::{WearRow, wear_rows};
 
 /// Which tables to print.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum BenchTarget {
-    /// The Hertz contact: grid size against error and time.
+    /// The Hertz and capped-Hertz contact: grid size and tolerance against error and time.
     Contact,
     /// The paper scene: cycle step, grid and tolerance against error and time.
     Wear,
@@ -39,8 +42,13 @@ pub fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
 /// Runs the chosen benchmark and prints it as a table or as JSON lines.
 pub fn print(target: BenchTarget, json: bool) -> Result<(), String> {
     if matches!(target, BenchTarget::Contact | BenchTarget::All) {
-        let rows = contact_rows(&[64, 128, 256, 512, 1024]).map_err(|e| e.to_string())?;
+        let capped = Reference::capped(CAPPED_REFERENCE_N).map_err(|e| e.to_string())?;
+        let rows =
+            contact_rows_against(&[64, 128, 256, 512, 1024], &capped).map_err(|e| e.to_string())?;
         emit(&rows, json, contact::table)?;
+        let rows =
+            tolerance_rows(256, &[1e-4, 1e-6, 1e-8, 1e-10], &capped).map_err(|e| e.to_string())?;
+        emit(&rows, json, contact::tolerance_table)?;
     }
     if matches!(target, BenchTarget::Wear | BenchTarget::All) {
         let rows = wear_rows().map_err(|e| e.to_string())?;
