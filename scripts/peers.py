@@ -315,6 +315,7 @@ def our_measurement(row):
         n=row["n"],
         wall_s=row["wall_s"],
         solve_s=row["solve_s"],
+        runs=row["runs"],
         iterations=row["iterations"],
         residual=row["residual"],
         errors={k: row[k] for k in ("err_pmax", "err_area", "err_delta", "err_plastic_area")},
@@ -368,13 +369,16 @@ def markdown_table(header, lines):
     return "\n".join("| " + " | ".join(row) + " |" for row in rows)
 
 
-def machine():
+def machine(load):
     info = dict(
         line.split(":", 1) for line in subprocess.run(
             ["lscpu"], capture_output=True, text=True, check=True
         ).stdout.splitlines() if ":" in line
     )
-    return f"{info['Model name'].strip()}, {info['CPU(s)'].strip()} logical CPUs"
+    return (
+        f"{info['Model name'].strip()}, {info['CPU(s)'].strip()} logical CPUs "
+        f"(load average {load:.1f} before the run: other work skews the times)"
+    )
 
 
 def versions(binary):
@@ -389,16 +393,16 @@ def versions(binary):
     return f"{ours_version} (commit {commit or 'unknown'}), Python {platform.python_version()}, " + ", ".join(found)
 
 
-def markdown(header, lines, peers, binary, reference_n):
+def markdown(header, lines, peers, args, reference_n, load):
     date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     criteria = "\n".join(f"- **{p.name}**: {p.criterion} {p.notes}" for p in peers)
     return f"""## Peers: the same contacts in Tamaas and ContactMechanics
 
-Measured {date} on {machine()} by `scripts/peers.sh` (regenerate with that one command; it
+Measured {date} on {machine(load)} by `scripts/peers.sh` (regenerate with that one command; it
 makes a venv under `target/peers-venv`, builds the release binary, runs `scripts/peers.py`
-and rewrites this file). Versions: {versions(binary)}.
+and rewrites this file). Versions: {versions(args.binary)}.
 
-Cases: the paper's Hertz contact (R 3 mm, F 5 N, E* {reduced_modulus() / 1e9:.2f} GPa, square
+Cases: the paper's Hertz contact (R 3 mm, F 5 N, E* {reduced_modulus() / 1e9:.3f} GPa, square
 domain 0.256 mm, apex on a cell corner, free boundary, tolerance 1e-8) and the same contact
 capped at Y = 2551 MPa / 2.8 = {YIELD_PA / 1e6:.2f} MPa. Every solver gets the same grid and
 separation. Errors are `value / reference - 1` against Hertz's analytic solution (`hertz`)
@@ -408,8 +412,8 @@ plastic area cells at the cap, approach is the mean of K p + h over the free cel
 
 "time s" is the median over cold runs of construction (model, kernel and operator) plus
 solve, the same for every solver, and "solve s" the solve alone; "peer / ours" is the ratio
-of the times. Ours are the medians of `tribosim bench contact` (9 runs below N = 512, 5 at
-512); "runs" counts a peer's runs (fewer than asked once a minute is spent). All three are
+of the times. "runs" counts the runs behind each median (ours those of `tribosim bench
+contact`; a peer's up to {args.reps}, fewer once {args.budget:g} s are spent). All three are
 single-threaded; "cpu / wall", the process CPU time over wall time of a peer's runs, shows it
 (near 1 on a quiet machine, lower when other work shares the cores). "residual (ours)" is our
 stopping measure (worst complementarity violation over max |K p|) evaluated on each answer
@@ -437,6 +441,7 @@ def main():
     parser.add_argument("--out", default="docs/peers.md")
     args = parser.parse_args()
 
+    load = os.getloadavg()[0]
     print("running tribosim bench contact --json ...", file=sys.stderr)
     mine = ours(args.binary)
     peers = [TamaasPeer(), ContactMechanicsPeer()]
@@ -454,7 +459,7 @@ def main():
     header, lines = table_rows(groups)
     print(plain_table(header, lines))
     reference_n = next(r["reference"]["n"] for r in mine.values() if r["case"] == "capped")
-    Path(args.out).write_text(markdown(header, lines, peers, args.binary, reference_n))
+    Path(args.out).write_text(markdown(header, lines, peers, args, reference_n, load))
     print(f"wrote {args.out}", file=sys.stderr)
 
 

@@ -3,8 +3,8 @@
 # public PyPI packages under target/peers-venv if missing, builds the release binary, then
 # runs scripts/peers.py, which prints the table and rewrites docs/peers.md.
 # Usage: scripts/peers.sh [peers.py options, e.g. --sizes 64 128 --reps 5]
-# Run it on an otherwise idle machine: the times are the point. It takes about 20 minutes,
-# most of it Tamaas's KatoSaturated at N = 512.
+# Run it on an otherwise idle machine: the times are the point. It takes 10 to 15 minutes,
+# most of it Tamaas's KatoSaturated at N = 256 and 512 (thousands of iterations).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

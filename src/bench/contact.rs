@@ -5,7 +5,9 @@
 //! - `capped`: the same contact with the pressure cap `Y = 2551 MPa / 2.8` (the paper's
 //!   first hardness over Johnson's factor), about 911 MPa against Hertz's 1221 MPa peak.
 //!   It has no analytic answer: its errors are against our own solution of the same case
-//!   on a [`CAPPED_REFERENCE_N`]-cell grid of the same domain.
+//!   on a [`CAPPED_REFERENCE_N`]-cell grid of the same domain. The grid error falls about
+//!   as 1/N, so a row's error against that reference is about `1 - N / 2048` of its error
+//!   against the continuum: half of it at N = 1024.
 //!
 //! [`contact_rows`] varies the grid at the paper's tolerance; [`tolerance_rows`] varies the
 //! tolerance on one grid. `scripts/peers.py` reads both from `tribosim bench contact --json`
@@ -117,7 +119,7 @@ impl Reference {
     }
 
     /// Our solution of the capped case on an `n`-cell grid at [`TIGHT_TOLERANCE`]; at
-    /// `n` = 2048 a single solve of about a minute here.
+    /// `n` = 2048 one solve of about 30 s on the 2-core development machine.
     pub fn capped(n: usize) -> Result<Self, ContactError> {
         let case = ContactCase::Capped;
         let setup = Setup::new(case, n)?;
@@ -176,6 +178,8 @@ pub struct ContactRow {
     pub n: usize,
     /// Kernel and operator construction plus solve, s (median).
     pub wall_s: f64,
+    /// Runs behind each median.
+    pub runs: usize,
     /// Kernel and operator construction, s (median).
     pub build_s: f64,
     /// Solve alone, s (median).
@@ -314,7 +318,7 @@ fn repetitions(n: usize) -> usize {
 }
 
 /// Measures both cases at each grid size in `sizes`, after solving the capped reference
-/// (about a minute). Hertz rows come first.
+/// (about 30 s). Hertz rows come first.
 pub fn contact_rows(sizes: &[usize]) -> Result<Vec<ContactRow>, ContactError> {
     contact_rows_against(sizes, &Reference::capped(CAPPED_REFERENCE_N)?)
 }
@@ -355,6 +359,7 @@ fn grid_row(setup: &Setup, capped: &Reference) -> Result<ContactRow, ContactErro
         case: setup.case,
         n,
         wall_s: build_s + solve_s,
+        runs: reps,
         build_s,
         solve_s,
         iterations: solution.iterations,
