@@ -62,7 +62,7 @@ def cap_pa(case):
 
 def grid(n):
     """Cell size and the separation h = r^2 / (2R) at the cell centres of an n x n grid
-    centred on the apex, which so lies on a cell corner (our Grid's convention)."""
+    centred on the apex, so the apex lies on a cell corner (our Grid's convention)."""
     dx = DOMAIN_M / n
     x = (np.arange(n) + 0.5 - n / 2) * dx
     xx, yy = np.meshgrid(x, x, indexing="ij")
@@ -139,9 +139,14 @@ def captured_stderr():
             lines.extend(tmp.read().splitlines())
 
 
+# An iteration line of Tamaas's log: iteration, cost, error.
+LOG_LINE = re.compile(r"^\s*(\d+)\s+\S+\s+\S+\s*$")
+
+
 class TamaasPeer:
     """Tamaas: the DC-FFT Boussinesq operator (`registerNonPeriodic`) with Polonsky-Keer-Rey
-    for `hertz` and KatoSaturated (pressures projected on [0, pmax]) for `capped`."""
+    for `hertz` and KatoSaturated, its solver for pressures bounded by a saturation
+    pressure, for `capped`."""
 
     name = "Tamaas"
     package = "tamaas"
@@ -194,9 +199,6 @@ class TamaasPeer:
         model.operators["dcfft"](p, u)
         steps = [int(m.group(1)) for m in map(LOG_LINE.match, state["log"]) if m]
         return Outcome(p * self.modulus, u * DOMAIN_M, max(steps) if steps else None)
-
-
-LOG_LINE = re.compile(r"^\s*(\d+)\s+\S+\s+\S+\s*$")
 
 
 class ContactMechanicsPeer:
