@@ -20,7 +20,7 @@ use super::median_time;
 use super::wear::{WearRow, row, simulate};
 
 /// Side of the contact benchmark's domain (`contact::contact_rows`), m.
-pub(super) const HERTZ_DOMAIN_M: f64 = 0.256e-3;
+pub(super) use super::contact::DOMAIN_M as HERTZ_DOMAIN_M;
 
 /// The coupling term's effect on one Hertz contact.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -13,7 +13,10 @@ use std::path::Path;
 use std::time::Instant;
 
 pub use auto::{AutoGrid, AutoStudies, CouplingRow, auto_studies};
-pub use contact::{ContactRow, contact_rows};
+pub use contact::{
+    CAPPED_REFERENCE_N, CAPPED_YIELD_PRESSURE_PA, ContactCase, ContactRow, Measures, Reference,
+    ToleranceRow, contact_rows, contact_rows_against, tolerance_rows,
+};
 pub use fft_pair::FftPair;
 pub use plot::{LogAxis, LogLogPlot, Point, Series};
 pub use report::{Machine, Measurements};
@@ -22,7 +25,7 @@ pub use wear::{WearRow, wear_rows};
 /// Which tables to print.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum BenchTarget {
-    /// The Hertz contact: grid size against error and time.
+    /// The Hertz and capped-Hertz contact: grid size and tolerance against error and time.
     Contact,
     /// The paper scene: cycle step, grid and tolerance against error and time.
     Wear,
@@ -51,8 +54,13 @@ pub fn print(target: BenchTarget, json: bool, markdown: Option<&Path>) -> Result
     let wanted = |t: BenchTarget| target == t || target == BenchTarget::All;
     let mut measured = Measurements::default();
     if wanted(BenchTarget::Contact) {
-        measured.contact = contact_rows(&[64, 128, 256, 512, 1024]).map_err(|e| e.to_string())?;
+        let capped = Reference::capped(CAPPED_REFERENCE_N).map_err(|e| e.to_string())?;
+        measured.contact =
+            contact_rows_against(&[64, 128, 256, 512, 1024], &capped).map_err(|e| e.to_string())?;
         emit(&measured.contact, json, contact::table)?;
+        measured.contact_tolerance =
+            tolerance_rows(256, &[1e-4, 1e-6, 1e-8, 1e-10], &capped).map_err(|e| e.to_string())?;
+        emit(&measured.contact_tolerance, json, contact::tolerance_table)?;
     }
     if wanted(BenchTarget::Wear) {
         measured.wear = wear_rows().map_err(|e| e.to_string())?;

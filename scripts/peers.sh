@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Our contact solver beside Tamaas and ContactMechanics (issue 6): makes a venv with the
+# public PyPI packages under target/peers-venv if missing, builds the release binary, then
+# runs scripts/peers.py, which prints the table and rewrites docs/peers.md.
+# Usage: scripts/peers.sh [peers.py options, e.g. --sizes 64 128 --reps 5]
+# Run it on an otherwise idle machine: the times are the point. It takes 10 to 15 minutes,
+# most of it Tamaas's KatoSaturated at N = 256 and 512 (thousands of iterations).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+venv=target/peers-venv
+# The versions whose conventions scripts/peers.py documents.
+packages=(tamaas==2.9.0 contactmechanics==1.8.3 numpy)
+if ! "$venv/bin/python" -c 'import tamaas, ContactMechanics, numpy' 2>/dev/null; then
+    python3 -m venv "$venv"
+    "$venv/bin/pip" install --quiet --upgrade pip
+    "$venv/bin/pip" install --quiet "${packages[@]}"
+fi
+
+cargo build --release --quiet
+exec "$venv/bin/python" scripts/peers.py --binary "${CARGO_TARGET_DIR:-target}/release/tribosim" "$@"
