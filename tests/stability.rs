@@ -487,3 +487,19 @@ fn a_femtonewton_contact_keeps_its_shape() {
     let error = contact.max_pressure_mpa / contact.hertz_peak_pressure_mpa - 1.0;
     assert!(error.abs() < 2e-4, "peak pressure error {error}");
 }
+
+#[test]
+fn the_auto_domain_grows_on_the_coarsest_grids() {
+    // On 8 to 14 cells, 20% of the half-width is under two cells: the contact reached the
+    // edge ring, and the solve failed, before the growth trigger saw it. Before: 8 cells
+    // stopped at cycle 49 with "contact reaches the domain edge; enlarge the domain", on a
+    // domain left to the simulation; 12 cells at cycle 68.
+    for cells in [8, 12] {
+        let s = scene(&format!(
+            r#"{{"preset": "dalmau2018-316l", "overrides": {{"numerics": {{"grid": {cells}}}}}}}"#
+        ));
+        let result = simulate(&s).expect("runs");
+        assert_finite(&result);
+        assert!(result.models.iter().any(|m| m.name == "domain_growth"));
+    }
+}
