@@ -503,3 +503,19 @@ fn the_auto_domain_grows_on_the_coarsest_grids() {
         assert!(result.models.iter().any(|m| m.name == "domain_growth"));
     }
 }
+
+#[test]
+fn tolerance_below_the_round_off_floor_is_refused() {
+    // H falling to 100 MPa over 1000 cycles: at cycle 601 the groove is 50 um deep and the
+    // approach exceeds it by 0.14 um, so the gap u + h - delta loses digits to the groove.
+    // Asked for 1e-12 (validation allowed down to 1e-14), the residual stalled at 1.3e-12:
+    // NotConverged at cycle 601. The new lower bound, 1e-10, runs.
+    let json = r#"{"preset": "dalmau2018-316l", "overrides": {
+        "disc": {"hardness_table": [[1000, 100]]}, "test": {"cycles": 1000},
+        "numerics": {"grid": 32, "tolerance": 1e-12}}}"#;
+    let (path, message) = refused(json);
+    assert_eq!(path, "overrides.numerics.tolerance");
+    assert!(message.contains("[1e-10, 0.01]"), "{message}");
+    let result = simulate(&scene(&json.replace("1e-12", "1e-10"))).expect("runs");
+    assert_finite(&result);
+}

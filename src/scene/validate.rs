@@ -14,9 +14,14 @@ const MAX_CYCLES: u64 = 1_000_000;
 const GRID_CELLS: std::ops::RangeInclusive<usize> = 8..=2048;
 /// Largest domain side, um (10 cm, far beyond any ball-on-disc contact).
 const MAX_DOMAIN_UM: f64 = 100_000.0;
-/// Solver tolerance bounds: below 1e-14 round-off of the FFT convolution dominates; above 1e-2
-/// the pressures are too rough to wear with.
-const TOLERANCE: (f64, f64) = (1e-14, 1e-2);
+/// Solver tolerance bounds. The relative residual has a round-off floor of about machine
+/// epsilon times the approach over the largest elastic displacement, so it rises as a groove
+/// deepens. Wear runs stalled with NotConverged at residuals of 1.2e-13 to 1.5e-13 (paper
+/// scene, 3600 cycles), 6e-13 (H falling to 300 MPa over 3600 cycles) and 1.3e-12 (to
+/// 100 MPa over 1000 cycles, grid 32); all of them ran at 1e-11. 1e-10 is also the tightest
+/// reference `tribosim bench wear` uses: 1e-8 already agrees with it to 4e-11 in volume.
+/// Above 1e-2 the pressures are too rough to wear with.
+const TOLERANCE: (f64, f64) = (1e-10, 1e-2);
 
 /// Largest `mu |beta|` accepted with the coupling term, beta being Dundurs' second parameter
 /// `delta-nu / (2 (1 - nu*))`. Measured with `tribosim contact` on five pairs (|beta| 0.50 to
@@ -597,7 +602,7 @@ mod tests {
         scene.test.friction_coefficient = 2.0;
         scene.test.cycles = MAX_CYCLES;
         scene.numerics.grid = GridSize::Cells(2048);
-        scene.numerics.tolerance = 1e-14;
+        scene.numerics.tolerance = 1e-10;
         scene.numerics.domain_um = DomainSize::Micrometres(MAX_DOMAIN_UM);
         scene.ball.poisson_ratio = -0.99;
         // A contact wide enough for 2048 cells over 10 cm: 1.7 cells per Hertz radius.
@@ -607,7 +612,7 @@ mod tests {
         scene.test.friction_coefficient = 2.01;
         scene.test.cycles = MAX_CYCLES + 1;
         scene.numerics.grid = GridSize::Cells(7);
-        scene.numerics.tolerance = 0.99e-14;
+        scene.numerics.tolerance = 0.99e-10;
         scene.numerics.domain_um = DomainSize::Micrometres(0.0);
         scene.ball.poisson_ratio = -1.0;
         assert_eq!(
