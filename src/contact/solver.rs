@@ -9,7 +9,9 @@
 //! preserves the load exactly and needs no rescaling. Cells leaving `F` are truncated to the
 //! bound they cross; cells on a bound whose gap says they should not be there (zero
 //! pressure but penetrating, or at the cap but open) re-enter `F` by the Polonsky-Keer
-//! rule and restart the conjugacy.
+//! rule and restart the conjugacy. When the free cells cannot move (at most one is free,
+//! nearly every loaded cell at the cap), one projected steepest-descent step over the free
+//! and the wrongly bounded cells takes the place of the CG step.
 //!
 //! # Preconditioning
 //! When the operator offers one ([`Operator::preconditioner`]; [`super::DcFft`] does), the
@@ -383,6 +385,23 @@ pub fn solve(
             *ti = fi * (si + beta * *ti - t_mean);
         }
         let num = dot(&g, &t);
+        if num <= 0.0 {
+            // The free cells cannot move: at most one is free (a load-preserving step over
+            // one cell is zero), nearly every loaded cell at the cap. The re-entry rule alone
+            // then stalls (no step length yet) or cycles (the rescale to the load sends the
+            // re-entered cells back to the cap), as a softening disc's warm starts showed.
+            // Step instead along the gap over the free and the wrongly bounded cells; if
+            // there is no such direction, start again from the uniform pressure.
+            if !violator_step(operator, &mut p, &g, &mut t, &mut r, cap, &mut applies) {
+                p.fill(target / n as f64);
+            }
+            rescale_to_load(&mut p, cap, target, &g);
+            operator.apply(&p, &mut u);
+            applies += 1;
+            fresh = true;
+            restart = true;
+            continue;
+        }
 
         operator.apply(&t, &mut r);
         applies += 1;
@@ -443,6 +462,51 @@ pub fn solve(
         residual,
         tolerance: options.tolerance,
     })
+}
+
+/// Projected steepest descent over the cells that may move: the free ones and those on a
+/// bound whose gap says they should leave it (zero pressure but penetrating, at the cap but
+/// open). The direction is the gap there, less its mean so the load is kept; the step is the
+/// exact line search `g.t / t.Kt`, then cut at the bounds. False (and `p` unchanged) when
+/// there is no descent direction: at most one such cell, or their gaps all equal.
+fn violator_step(
+    operator: &mut dyn Operator,
+    p: &mut [f64],
+    g: &[f64],
+    t: &mut [f64],
+    kt: &mut [f64],
+    cap: f64,
+    applies: &mut usize,
+) -> bool {
+    let movable = |pi: f64, gi: f64| {
+        (pi > 0.0 && pi < cap) || (pi <= 0.0 && gi < 0.0) || (pi >= cap && gi > 0.0)
+    };
+    let (mut sum, mut count) = (0.0, 0usize);
+    for (&pi, &gi) in p.iter().zip(g) {
+        if movable(pi, gi) {
+            sum += gi;
+            count += 1;
+        }
+    }
+    let mean = sum / count.max(1) as f64;
+    for ((ti, &pi), &gi) in t.iter_mut().zip(p.iter()).zip(g) {
+        *ti = if movable(pi, gi) { gi - mean } else { 0.0 };
+    }
+    let num = dot(g, t);
+    if num <= 0.0 {
+        return false;
+    }
+    operator.apply(t, kt);
+    *applies += 1;
+    let den = dot(t, kt);
+    if den <= 0.0 {
+        return false;
+    }
+    let tau = num / den;
+    for (pi, &ti) in p.iter_mut().zip(t.iter()) {
+        *pi = (*pi - tau * ti).clamp(0.0, cap);
+    }
+    true
 }
 
 /// Success is refused when the outermost ring of cells carries load: the half-space outside

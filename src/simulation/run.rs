@@ -16,8 +16,12 @@ use super::{
     Summary,
 };
 
-/// The domain grows when pressure reaches this fraction of the half-width from the centre.
+/// The domain grows when pressure reaches this fraction of the half-width from the centre...
 const GROW_AT_FRACTION: f64 = 0.8;
+/// ... or comes within this many cells of the edge, whichever is first: on grids under 20
+/// cells 20% is under two cells, and the contact reached the edge ring (failing the solve)
+/// before the growth saw it.
+const GROW_AT_EDGE_CELLS: f64 = 2.0;
 
 /// Growth factor of the domain side (then rounded up to an FFT-friendly size).
 const GROWTH: f64 = 1.25;
@@ -162,7 +166,7 @@ pub fn run(
                     name: "domain_growth".to_owned(),
                     active: true,
                     reason: format!(
-                        "at cycle {cycle} the contact came within {:.0}% of the edge: grown to {} x {} cells ({:.1} x {:.1} um)",
+                        "at cycle {cycle} the contact came within {:.0}% (or {GROW_AT_EDGE_CELLS} cells) of the edge: grown to {} x {} cells ({:.1} x {:.1} um)",
                         100.0 * (1.0 - GROW_AT_FRACTION),
                         grid.nx,
                         grid.ny,
@@ -277,12 +281,16 @@ impl WarmStart {
     }
 }
 
-/// Whether loaded cells lie outside `GROW_AT_FRACTION` of the half-width, along x and
-/// along y. The axes grow separately: as the groove deepens the contact widens across the
-/// track but shortens along it (paper Fig. 10), so only y keeps growing.
+/// Whether loaded cells lie outside `GROW_AT_FRACTION` of the half-width (or within
+/// `GROW_AT_EDGE_CELLS` of the edge), along x and along y. The axes grow separately: as the
+/// groove deepens the contact widens across the track but shortens along it (paper
+/// Fig. 10), so only y keeps growing.
 fn near_edges(grid: &Grid, pressure: &[f64]) -> (bool, bool) {
-    let limit_x = GROW_AT_FRACTION * grid.nx as f64 * grid.dx / 2.0;
-    let limit_y = GROW_AT_FRACTION * grid.ny as f64 * grid.dy / 2.0;
+    let limit = |n: usize, d: f64| {
+        let half = n as f64 * d / 2.0;
+        (GROW_AT_FRACTION * half).min(half - GROW_AT_EDGE_CELLS * d)
+    };
+    let (limit_x, limit_y) = (limit(grid.nx, grid.dx), limit(grid.ny, grid.dy));
     let mut near = (false, false);
     for (i, &p) in pressure.iter().enumerate() {
         if p > 0.0 {

@@ -251,10 +251,19 @@ impl Setup {
         }
     }
 
-    /// The unworn ball's height above its apex at each cell of `grid` (the exact sphere).
+    /// The unworn ball's height above its apex at each cell of `grid` (the exact sphere),
+    /// `rho^2 / (r + sqrt(r^2 - rho^2))`: equal to `r - sqrt(r^2 - rho^2)`, which loses the
+    /// height to round-off once it nears `r` times machine epsilon (tiny contacts).
     pub fn ball_separation(&self, grid: &Grid) -> Vec<f64> {
         let r = self.scene.ball_radius_m();
-        grid.sample(|x, y| r - (r * r - x * x - y * y).max(0.0).sqrt())
+        grid.sample(|x, y| {
+            let rho2 = x * x + y * y;
+            if rho2 >= r * r {
+                r
+            } else {
+                rho2 / (r + (r * r - rho2).sqrt())
+            }
+        })
     }
 
     /// The influence operators for `grid`.
