@@ -417,12 +417,17 @@ fn render(
         auto_section(report, auto, measured)?;
     }
     if let Some(peers) = peers {
-        report.push("## Peers\n");
+        // The fragment's own heading, if it has one, heads the section.
+        let (heading, body) = match peers.split_once('\n') {
+            Some((first, rest)) if first.starts_with("## ") => (first, rest),
+            _ => ("## Peers", peers),
+        };
+        report.push(&format!("{heading}\n"));
         report.push(
             "Produced by `scripts/peers.sh` (a Python environment with the public solvers), not \
              by the command above; its `docs/peers.md` is included here verbatim.\n",
         );
-        report.push(peers.trim_end());
+        report.push(body.trim());
     }
     Ok(())
 }
@@ -805,10 +810,11 @@ fn step_choice(report: &mut Report, measured: &Measurements) {
         .filter(|r| !r.reference)
         .map(|r| {
             format!(
-                "{} cycles: {} solves, the longest step {} cycles; {} solves stood for `MAX_STEP` \
+                "{} cycles, {}: {} solves, the longest step {} cycles; {} solves stood for `MAX_STEP` \
                  cycles ({:.0}% of the cycles), the bound, the doubling limit or yielding (steps \
                  of 1 while pressures sit at Y) set the others.",
                 r.cycles,
+                short(&r.setting),
                 r.solves,
                 r.longest_step,
                 r.steps_at_max,
