@@ -243,8 +243,9 @@ pub fn run(
 
 /// The warm start of the next solve. Between solves the surface changes smoothly (Archard
 /// wear nearly constant per cycle), so a linear extrapolation of the last two pressures in
-/// the cycle number starts much closer than the last pressure alone; while the groove is
-/// being cut by yielding, or right after a regrid, the last pressure is used as it is.
+/// the cycle number starts much closer than the last pressure alone (clipped to `[0, Y]`);
+/// right after a regrid, with no earlier pressure on the new grid, the last one is used as
+/// it is.
 #[derive(Debug, Default)]
 struct WarmStart {
     last: Option<(u64, Vec<f64>)>,
