@@ -71,7 +71,22 @@ pub fn solve_coupled(
             max_iterations: options.max_iterations.saturating_sub(iterations).max(1),
             tolerance: (INNER_FLOOR * options.tolerance).max(INNER_FRACTION * residual.min(1.0)),
         };
-        let mut solution = solve(normal, &inner, &budget, warm.as_deref())?;
+        // An inner failure is the run's: report it against the user's tolerance and with
+        // every iteration spent, not the inner solve's looser target.
+        let mut solution = match solve(normal, &inner, &budget, warm.as_deref()) {
+            Err(ContactError::NotConverged {
+                iterations: inner_iterations,
+                residual: inner_residual,
+                ..
+            }) => {
+                return Err(ContactError::NotConverged {
+                    iterations: iterations + inner_iterations,
+                    residual: inner_residual,
+                    tolerance: options.tolerance,
+                });
+            }
+            outcome => outcome?,
+        };
         iterations += solution.iterations;
         applies += solution.operator_applies + 1;
         coupling.apply(&solution.pressure, &mut coupling_u);
