@@ -3,29 +3,19 @@
 //! no kernel product) but with the same blocked transposes and padded column stride as the
 //! operator, so the ratio measures the solver's work, not a slow baseline.
 
-use std::sync::Arc;
-
-use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
-use rustfft::{Fft, FftPlanner};
 
-const BLOCK: usize = 16;
-const STRIDE_PAD: usize = 8;
+use crate::contact::{BLOCK, Plans, STRIDE_PAD};
 
 /// A planned padded FFT round trip for an `N x N` grid.
 pub struct FftPair {
     len: usize,
     half: usize,
     stride: usize,
-    rows_forward: Arc<dyn RealToComplex<f64>>,
-    rows_inverse: Arc<dyn ComplexToReal<f64>>,
-    columns_forward: Arc<dyn Fft<f64>>,
-    columns_inverse: Arc<dyn Fft<f64>>,
+    plans: Plans,
     data: Vec<f64>,
     block: Vec<Complex<f64>>,
     columns: Vec<Complex<f64>>,
-    real_scratch: Vec<Complex<f64>>,
-    complex_scratch: Vec<Complex<f64>>,
 }
 
 impl FftPair {
@@ -33,32 +23,14 @@ impl FftPair {
     pub fn new(n: usize) -> Self {
         let (len, half) = (2 * n, n + 1);
         let stride = len + STRIDE_PAD;
-        let mut real = RealFftPlanner::<f64>::new();
-        let mut complex = FftPlanner::<f64>::new();
-        let rows_forward = real.plan_fft_forward(len);
-        let rows_inverse = real.plan_fft_inverse(len);
-        let columns_forward = complex.plan_fft_forward(len);
-        let columns_inverse = complex.plan_fft_inverse(len);
-        let real_scratch = vec![
-            Complex::default();
-            rows_forward
-                .get_scratch_len()
-                .max(rows_inverse.get_scratch_len())
-        ];
-        let complex_scratch = vec![Complex::default(); columns_forward.get_inplace_scratch_len()];
         Self {
             len,
             half,
             stride,
-            rows_forward,
-            rows_inverse,
-            columns_forward,
-            columns_inverse,
+            plans: Plans::new(len, len),
             data: (0..len * len).map(|i| (i % 17) as f64).collect(),
             block: vec![Complex::default(); BLOCK * half],
             columns: vec![Complex::default(); half * stride],
-            real_scratch,
-            complex_scratch,
         }
     }
 
@@ -69,8 +41,9 @@ impl FftPair {
             for slot in 0..BLOCK {
                 let row = &mut self.data[(first + slot) * len..][..len];
                 let out = &mut self.block[slot * half..][..half];
-                self.rows_forward
-                    .process_with_scratch(row, out, &mut self.real_scratch)
+                self.plans
+                    .row_forward
+                    .process_with_scratch(row, out, &mut self.plans.real_scratch)
                     .expect("lengths fixed at construction");
             }
             for k in 0..half {
@@ -81,10 +54,12 @@ impl FftPair {
         }
         for column in self.columns.chunks_exact_mut(stride) {
             let column = &mut column[..len];
-            self.columns_forward
-                .process_with_scratch(column, &mut self.complex_scratch);
-            self.columns_inverse
-                .process_with_scratch(column, &mut self.complex_scratch);
+            self.plans
+                .col_forward
+                .process_with_scratch(column, &mut self.plans.complex_scratch);
+            self.plans
+                .col_inverse
+                .process_with_scratch(column, &mut self.plans.complex_scratch);
         }
         for first in (0..len).step_by(BLOCK) {
             for k in 0..half {
@@ -97,8 +72,9 @@ impl FftPair {
                 spectrum[0].im = 0.0;
                 spectrum[half - 1].im = 0.0;
                 let row = &mut self.data[(first + slot) * len..][..len];
-                self.rows_inverse
-                    .process_with_scratch(spectrum, row, &mut self.real_scratch)
+                self.plans
+                    .row_inverse
+                    .process_with_scratch(spectrum, row, &mut self.plans.real_scratch)
                     .expect("DC and Nyquist made real above");
             }
         }

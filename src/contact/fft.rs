@@ -33,10 +33,48 @@ use super::precondition::FourierInverse;
 use super::{Kernel, Operator};
 
 /// Rows moved per block between the row and the column layouts.
-const BLOCK: usize = 16;
+pub(crate) const BLOCK: usize = 16;
 
 /// Padding of the column stride, in complex entries (128 bytes).
-const STRIDE_PAD: usize = 8;
+pub(crate) const STRIDE_PAD: usize = 8;
+
+/// Planned row (real-to-complex and back) and column (complex) transforms of a 2D FFT,
+/// with the scratch they need: shared by [`DcFft`], the preconditioner and the benchmark's
+/// FFT pair.
+pub(crate) struct Plans {
+    pub(crate) row_forward: Arc<dyn RealToComplex<f64>>,
+    pub(crate) row_inverse: Arc<dyn ComplexToReal<f64>>,
+    pub(crate) col_forward: Arc<dyn Fft<f64>>,
+    pub(crate) col_inverse: Arc<dyn Fft<f64>>,
+    pub(crate) real_scratch: Vec<Complex<f64>>,
+    pub(crate) complex_scratch: Vec<Complex<f64>>,
+}
+
+impl Plans {
+    /// Plans rows of `row_len` reals and columns of `col_len` complex values.
+    pub(crate) fn new(row_len: usize, col_len: usize) -> Self {
+        let mut real_planner = RealFftPlanner::<f64>::new();
+        let row_forward = real_planner.plan_fft_forward(row_len);
+        let row_inverse = real_planner.plan_fft_inverse(row_len);
+        let mut planner = FftPlanner::<f64>::new();
+        let col_forward = planner.plan_fft_forward(col_len);
+        let col_inverse = planner.plan_fft_inverse(col_len);
+        let real_scratch_len = row_forward
+            .get_scratch_len()
+            .max(row_inverse.get_scratch_len());
+        let complex_scratch_len = col_forward
+            .get_inplace_scratch_len()
+            .max(col_inverse.get_inplace_scratch_len());
+        Self {
+            row_forward,
+            row_inverse,
+            col_forward,
+            col_inverse,
+            real_scratch: vec![Complex::default(); real_scratch_len],
+            complex_scratch: vec![Complex::default(); complex_scratch_len],
+        }
+    }
+}
 
 /// The DC-FFT convolution operator of one kernel on one grid.
 pub struct DcFft {
@@ -48,18 +86,13 @@ pub struct DcFft {
     stride: usize,
     /// Half-spectrum row length `nx + 1`.
     half: usize,
-    row_forward: Arc<dyn RealToComplex<f64>>,
-    row_inverse: Arc<dyn ComplexToReal<f64>>,
-    col_forward: Arc<dyn Fft<f64>>,
-    col_inverse: Arc<dyn Fft<f64>>,
+    plans: Plans,
     /// The kernel spectrum, transposed: entry `(kx, ky)` at `kx * stride + ky`.
     spectrum: Spectrum,
     /// Work buffer in the same transposed layout.
     columns: Vec<Complex<f64>>,
     row_real: Vec<f64>,
     row_block: Vec<Complex<f64>>,
-    real_scratch: Vec<Complex<f64>>,
-    complex_scratch: Vec<Complex<f64>>,
     /// The preconditioner: the inverse of the normal kernel's periodic wrap.
     inverse: Option<FourierInverse>,
 }
@@ -115,18 +148,6 @@ impl DcFft {
 
     fn planned((nx, ny): (usize, usize)) -> Self {
         let (row_len, col_len, half) = (2 * nx, 2 * ny, nx + 1);
-        let mut real_planner = RealFftPlanner::<f64>::new();
-        let row_forward = real_planner.plan_fft_forward(row_len);
-        let row_inverse = real_planner.plan_fft_inverse(row_len);
-        let mut planner = FftPlanner::<f64>::new();
-        let col_forward = planner.plan_fft_forward(col_len);
-        let col_inverse = planner.plan_fft_inverse(col_len);
-        let real_scratch_len = row_forward
-            .get_scratch_len()
-            .max(row_inverse.get_scratch_len());
-        let complex_scratch_len = col_forward
-            .get_inplace_scratch_len()
-            .max(col_inverse.get_inplace_scratch_len());
         let stride = col_len + STRIDE_PAD;
         Self {
             nx,
@@ -134,16 +155,11 @@ impl DcFft {
             col_len,
             stride,
             half,
-            row_forward,
-            row_inverse,
-            col_forward,
-            col_inverse,
+            plans: Plans::new(row_len, col_len),
             spectrum: Spectrum::Real(Vec::new()),
             columns: vec![Complex::default(); half * stride],
             row_real: vec![0.0; row_len],
             row_block: vec![Complex::default(); BLOCK * half],
-            real_scratch: vec![Complex::default(); real_scratch_len],
-            complex_scratch: vec![Complex::default(); complex_scratch_len],
             inverse: None,
         }
     }
@@ -175,8 +191,9 @@ impl DcFft {
             }
         }
         for column in self.columns.chunks_exact_mut(self.stride) {
-            self.col_forward
-                .process_with_scratch(&mut column[..self.col_len], &mut self.complex_scratch);
+            self.plans
+                .col_forward
+                .process_with_scratch(&mut column[..self.col_len], &mut self.plans.complex_scratch);
         }
         self.columns.clone()
     }
@@ -184,8 +201,9 @@ impl DcFft {
     /// Real-to-complex transform of `row_real` into slot `slot` of the row block.
     fn forward_row(&mut self, slot: usize) {
         let out = &mut self.row_block[slot * self.half..(slot + 1) * self.half];
-        self.row_forward
-            .process_with_scratch(&mut self.row_real, out, &mut self.real_scratch)
+        self.plans
+            .row_forward
+            .process_with_scratch(&mut self.row_real, out, &mut self.plans.real_scratch)
             .expect("buffer lengths fixed at construction");
     }
 
@@ -236,8 +254,9 @@ impl Operator for DcFft {
         for (k, column) in self.columns.chunks_exact_mut(self.stride).enumerate() {
             let column = &mut column[..self.col_len];
             column[ny..].fill(Complex::default());
-            self.col_forward
-                .process_with_scratch(column, &mut self.complex_scratch);
+            self.plans
+                .col_forward
+                .process_with_scratch(column, &mut self.plans.complex_scratch);
             let range = k * self.stride..k * self.stride + self.col_len;
             match &self.spectrum {
                 Spectrum::Real(s) => column.iter_mut().zip(&s[range]).for_each(|(c, &k)| *c *= k),
@@ -246,8 +265,9 @@ impl Operator for DcFft {
                 }),
                 Spectrum::Complex(s) => column.iter_mut().zip(&s[range]).for_each(|(c, k)| *c *= k),
             }
-            self.col_inverse
-                .process_with_scratch(column, &mut self.complex_scratch);
+            self.plans
+                .col_inverse
+                .process_with_scratch(column, &mut self.plans.complex_scratch);
         }
         for first in (0..ny).step_by(BLOCK) {
             let rows = BLOCK.min(ny - first);
@@ -259,8 +279,9 @@ impl Operator for DcFft {
                 // imaginary parts that realfft rejects.
                 row[0].im = 0.0;
                 row[nx].im = 0.0;
-                self.row_inverse
-                    .process_with_scratch(row, &mut self.row_real, &mut self.real_scratch)
+                self.plans
+                    .row_inverse
+                    .process_with_scratch(row, &mut self.row_real, &mut self.plans.real_scratch)
                     .expect("imaginary parts of DC and Nyquist zeroed above");
                 output[iy * nx..(iy + 1) * nx].copy_from_slice(&self.row_real[..nx]);
             }

@@ -21,6 +21,7 @@ pub use check::{Verification, verify};
 pub use coupled::{CoupledSolver, solve_coupled};
 pub use error::ContactError;
 pub use fft::DcFft;
+pub(crate) use fft::{BLOCK, Plans, STRIDE_PAD};
 pub use grid::Grid;
 pub use hertz::Hertz;
 pub use influence::Kernel;

@@ -15,13 +15,10 @@
 //! and any non-positive value (none seen on the grids tested) would be floored so the
 //! preconditioner stays positive definite.
 
-use std::sync::Arc;
-
-use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
-use rustfft::{Fft, FftPlanner};
 
 use super::Kernel;
+use super::fft::Plans;
 
 /// The inverse of a kernel's periodic wrap on its own grid.
 pub struct FourierInverse {
@@ -29,18 +26,13 @@ pub struct FourierInverse {
     ny: usize,
     /// Half-spectrum row length `nx / 2 + 1`.
     half: usize,
-    row_forward: Arc<dyn RealToComplex<f64>>,
-    row_inverse: Arc<dyn ComplexToReal<f64>>,
-    col_forward: Arc<dyn Fft<f64>>,
-    col_inverse: Arc<dyn Fft<f64>>,
+    plans: Plans,
     /// `1 / (nx ny K_hat)`, column-major: entry `(kx, ky)` at `kx * ny + ky`.
     inverse_symbol: Vec<f64>,
     /// Work buffer, column-major like the symbol.
     columns: Vec<Complex<f64>>,
     row_real: Vec<f64>,
     row_spectrum: Vec<Complex<f64>>,
-    real_scratch: Vec<Complex<f64>>,
-    complex_scratch: Vec<Complex<f64>>,
 }
 
 impl std::fmt::Debug for FourierInverse {
@@ -66,38 +58,15 @@ impl FourierInverse {
     pub fn new(kernel: &Kernel) -> Self {
         let (nx, ny) = kernel.shape();
         let half = nx / 2 + 1;
-        let mut real_planner = RealFftPlanner::<f64>::new();
-        let row_forward = real_planner.plan_fft_forward(nx);
-        let row_inverse = real_planner.plan_fft_inverse(nx);
-        let mut planner = FftPlanner::<f64>::new();
-        let col_forward = planner.plan_fft_forward(ny);
-        let col_inverse = planner.plan_fft_inverse(ny);
-        let real_scratch = vec![
-            Complex::default();
-            row_forward
-                .get_scratch_len()
-                .max(row_inverse.get_scratch_len())
-        ];
-        let complex_scratch = vec![
-            Complex::default();
-            col_forward
-                .get_inplace_scratch_len()
-                .max(col_inverse.get_inplace_scratch_len())
-        ];
         let mut inverse = Self {
             nx,
             ny,
             half,
-            row_forward,
-            row_inverse,
-            col_forward,
-            col_inverse,
+            plans: Plans::new(nx, ny),
             inverse_symbol: vec![0.0; half * ny],
             columns: vec![Complex::default(); half * ny],
             row_real: vec![0.0; nx],
             row_spectrum: vec![Complex::default(); half],
-            real_scratch,
-            complex_scratch,
         };
 
         let wrapped: Vec<f64> = (0..nx * ny)
@@ -126,11 +95,12 @@ impl FourierInverse {
         for iy in 0..ny {
             self.row_real
                 .copy_from_slice(&input[iy * nx..(iy + 1) * nx]);
-            self.row_forward
+            self.plans
+                .row_forward
                 .process_with_scratch(
                     &mut self.row_real,
                     &mut self.row_spectrum,
-                    &mut self.real_scratch,
+                    &mut self.plans.real_scratch,
                 )
                 .expect("buffer lengths fixed at construction");
             for (kx, &c) in self.row_spectrum.iter().enumerate() {
@@ -138,8 +108,9 @@ impl FourierInverse {
             }
         }
         for column in self.columns.chunks_exact_mut(ny).take(half) {
-            self.col_forward
-                .process_with_scratch(column, &mut self.complex_scratch);
+            self.plans
+                .col_forward
+                .process_with_scratch(column, &mut self.plans.complex_scratch);
         }
     }
 
@@ -155,8 +126,9 @@ impl FourierInverse {
             .zip(self.inverse_symbol.chunks_exact(ny))
         {
             column.iter_mut().zip(symbol).for_each(|(c, &s)| *c *= s);
-            self.col_inverse
-                .process_with_scratch(column, &mut self.complex_scratch);
+            self.plans
+                .col_inverse
+                .process_with_scratch(column, &mut self.plans.complex_scratch);
         }
         for iy in 0..ny {
             for (kx, c) in self.row_spectrum.iter_mut().enumerate() {
@@ -168,11 +140,12 @@ impl FourierInverse {
             if nx % 2 == 0 {
                 self.row_spectrum[self.half - 1].im = 0.0;
             }
-            self.row_inverse
+            self.plans
+                .row_inverse
                 .process_with_scratch(
                     &mut self.row_spectrum,
                     &mut self.row_real,
-                    &mut self.real_scratch,
+                    &mut self.plans.real_scratch,
                 )
                 .expect("buffer lengths fixed at construction");
             output[iy * nx..(iy + 1) * nx].copy_from_slice(&self.row_real);
