@@ -413,8 +413,9 @@ pub fn solve(
         // A preconditioned direction is not made of gaps, so its step length is no
         // pressure per gap; the direction's own compliance t.t / t.Kt is, and matches
         // Polonsky-Keer's rate when t is the gap.
-        // With no direction left (one free cell or none) the last rate stands: a step length
-        // of a preconditioned direction has other units and would stall re-entry.
+        // A direction without a positive t.Kt (only the non-symmetric coupled operator can
+        // give one; no direction at all took the steepest-descent branch above) keeps the
+        // last rate: a preconditioned step length has other units and would stall re-entry.
         let rate = if !preconditioned {
             tau
         } else if den > 0.0 {
