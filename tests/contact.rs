@@ -448,7 +448,7 @@ fn paper_coupling_shifts_pressure_towards_the_leading_edge() {
 
 #[test]
 fn coupled_solver_takes_the_direct_route_when_it_converges_and_falls_back_when_not() {
-    use tribosim::contact::CoupledSolver;
+    use tribosim::contact::{ContactSolver, CoupledSolver};
     for (pair, friction, direct) in [
         (paper_pair(), 0.45, true),
         (strongly_coupled_pair(), 1.0, false),

@@ -8,7 +8,8 @@
 use serde::Serialize;
 
 use crate::contact::{
-    ContactError, ContactProblem, CoupledSolver, DcFft, Grid, Kernel, SolverOptions, solve,
+    ContactError, ContactProblem, ContactSolver, CoupledSolver, DcFft, Grid, Kernel, SolverOptions,
+    solve,
 };
 use crate::scene::parse_scene_str;
 use crate::simulation::{

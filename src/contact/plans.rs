@@ -44,3 +44,34 @@ impl Plans {
         }
     }
 }
+
+/// Smallest even `2^i 3^j >= n` (`i >= 1`): sizes rustfft transforms fastest, and even so
+/// the apex sits on a cell corner and a grown grid adds the same cells on both sides.
+pub fn fft_friendly(n: usize) -> usize {
+    let mut best = usize::MAX;
+    let mut three = 1;
+    while three < 2 * n {
+        let mut size = 2 * three;
+        while size < n {
+            size *= 2;
+        }
+        best = best.min(size);
+        three *= 3;
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fft_friendly_sizes() {
+        assert_eq!(fft_friendly(255), 256);
+        assert_eq!(fft_friendly(257), 288);
+        assert_eq!(fft_friendly(100), 108);
+        assert_eq!(fft_friendly(8), 8);
+        assert_eq!(fft_friendly(80), 96, "81 = 3^4 is odd");
+        assert_eq!(fft_friendly(3), 4);
+    }
+}

@@ -7,7 +7,6 @@ mod result;
 mod run;
 mod setup;
 mod stepping;
-mod window;
 
 use thiserror::Error;
 
@@ -19,10 +18,7 @@ use crate::scene::SceneErrors;
 pub use first::{FirstContact, first_contact};
 pub use result::{CycleRecord, ModelChoice, PressureMap, Profile, SimulationResult, Summary};
 pub use run::run;
-pub use setup::{
-    CELLS_PER_CONTACT_RADIUS, COUPLING_SENSITIVITY, ContactOperators, DOMAIN_PER_CONTACT_RADIUS,
-    Setup,
-};
+pub use setup::{CELLS_PER_CONTACT_RADIUS, COUPLING_SENSITIVITY, DOMAIN_PER_CONTACT_RADIUS, Setup};
 pub use stepping::{MAX_STEP, STEP_CHANGE_BOUND};
 
 /// Why a run stopped without a result.

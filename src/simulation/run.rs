@@ -4,13 +4,14 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use crate::contact::{ContactProblem, Grid};
+use crate::contact::{
+    ContactProblem, ContactSolver, Grid, MARGIN_FRACTION, MIN_MARGIN, Window, WindowedSolver,
+    fft_friendly,
+};
 use crate::scene::{AnodicArea, DomainSize, Scene};
 use crate::wear::{Groove, pass_pressure_integral, yield_depth};
 
-use super::setup::fft_friendly;
 use super::stepping::Stepper;
-use super::window::{MARGIN_FRACTION, MIN_MARGIN, WindowedSolver};
 use super::{
     CycleRecord, ModelChoice, PressureMap, Profile, Setup, SimulationError, SimulationResult,
     Summary,
@@ -45,7 +46,8 @@ pub fn run(
     let corrosion = scene.corrosion.as_ref().map(|c| (c.model(), c));
     let mut models = setup.models.clone();
     let mut grid = setup.grid;
-    let mut solver = WindowedSolver::new(&setup, grid);
+    let factory = |grid: &Grid| setup.solver(grid);
+    let mut solver = WindowedSolver::new(grid, factory);
     let mut ball = setup.ball_separation(&grid);
     let mut groove = Groove::new(&grid);
     let mut stepper = Stepper::new(scene.numerics.cycle_step, scene.numerics.cycle_step_bound);
@@ -77,11 +79,9 @@ pub fn run(
         };
         let solution = solver
             .solve(
-                &setup,
                 &problem,
                 &setup.options,
                 history.guess(cycle, cap).as_deref(),
-                history.last(),
             )
             .map_err(|source| SimulationError::Contact { cycle, source })?;
         solves += 1;
@@ -155,12 +155,18 @@ pub fn run(
         let crowded = near_edges(&grid, &pressure);
         if grows && (crowded.0 || crowded.1) {
             if let Some(wider) = widen(&grid, crowded) {
-                let offset = ((wider.nx - grid.nx) / 2, (wider.ny - grid.ny) / 2);
-                pressure = embed(&pressure, &grid, &wider, offset);
-                groove = groove.widened(offset.1);
+                let old = Window {
+                    x0: (wider.nx - grid.nx) / 2,
+                    y0: (wider.ny - grid.ny) / 2,
+                    nx: grid.nx,
+                    ny: grid.ny,
+                };
+                pressure = old.embed(&wider, &pressure);
+                groove = groove.widened(old.y0);
                 grid = wider;
-                window_fraction_sum += solver.window_fraction_sum;
-                solver = WindowedSolver::new(&setup, grid);
+                window_fraction_sum += solver.window_fraction_sum();
+                solver = WindowedSolver::new(grid, factory);
+                solver.focus_on(&pressure);
                 ball = setup.ball_separation(&grid);
                 models.push(ModelChoice {
                     name: "domain_growth".to_owned(),
@@ -195,7 +201,7 @@ pub fn run(
             scene.numerics.cycle_step_bound * 100.0
         ),
     });
-    window_fraction_sum += solver.window_fraction_sum;
+    window_fraction_sum += solver.window_fraction_sum();
     models.push(ModelChoice {
         name: "solve_window".to_owned(),
         active: true,
@@ -319,15 +325,6 @@ fn widen(grid: &Grid, (grow_x, grow_y): (bool, bool)) -> Option<Grid> {
         .flatten()
 }
 
-fn embed(field: &[f64], from: &Grid, to: &Grid, (ox, oy): (usize, usize)) -> Vec<f64> {
-    let mut out = vec![0.0; to.len()];
-    for (iy, row) in field.chunks_exact(from.nx).enumerate() {
-        let start = (iy + oy) * to.nx + ox;
-        out[start..start + from.nx].copy_from_slice(row);
-    }
-    out
-}
-
 fn profile(cycle: u64, grid: &Grid, groove: &Groove) -> Profile {
     Profile {
         cycle,
@@ -338,22 +335,23 @@ fn profile(cycle: u64, grid: &Grid, groove: &Groove) -> Profile {
 
 /// The pressure over the contact's bounding box plus two cells, MPa.
 fn pressure_map(cycle: u64, grid: &Grid, pressure: &[f64]) -> PressureMap {
-    let (mut x0, mut x1, mut y0, mut y1) = (grid.nx, 0, grid.ny, 0);
-    for (i, &p) in pressure.iter().enumerate() {
-        if p > 0.0 {
-            let (ix, iy) = (i % grid.nx, i / grid.nx);
-            (x0, x1, y0, y1) = (x0.min(ix), x1.max(ix), y0.min(iy), y1.max(iy));
-        }
-    }
-    let (x0, y0) = (x0.saturating_sub(2), y0.saturating_sub(2));
-    let (x1, y1) = ((x1 + 2).min(grid.nx - 1), (y1 + 2).min(grid.ny - 1));
+    let Some(shown) = Window::loaded(grid, pressure).map(|w| w.padded(2, grid)) else {
+        return PressureMap {
+            cycle,
+            x_um: Vec::new(),
+            y_um: Vec::new(),
+            pressure_mpa: Vec::new(),
+        };
+    };
     PressureMap {
         cycle,
-        x_um: (x0..=x1).map(|ix| grid.x(ix) * 1e6).collect(),
-        y_um: (y0..=y1).map(|iy| grid.y(iy) * 1e6).collect(),
-        pressure_mpa: (y0..=y1)
+        x_um: shown.columns().map(|ix| grid.x(ix) * 1e6).collect(),
+        y_um: shown.rows().map(|iy| grid.y(iy) * 1e6).collect(),
+        pressure_mpa: shown
+            .rows()
             .map(|iy| {
-                (x0..=x1)
+                shown
+                    .columns()
                     .map(|ix| pressure[iy * grid.nx + ix] / 1e6)
                     .collect()
             })

@@ -2,8 +2,8 @@
 //! the decisions of what to model, each recorded with its reason.
 
 use crate::contact::{
-    ContactError, ContactProblem, ContactSolution, CoupledSolver, DcFft, ElasticPair, Grid, Hertz,
-    Kernel, Material, Operator, SolverOptions, solve,
+    ContactSolver, CoupledSolver, DcFft, ElasticPair, Grid, Hertz, Kernel, Material, NormalSolver,
+    SolverOptions, fft_friendly,
 };
 use crate::hardness::HardnessLaw;
 use crate::scene::{GridSize, Scene, Switch};
@@ -75,22 +75,6 @@ fn decide(
     };
     models.push(choice(name, active, reason));
     active
-}
-
-/// Smallest even `2^i 3^j >= n` (`i >= 1`): sizes rustfft transforms fastest, and even so
-/// the apex sits on a cell corner and a grown grid adds the same cells on both sides.
-pub(crate) fn fft_friendly(n: usize) -> usize {
-    let mut best = usize::MAX;
-    let mut three = 1;
-    while three < 2 * n {
-        let mut size = 2 * three;
-        while size < n {
-            size *= 2;
-        }
-        best = best.min(size);
-        three *= 3;
-    }
-    best
 }
 
 impl Setup {
@@ -266,55 +250,14 @@ impl Setup {
         })
     }
 
-    /// The influence operators for `grid`.
-    pub fn operators(&self, grid: &Grid) -> ContactOperators {
+    /// The contact solver of `grid`: the normal operator alone, or with the coupling term.
+    pub fn solver(&self, grid: &Grid) -> Box<dyn ContactSolver> {
         let normal = Kernel::normal(grid, &self.pair);
         if self.coupling {
             let coupling = Kernel::coupling(grid, &self.pair, self.scene.test.friction_coefficient);
-            ContactOperators::Coupled(Box::new(CoupledSolver::new(&normal, &coupling)))
+            Box::new(CoupledSolver::new(&normal, &coupling))
         } else {
-            ContactOperators::Normal(Box::new(DcFft::new(&normal)))
-        }
-    }
-}
-
-/// The operators of one grid: the normal kernel alone, or with the coupling kernel.
-#[derive(Debug)]
-pub enum ContactOperators {
-    /// Frictionless or similar materials: the symmetric normal operator.
-    Normal(Box<DcFft>),
-    /// With the friction coupling term.
-    Coupled(Box<CoupledSolver>),
-}
-
-/// The full operator of the grid: normal, plus coupling when modelled.
-impl Operator for ContactOperators {
-    fn shape(&self) -> (usize, usize) {
-        match self {
-            Self::Normal(normal) => normal.shape(),
-            Self::Coupled(coupled) => coupled.shape(),
-        }
-    }
-
-    fn apply(&mut self, input: &[f64], output: &mut [f64]) {
-        match self {
-            Self::Normal(normal) => normal.apply(input, output),
-            Self::Coupled(coupled) => coupled.apply(input, output),
-        }
-    }
-}
-
-impl ContactOperators {
-    /// Solves one contact with or without the coupling term, as set up.
-    pub fn solve(
-        &mut self,
-        problem: &ContactProblem,
-        options: &SolverOptions,
-        warm_start: Option<&[f64]>,
-    ) -> Result<ContactSolution, ContactError> {
-        match self {
-            Self::Normal(normal) => solve(normal.as_mut(), problem, options, warm_start),
-            Self::Coupled(coupled) => coupled.solve(problem, options, warm_start),
+            Box::new(NormalSolver::new(DcFft::new(&normal)))
         }
     }
 }
@@ -323,16 +266,6 @@ impl ContactOperators {
 mod tests {
     use super::*;
     use crate::scene::parse_scene_str;
-
-    #[test]
-    fn fft_friendly_sizes() {
-        assert_eq!(fft_friendly(255), 256);
-        assert_eq!(fft_friendly(257), 288);
-        assert_eq!(fft_friendly(100), 108);
-        assert_eq!(fft_friendly(8), 8);
-        assert_eq!(fft_friendly(80), 96, "81 = 3^4 is odd");
-        assert_eq!(fft_friendly(3), 4);
-    }
 
     #[test]
     fn paper_scene_gets_the_paper_cells_and_both_models() {
