@@ -33,8 +33,8 @@ const LOAD_CHECK: f64 = 1e-9;
 
 fn paper_pair() -> ElasticPair {
     ElasticPair::new(
-        Material::new(300e9, 0.21, "ball").expect("valid"),
-        Material::new(205e9, 0.28, "disc").expect("valid"),
+        Material::new(300e9, 0.21).expect("valid"),
+        Material::new(205e9, 0.28).expect("valid"),
     )
 }
 
@@ -401,8 +401,8 @@ fn friction_coupling_beyond_the_solvers_reach_is_refused() {
 /// three Hertz radii (the auto domain).
 fn coupled_hertz(strength: f64) -> Result<(), ContactError> {
     let pair = ElasticPair::new(
-        Material::new(1e9, 0.0, "ball").expect("valid"),
-        Material::new(300e9, 0.3, "disc").expect("valid"),
+        Material::new(1e9, 0.0).expect("valid"),
+        Material::new(300e9, 0.3).expect("valid"),
     );
     let beta = pair.delta_nu / (2.0 * (1.0 - pair.nu_star));
     let hertz = Hertz {

@@ -258,8 +258,8 @@ mod tests {
 
     fn pair(nu1: f64, nu2: f64, e2: f64) -> ElasticPair {
         ElasticPair::new(
-            Material::new(300e9, nu1, "ball").expect("valid"),
-            Material::new(e2, nu2, "disc").expect("valid"),
+            Material::new(300e9, nu1).expect("valid"),
+            Material::new(e2, nu2).expect("valid"),
         )
     }
 

@@ -27,7 +27,7 @@ mod window;
 
 pub use check::{Verification, verify};
 pub use coupled::{CoupledSolver, solve_coupled};
-pub use error::ContactError;
+pub use error::{ContactError, ElasticConstant};
 pub use fft::DcFft;
 pub(crate) use fft::{BLOCK, STRIDE_PAD};
 pub use grid::{Grid, Window};

@@ -183,8 +183,8 @@ mod tests {
     /// The paper's pair, with the coupling term of its friction when `coupled`.
     fn factory(coupled: bool) -> impl FnMut(&Grid) -> Box<dyn ContactSolver> {
         let pair = ElasticPair::new(
-            Material::new(300e9, 0.21, "ball").expect("valid"),
-            Material::new(205e9, 0.28, "disc").expect("valid"),
+            Material::new(300e9, 0.21).expect("valid"),
+            Material::new(205e9, 0.28).expect("valid"),
         );
         move |grid: &Grid| -> Box<dyn ContactSolver> {
             let normal = Kernel::normal(grid, &pair);

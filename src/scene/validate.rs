@@ -90,16 +90,8 @@ fn check_contact(c: &mut Checks, scene: &Scene) {
         return;
     }
     let materials = (
-        Material::new(
-            scene.ball.youngs_modulus_pa(),
-            scene.ball.poisson_ratio,
-            "ball",
-        ),
-        Material::new(
-            scene.disc.youngs_modulus_pa(),
-            scene.disc.poisson_ratio,
-            "disc",
-        ),
+        Material::new(scene.ball.youngs_modulus_pa(), scene.ball.poisson_ratio),
+        Material::new(scene.disc.youngs_modulus_pa(), scene.disc.poisson_ratio),
     );
     let (Ok(ball), Ok(disc), Ok(law)) = (materials.0, materials.1, scene.hardness_law()) else {
         return;
@@ -701,8 +693,8 @@ mod tests {
         // Cells of 4 um (64 over 256 um): the load whose Hertz radius is 6 um, by
         // a^3 = 3 F R / (4 E*), is the boundary.
         let pair = ElasticPair::new(
-            Material::new(300e9, 0.21, "ball").expect("valid"),
-            Material::new(205e9, 0.28, "disc").expect("valid"),
+            Material::new(300e9, 0.21).expect("valid"),
+            Material::new(205e9, 0.28).expect("valid"),
         );
         let load = |a: f64| 4.0 * pair.reduced_modulus_pa * a.powi(3) / (3.0 * 3e-3);
         let mut scene = Scene::default();

@@ -83,18 +83,10 @@ impl Setup {
         scene.validate()?;
         // Errors while setting up are reported as cycle 0.
         let setting_up = |source| SimulationError::Contact { cycle: 0, source };
-        let ball = Material::new(
-            scene.ball.youngs_modulus_pa(),
-            scene.ball.poisson_ratio,
-            "ball",
-        )
-        .map_err(setting_up)?;
-        let disc = Material::new(
-            scene.disc.youngs_modulus_pa(),
-            scene.disc.poisson_ratio,
-            "disc",
-        )
-        .map_err(setting_up)?;
+        let ball = Material::new(scene.ball.youngs_modulus_pa(), scene.ball.poisson_ratio)
+            .map_err(setting_up)?;
+        let disc = Material::new(scene.disc.youngs_modulus_pa(), scene.disc.poisson_ratio)
+            .map_err(setting_up)?;
         let pair = ElasticPair::new(ball, disc);
         let hardness = scene.hardness_law()?;
         let archard_k = scene.archard_k()?;
