@@ -8,8 +8,10 @@ use tribosim::contact::{
     solve, solve_coupled, verify,
 };
 use tribosim::corrosion::CorrosionError;
-use tribosim::scene::{Scene, parse_scene_str};
-use tribosim::simulation::{SimulationError, SimulationResult, first_contact, run};
+use tribosim::scene::Scene;
+use tribosim::simulation::{
+    SimulationError, SimulationResult, first_contact, parse_scene_str, run,
+};
 
 fn scene(json: &str) -> Scene {
     parse_scene_str(json).expect("valid scene")

@@ -24,8 +24,9 @@ pub struct Grid {
 }
 
 impl Grid {
-    /// The largest cells per side accepted: the padded 2N x 2N spectra of a 4096 grid
-    /// would need several gigabytes.
+    /// The largest cells per side accepted: the DC-FFT pads a grid to 2N x 2N, and a 4096
+    /// grid's padded spectra (8192^2 complex values, 0.5 GiB each, several alive at once)
+    /// would need gigabytes.
     pub const MAX_CELLS_PER_SIDE: usize = 2048;
 
     /// A square grid of `n` x `n` cells covering a square of side `side_m`.

@@ -13,9 +13,10 @@ use serde::Deserialize;
 use serde::de::DeserializeOwned;
 use serde_json::{Map, Value};
 
+use super::validate::{self, GRID_CELLS, MAX_CYCLES};
 use super::{
     Ball, Corrosion, DEFAULT_ARCHARD_K, Disc, FieldError, Numerics, Scene, SceneErrors,
-    TestConditions, Wear, preset, validate,
+    TestConditions, Wear, preset,
 };
 
 /// The top-level fields of a scene, in the contract's order.
@@ -30,24 +31,45 @@ const SECTIONS: [&str; 7] = [
 ];
 
 /// Parses scene JSON text; malformed JSON is a single error with an empty path whose message
-/// carries serde_json's line and column.
+/// carries serde_json's line and column. See [`parse_scene`].
 pub fn parse_scene_str(text: &str) -> Result<Scene, SceneErrors> {
+    parse_scene_str_with(text, |_| Vec::new())
+}
+
+/// [`parse_scene_str`] with the caller's further checks, as [`parse_scene_with`].
+pub fn parse_scene_str_with(
+    text: &str,
+    further: impl FnOnce(&Scene) -> Vec<FieldError>,
+) -> Result<Scene, SceneErrors> {
     let json: Value = serde_json::from_str(text)
         .map_err(|e| SceneErrors(vec![FieldError::new("", format!("not valid JSON: {e}"))]))?;
-    parse_scene(&json)
+    parse_scene_with(&json, further)
 }
 
 /// Parses a scene: resolves `{"preset": ..., "overrides": ...}`, fills every default and
-/// validates, returning all problems at once. With a preset, paths start with `overrides.`,
-/// which is where the user's text is.
+/// checks each field against its own range, returning all problems at once. With a preset,
+/// paths start with `overrides.`, which is where the user's text is. Whether the simulation
+/// can run the scene is not judged here: `simulation::parse_scene` adds that.
 pub fn parse_scene(json: &Value) -> Result<Scene, SceneErrors> {
+    parse_scene_with(json, |_| Vec::new())
+}
+
+/// [`parse_scene`] with the caller's `further` checks, run on the scene once each of its
+/// fields is within its own range (they may then combine fields freely) and located in the
+/// document like the others.
+pub fn parse_scene_with(
+    json: &Value,
+    further: impl FnOnce(&Scene) -> Vec<FieldError>,
+) -> Result<Scene, SceneErrors> {
     let (document, prefix) = preset::resolve(json)?;
     let mut errors = Vec::new();
     if let Some(mut scene) = deserialize_located(&document, &mut errors) {
         if scene.wear.archard_k.is_none() && scene.wear.archard_calibration.is_none() {
             scene.wear.archard_k = Some(DEFAULT_ARCHARD_K);
         }
-        errors.extend(validate::check(&scene));
+        let own = validate::check(&scene);
+        let combined = if own.is_empty() { further(&scene) } else { own };
+        errors.extend(combined);
         if errors.is_empty() {
             return Ok(scene);
         }
@@ -229,10 +251,14 @@ fn table_errors(path: &str, value: &Value) -> Vec<FieldError> {
 }
 
 /// The allowed range, for fields whose serde type error would not say it.
-fn hint(path: &str) -> Option<&'static str> {
+fn hint(path: &str) -> Option<String> {
     match path {
-        "test.cycles" => Some("; must be a whole number in 1..=1000000"),
-        "numerics.grid" => Some("; must be \"auto\" or a whole number of cells in 8..=2048"),
+        "test.cycles" => Some(format!("; must be a whole number in 1..={MAX_CYCLES}")),
+        "numerics.grid" => Some(format!(
+            "; must be \"auto\" or a whole number of cells in {}..={}",
+            GRID_CELLS.start(),
+            GRID_CELLS.end()
+        )),
         _ => None,
     }
 }

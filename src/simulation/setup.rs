@@ -2,25 +2,17 @@
 //! the decisions of what to model, each recorded with its reason.
 
 use crate::contact::{
-    ContactSolver, CoupledSolver, DcFft, ElasticPair, Grid, Hertz, Kernel, Material, NormalSolver,
-    SolverOptions, fft_friendly,
+    ContactSolver, CoupledSolver, DcFft, ElasticPair, Grid, Hertz, Kernel, NormalSolver,
+    SolverOptions,
 };
 use crate::hardness::HardnessLaw;
-use crate::scene::{GridSize, Scene, Switch};
+use crate::scene::{Scene, Switch};
 
+use super::feasibility::check;
+use super::sizing::{
+    GridPlan, LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m,
+};
 use super::{ModelChoice, SimulationError};
-
-/// Auto domain side in contact radii. DC-FFT convolves without wrap-around, so the answer
-/// does not depend on the domain as long as it holds the contact: the domain needs only the
-/// contact plus room to widen, and the run grows it when pressure comes near the edge. With
-/// 3 a the contact fills two thirds of the side, inside the 80% growth trigger. (The paper's
-/// 0.256 mm is 5.8 a for its scene: 3.7 times the cells for the same answer.)
-pub const DOMAIN_PER_CONTACT_RADIUS: f64 = 3.0;
-
-/// Auto cell density: the paper's 1 um cells across its 44.2 um contact radius. At this
-/// density the Hertz errors are -1.1e-4 (peak pressure), +6.4e-3 (area) and -2.3e-5
-/// (approach): `tribosim bench contact`, N = 256.
-pub const CELLS_PER_CONTACT_RADIUS: f64 = 44.0;
 
 /// The coupling term changes the pressures by at least 1.2 |mu delta-nu| relative to p0
 /// (measured on the paper's Hertz case: 1.21 to 1.26 at N = 64, 1.74 to 1.81 at N = 128, for
@@ -78,131 +70,27 @@ fn decide(
 }
 
 impl Setup {
-    /// Checks the scene and makes every decision. Fails with the scene's field errors.
+    /// Checks the scene ([`check`]: its fields, and whether it can be simulated) and makes
+    /// every decision.
     pub fn new(scene: &Scene) -> Result<Self, SimulationError> {
-        scene.validate()?;
-        // Errors while setting up are reported as cycle 0.
-        let setting_up = |source| SimulationError::Contact { cycle: 0, source };
-        let ball = Material::new(scene.ball.youngs_modulus_pa(), scene.ball.poisson_ratio)
-            .map_err(setting_up)?;
-        let disc = Material::new(scene.disc.youngs_modulus_pa(), scene.disc.poisson_ratio)
-            .map_err(setting_up)?;
-        let pair = ElasticPair::new(ball, disc);
+        check(scene)?;
+        let pair = elastic_pair(scene).map_err(SimulationError::Setup)?;
         let hardness = scene.hardness_law()?;
         let archard_k = scene.archard_k()?;
-        let hertz = Hertz {
-            radius_m: scene.ball_radius_m(),
-            load_n: scene.load_n(),
-            reduced_modulus_pa: pair.reduced_modulus_pa,
-        };
+        let hertz = hertz(scene, &pair);
         let options = SolverOptions {
             tolerance: scene.numerics.tolerance,
             ..SolverOptions::default()
         };
+        let lowest = lowest_yield(&hardness, scene.test.cycles, scene.disc.yield_factor);
         let mut models = Vec::new();
-
-        // Plasticity: pressures are highest on the unworn surface, so Hertz's p0 against the
-        // lowest yield pressure of the run decides whether the cap can ever act.
-        let factor = scene.disc.yield_factor;
-        let cycles = scene.test.cycles as f64;
-        let lowest_yield = (hardness.hardness_pa(1.0).min(hardness.hardness_pa(cycles))) / factor;
-        let p0 = hertz.peak_pressure_pa();
-        let reach = format!(
-            "p0 {:.0} MPa {} lowest Y {:.0} MPa (H / {factor})",
-            p0 / 1e6,
-            if p0 >= lowest_yield { ">=" } else { "<" },
-            lowest_yield / 1e6
-        );
-        let plasticity = decide(
-            &mut models,
-            "plasticity",
-            scene.wear.plasticity,
-            p0 >= lowest_yield,
-            reach,
-        );
-
-        let mu = scene.test.friction_coefficient;
-        let strength = (mu * pair.delta_nu).abs();
-        let measured = format!(
-            "|mu delta-nu| = {strength:.3e}; it moves pressures by >= {COUPLING_SENSITIVITY} times that, against tolerance {:.0e}",
-            options.tolerance
-        );
-        let coupling = decide(
-            &mut models,
-            "coupling",
-            scene.numerics.coupling,
-            COUPLING_SENSITIVITY * strength >= options.tolerance,
-            measured,
-        );
-
-        let radius = if plasticity {
-            let punch = (scene.load_n() / (std::f64::consts::PI * lowest_yield)).sqrt();
-            hertz.contact_radius_m().max(punch)
-        } else {
-            hertz.contact_radius_m()
-        };
-        let cell = radius / CELLS_PER_CONTACT_RADIUS;
-        let fitted =
-            |side: f64| fft_friendly((side / cell).ceil() as usize).min(Grid::MAX_CELLS_PER_SIDE);
-        let (cells, domain, how) = match (scene.numerics.grid, scene.numerics.domain_m()) {
-            (GridSize::Cells(n), Some(domain)) => (n, domain, "as requested".to_owned()),
-            (GridSize::Cells(n), None) => (
-                n,
-                DOMAIN_PER_CONTACT_RADIUS * radius,
-                format!(
-                    "cells as requested; domain auto, {DOMAIN_PER_CONTACT_RADIUS} contact radii"
-                ),
-            ),
-            (GridSize::Auto, Some(domain)) => (
-                fitted(domain),
-                domain,
-                format!(
-                    "domain as requested; cells auto, {CELLS_PER_CONTACT_RADIUS} per contact radius"
-                ),
-            ),
-            (GridSize::Auto, None) => {
-                // Keep the cell size; the side grows to the next fast FFT size.
-                let n = fitted(DOMAIN_PER_CONTACT_RADIUS * radius);
-                (
-                    n,
-                    n as f64 * cell,
-                    format!(
-                        "auto: {CELLS_PER_CONTACT_RADIUS} cells per contact radius, at least {DOMAIN_PER_CONTACT_RADIUS} radii"
-                    ),
-                )
-            }
-        };
-        let grid = Grid::square(cells, domain).map_err(setting_up)?;
-        models.push(choice(
-            "grid",
-            true,
-            format!(
-                "{cells} x {cells} cells of {:.3} um over {:.1} um ({how}); contact radius {:.1} um",
-                grid.dx * 1e6,
-                domain * 1e6,
-                radius * 1e6
-            ),
-        ));
-        models.push(choice(
-            "work_hardening",
-            matches!(hardness, HardnessLaw::Logarithmic { .. }),
-            match hardness {
-                HardnessLaw::Logarithmic { a_pa, b_pa } => format!(
-                    "H = {:.1} + {:.2} ln n MPa, fitted to the table and the bulk value{}",
-                    a_pa / 1e6,
-                    b_pa / 1e6,
-                    if hardness.is_decreasing() {
-                        " (decreasing: softening)"
-                    } else {
-                        ""
-                    }
-                ),
-                HardnessLaw::Constant { hardness_pa } => {
-                    format!("no table: H = {:.0} MPa throughout", hardness_pa / 1e6)
-                }
-            },
-        ));
-
+        let plasticity = decide_plasticity(&mut models, scene, &hertz, &lowest);
+        let coupling = decide_coupling(&mut models, scene, &pair, &options);
+        let radius = sizing_radius_m(&hertz, lowest.yield_pa, plasticity);
+        let plan = plan_grid(&scene.numerics, radius);
+        let grid = Grid::square(plan.cells, plan.domain_m).map_err(SimulationError::Setup)?;
+        models.push(grid_choice(&grid, &plan, radius));
+        models.push(work_hardening_choice(&hardness));
         Ok(Self {
             scene: scene.clone(),
             pair,
@@ -252,6 +140,94 @@ impl Setup {
             Box::new(NormalSolver::new(DcFft::new(&normal)))
         }
     }
+}
+
+/// Plasticity: pressures are highest on the unworn surface, so Hertz's p0 against the lowest
+/// yield pressure of the run decides whether the cap can ever act.
+fn decide_plasticity(
+    models: &mut Vec<ModelChoice>,
+    scene: &Scene,
+    hertz: &Hertz,
+    lowest: &LowestYield,
+) -> bool {
+    let factor = scene.disc.yield_factor;
+    let p0 = hertz.peak_pressure_pa();
+    let reach = format!(
+        "p0 {:.0} MPa {} lowest Y {:.0} MPa (H / {factor})",
+        p0 / 1e6,
+        if p0 >= lowest.yield_pa { ">=" } else { "<" },
+        lowest.yield_pa / 1e6
+    );
+    decide(
+        models,
+        "plasticity",
+        scene.wear.plasticity,
+        p0 >= lowest.yield_pa,
+        reach,
+    )
+}
+
+/// The friction coupling term (eq. 7): modelled when it can move the pressures by more than
+/// the solver's tolerance (see [`COUPLING_SENSITIVITY`]).
+fn decide_coupling(
+    models: &mut Vec<ModelChoice>,
+    scene: &Scene,
+    pair: &ElasticPair,
+    options: &SolverOptions,
+) -> bool {
+    let mu = scene.test.friction_coefficient;
+    let strength = (mu * pair.delta_nu).abs();
+    let measured = format!(
+        "|mu delta-nu| = {strength:.3e}; it moves pressures by >= {COUPLING_SENSITIVITY} times that, against tolerance {:.0e}",
+        options.tolerance
+    );
+    decide(
+        models,
+        "coupling",
+        scene.numerics.coupling,
+        COUPLING_SENSITIVITY * strength >= options.tolerance,
+        measured,
+    )
+}
+
+/// The first grid, as planned for the sizing radius `radius`.
+fn grid_choice(grid: &Grid, plan: &GridPlan, radius: f64) -> ModelChoice {
+    choice(
+        "grid",
+        true,
+        format!(
+            "{} x {} cells of {:.3} um over {:.1} um ({}); contact radius {:.1} um",
+            plan.cells,
+            plan.cells,
+            grid.dx * 1e6,
+            plan.domain_m * 1e6,
+            plan.how,
+            radius * 1e6
+        ),
+    )
+}
+
+/// The hardness law in words.
+fn work_hardening_choice(hardness: &HardnessLaw) -> ModelChoice {
+    choice(
+        "work_hardening",
+        matches!(hardness, HardnessLaw::Logarithmic { .. }),
+        match *hardness {
+            HardnessLaw::Logarithmic { a_pa, b_pa } => format!(
+                "H = {:.1} + {:.2} ln n MPa, fitted to the table and the bulk value{}",
+                a_pa / 1e6,
+                b_pa / 1e6,
+                if hardness.is_decreasing() {
+                    " (decreasing: softening)"
+                } else {
+                    ""
+                }
+            ),
+            HardnessLaw::Constant { hardness_pa } => {
+                format!("no table: H = {:.0} MPa throughout", hardness_pa / 1e6)
+            }
+        },
+    )
 }
 
 #[cfg(test)]
