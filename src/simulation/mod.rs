@@ -2,13 +2,16 @@
 //! sizing rules behind it, the per-cycle loop and its result. Plain synchronous code; a
 //! caller (the command line, the service) drives it through a callback and a cancel flag.
 
+mod electrochemistry;
 mod feasibility;
 mod first;
+mod growth;
 mod result;
 mod run;
 mod setup;
 mod sizing;
 mod stepping;
+mod warm;
 
 use thiserror::Error;
 

@@ -3,7 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::contact::{Grid, Window};
 use crate::scene::Scene;
+use crate::wear::Groove;
 
 /// A whole run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -78,6 +80,17 @@ pub struct Profile {
     pub depth_um: Vec<f64>,
 }
 
+impl Profile {
+    /// The depth of `groove` on `grid` at `cycle`.
+    pub fn of(cycle: u64, grid: &Grid, groove: &Groove) -> Self {
+        Self {
+            cycle,
+            y_um: (0..grid.ny).map(|iy| grid.y(iy) * 1e6).collect(),
+            depth_um: groove.depth_m().iter().map(|d| d * 1e6).collect(),
+        }
+    }
+}
+
 /// The contact pressure over the grid at one cycle.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PressureMap {
@@ -89,6 +102,33 @@ pub struct PressureMap {
     pub y_um: Vec<f64>,
     /// Pressure, MPa, indexed `[iy][ix]`.
     pub pressure_mpa: Vec<Vec<f64>>,
+}
+
+impl PressureMap {
+    /// `pressure` (Pa, on `grid`) over the contact's bounding box plus two cells, in MPa;
+    /// empty when no cell is loaded.
+    pub fn of(cycle: u64, grid: &Grid, pressure: &[f64]) -> Self {
+        let Some(shown) = Window::loaded(grid, pressure).map(|w| w.padded(2, grid)) else {
+            return Self {
+                cycle,
+                x_um: Vec::new(),
+                y_um: Vec::new(),
+                pressure_mpa: Vec::new(),
+            };
+        };
+        let row = |iy: usize| {
+            shown
+                .columns()
+                .map(|ix| pressure[iy * grid.nx + ix] / 1e6)
+                .collect()
+        };
+        Self {
+            cycle,
+            x_um: shown.columns().map(|ix| grid.x(ix) * 1e6).collect(),
+            y_um: shown.rows().map(|iy| grid.y(iy) * 1e6).collect(),
+            pressure_mpa: shown.rows().map(row).collect(),
+        }
+    }
 }
 
 /// Totals of a run.
