@@ -10,7 +10,7 @@ use tribosim::contact::{
 use tribosim::corrosion::CorrosionError;
 use tribosim::scene::Scene;
 use tribosim::simulation::{
-    SimulationError, SimulationResult, first_contact, parse_scene_str, run,
+    Model, SimulationError, SimulationResult, first_contact, parse_scene_str, run,
 };
 
 fn scene(json: &str) -> Scene {
@@ -265,7 +265,7 @@ fn a_3600_cycle_track_outgrows_the_papers_domain_and_the_auto_domain_grows() {
     let growths = result
         .models
         .iter()
-        .filter(|m| m.name == "domain_growth")
+        .filter(|m| m.name == Model::DomainGrowth)
         .count();
     assert!(growths >= 2, "{:?}", result.models);
     // The track is wider than the paper's 0.256 mm domain: the worn rows span more.
@@ -395,7 +395,7 @@ fn friction_coupling_beyond_the_solvers_reach_is_refused() {
         result
             .models
             .iter()
-            .any(|m| m.name == "coupling" && m.active)
+            .any(|m| m.name == Model::Coupling && m.active)
     );
 }
 
@@ -502,7 +502,7 @@ fn the_auto_domain_grows_on_the_coarsest_grids() {
         ));
         let result = simulate(&s).expect("runs");
         assert_finite(&result);
-        assert!(result.models.iter().any(|m| m.name == "domain_growth"));
+        assert!(result.models.iter().any(|m| m.name == Model::DomainGrowth));
     }
 }
 

@@ -5,7 +5,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use tribosim::contact::ContactError;
 use tribosim::scene::{Scene, parse_scene_str};
-use tribosim::simulation::{CycleRecord, SimulationError, SimulationResult, run};
+use tribosim::simulation::{CycleRecord, Model, SimulationError, SimulationResult, run};
 
 fn scene(json: &str) -> Scene {
     parse_scene_str(json).expect("valid scene")
@@ -133,7 +133,7 @@ fn paper_scene_yields_first_then_wears_by_archard() {
     assert!(result.summary.max_depth_um > 0.3, "a groove formed");
 
     // The track outgrew the first domain and the run grew it instead of failing.
-    assert!(result.models.iter().any(|m| m.name == "domain_growth"));
+    assert!(result.models.iter().any(|m| m.name == Model::DomainGrowth));
 }
 
 #[test]
@@ -246,7 +246,7 @@ fn softening_table_runs_and_is_reported() {
     let hardening = result
         .models
         .iter()
-        .find(|m| m.name == "work_hardening")
+        .find(|m| m.name == Model::WorkHardening)
         .expect("reported");
     assert!(
         hardening.reason.contains("softening"),

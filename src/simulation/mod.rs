@@ -27,7 +27,9 @@ pub use feasibility::{
     MAX_COUPLING, MIN_CELLS_PER_CONTACT_RADIUS, check, parse_scene, parse_scene_str,
 };
 pub use first::{FirstContact, first_contact};
-pub use result::{CycleRecord, ModelChoice, PressureMap, Profile, SimulationResult, Summary};
+pub use result::{
+    CycleRecord, Model, ModelChoice, PressureMap, Profile, SimulationResult, Summary,
+};
 pub use run::run;
 pub use setup::{COUPLING_SENSITIVITY, Setup};
 pub use sizing::{CELLS_PER_CONTACT_RADIUS, DOMAIN_PER_CONTACT_RADIUS};

@@ -27,12 +27,37 @@ pub struct SimulationResult {
 /// One model switched on or off, with the reason in words and numbers.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ModelChoice {
-    /// `plasticity`, `coupling`, `grid`, `cycle_step`, ...
-    pub name: String,
+    /// Which model or numerical choice.
+    pub name: Model,
     /// Whether the run uses it.
     pub active: bool,
     /// Why, e.g. `"p0 1221 MPa > Y 883 MPa"`.
     pub reason: String,
+}
+
+/// The physical models and numerical choices a run reports on, named in the JSON as
+/// `plasticity`, `coupling`, `grid`, ...
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Model {
+    /// The elastic-perfectly-plastic pressure cap (eq. 12).
+    Plasticity,
+    /// The friction coupling of normal and tangential tractions (eq. 7).
+    Coupling,
+    /// The first grid and domain.
+    Grid,
+    /// The hardness law (Fig. 9).
+    WorkHardening,
+    /// A growth of the auto domain during the run (one entry per growth).
+    DomainGrowth,
+    /// Cycle stepping: one solve standing for several cycles.
+    CycleStep,
+    /// Solving on a window around the contact.
+    SolveWindow,
+    /// Archard wear (eqs. 14-16).
+    Archard,
+    /// Wear-accelerated corrosion (eq. 18 and Faraday).
+    Corrosion,
 }
 
 /// The state after one solved cycle.
@@ -149,4 +174,32 @@ pub struct Summary {
     pub solves: usize,
     /// Solver iterations over all solves.
     pub iterations: usize,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn models_are_named_in_the_json_as_before() {
+        let names = [
+            (Model::Plasticity, "plasticity"),
+            (Model::Coupling, "coupling"),
+            (Model::Grid, "grid"),
+            (Model::WorkHardening, "work_hardening"),
+            (Model::DomainGrowth, "domain_growth"),
+            (Model::CycleStep, "cycle_step"),
+            (Model::SolveWindow, "solve_window"),
+            (Model::Archard, "archard"),
+            (Model::Corrosion, "corrosion"),
+        ];
+        for (model, name) in names {
+            let json = serde_json::to_value(model).expect("serialises");
+            assert_eq!(json, serde_json::json!(name));
+            assert_eq!(
+                serde_json::from_value::<Model>(json).expect("parses"),
+                model
+            );
+        }
+    }
 }

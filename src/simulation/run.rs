@@ -29,8 +29,8 @@ use super::growth::{GROW_AT_EDGE_CELLS, GROW_AT_FRACTION, near_edges, widen};
 use super::stepping::Stepper;
 use super::warm::WarmStart;
 use super::{
-    CycleRecord, ModelChoice, PressureMap, Profile, Setup, SimulationError, SimulationResult,
-    Summary,
+    CycleRecord, Model, ModelChoice, PressureMap, Profile, Setup, SimulationError,
+    SimulationResult, Summary,
 };
 
 /// Cycles at which the depth profile is kept (paper Figs. 12 and 15 use 10 and 300; Table 3
@@ -265,7 +265,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             self.solver.focus_on(&pressure);
             self.ball = self.setup.ball_separation(&wider);
             self.models.push(ModelChoice {
-                name: "domain_growth".to_owned(),
+                name: Model::DomainGrowth,
                 active: true,
                 reason: format!(
                     "at cycle {cycle} the contact came within {:.0}% (or {GROW_AT_EDGE_CELLS} cells) of the edge: grown to {} x {} cells ({:.1} x {:.1} um)",
@@ -320,7 +320,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let numerics = &setup.scene.numerics;
         let mut models = std::mem::take(&mut self.models);
         models.push(ModelChoice {
-            name: "cycle_step".to_owned(),
+            name: Model::CycleStep,
             active: self.max_step > 1,
             reason: format!(
                 "{:?}: {} solves for {} cycles, longest step {}; a step keeps the per-pass wear profile within {:.2}% of the solved one",
@@ -332,7 +332,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             ),
         });
         models.push(ModelChoice {
-            name: "solve_window".to_owned(),
+            name: Model::SolveWindow,
             active: true,
             reason: format!(
                 "each solve on the last contact's bounding box plus {:.0}% (at least {} cells), checked on the whole grid: on average {:.0}% of the grid's cells",
@@ -342,12 +342,12 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             ),
         });
         models.push(ModelChoice {
-            name: "archard".to_owned(),
+            name: Model::Archard,
             active: setup.archard_k > 0.0,
             reason: format!("k = {:.4e}", setup.archard_k),
         });
         models.push(ModelChoice {
-            name: "corrosion".to_owned(),
+            name: Model::Corrosion,
             active: self.cell.is_some(),
             reason: match &self.cell {
                 Some(cell) => cell.describe(),

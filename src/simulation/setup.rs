@@ -12,7 +12,7 @@ use super::feasibility::check;
 use super::sizing::{
     GridPlan, LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m,
 };
-use super::{ModelChoice, SimulationError};
+use super::{Model, ModelChoice, SimulationError};
 
 /// The coupling term changes the pressures by at least 1.2 |mu delta-nu| relative to p0
 /// (measured on the paper's Hertz case: 1.21 to 1.26 at N = 64, 1.74 to 1.81 at N = 128, for
@@ -44,9 +44,9 @@ pub struct Setup {
     pub models: Vec<ModelChoice>,
 }
 
-fn choice(name: &str, active: bool, reason: String) -> ModelChoice {
+fn choice(name: Model, active: bool, reason: String) -> ModelChoice {
     ModelChoice {
-        name: name.to_owned(),
+        name,
         active,
         reason,
     }
@@ -55,7 +55,7 @@ fn choice(name: &str, active: bool, reason: String) -> ModelChoice {
 /// Resolves an on/off/auto switch (auto: `needed`) and records it with its reason.
 fn decide(
     models: &mut Vec<ModelChoice>,
-    name: &str,
+    name: Model,
     switch: Switch,
     needed: bool,
     reason: String,
@@ -160,7 +160,7 @@ fn decide_plasticity(
     );
     decide(
         models,
-        "plasticity",
+        Model::Plasticity,
         scene.wear.plasticity,
         p0 >= lowest.yield_pa,
         reach,
@@ -183,7 +183,7 @@ fn decide_coupling(
     );
     decide(
         models,
-        "coupling",
+        Model::Coupling,
         scene.numerics.coupling,
         COUPLING_SENSITIVITY * strength >= options.tolerance,
         measured,
@@ -193,7 +193,7 @@ fn decide_coupling(
 /// The first grid, as planned for the sizing radius `radius`.
 fn grid_choice(grid: &Grid, plan: &GridPlan, radius: f64) -> ModelChoice {
     choice(
-        "grid",
+        Model::Grid,
         true,
         format!(
             "{} x {} cells of {:.3} um over {:.1} um ({}); contact radius {:.1} um",
@@ -210,7 +210,7 @@ fn grid_choice(grid: &Grid, plan: &GridPlan, radius: f64) -> ModelChoice {
 /// The hardness law in words.
 fn work_hardening_choice(hardness: &HardnessLaw) -> ModelChoice {
     choice(
-        "work_hardening",
+        Model::WorkHardening,
         matches!(hardness, HardnessLaw::Logarithmic { .. }),
         match *hardness {
             HardnessLaw::Logarithmic { a_pa, b_pa } => format!(
