@@ -11,6 +11,7 @@
 mod auto_or;
 mod error;
 pub(crate) mod format;
+mod located;
 mod parse;
 mod preset;
 mod sections;
