@@ -42,7 +42,7 @@ fn elastic_wear_is_linear_and_equals_archard() {
             .expect("every cycle solved")
             .wear_volume_mm3
     };
-    // Issue 3 asks for V(300) / V(150) = 2 within 1%; it holds to round-off.
+    // Archard's volume is linear in the sliding distance: V(300) / V(150) = 2, to round-off.
     assert!((volume(300) / volume(150) - 2.0).abs() < ARCHARD_EXACT);
     let expected = 300.0 * archard_lap_mm3(&s, 1.19e-4, 2473e6);
     assert!((volume(300) / expected - 1.0).abs() < ARCHARD_EXACT);
@@ -259,11 +259,11 @@ fn softening_table_runs_and_is_reported() {
 
 /// A coarse cycle-step bound moves the surface far between solves, so a warm start begins
 /// far from the answer and many cells leave their bound at once. A re-entry rule that
-/// gave each such cell the pressure to close its own gap alone (the step length times the
-/// diagonal of the preconditioner) overshot collectively: in this 3600-cycle run
-/// the solve at cycle 309 swung between 3700 and 11400 free cells and failed after 2000
-/// iterations. The run is stopped at cycle 400 (through the cancel flag) to keep the test
-/// short; shorter runs take other steps and did not meet that solve.
+/// gives each such cell the pressure to close its own gap alone (the step length times the
+/// diagonal of the preconditioner) overshoots collectively: with it, the solve at cycle
+/// 309 of this 3600-cycle run swings between 3700 and 11400 free cells and fails after
+/// 2000 iterations. The run is stopped at cycle 400 (through the cancel flag) to keep the
+/// test short; shorter runs take other steps and do not meet that solve.
 #[test]
 fn coarse_cycle_steps_still_converge() {
     let s = scene(

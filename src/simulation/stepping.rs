@@ -4,12 +4,12 @@
 //! per-pass wear profile across the step. The controller measures that change between
 //! consecutive solves in the L1 norm relative to the profile (the share of the wear that
 //! moves), and keeps it below a bound per step: the scene's `numerics.cycle_step_bound`,
-//! by default [`crate::scene::STEP_CHANGE_BOUND`] (whose documentation gives what each bound costs and
-//! buys).
+//! by default [`crate::scene::STEP_CHANGE_BOUND`], whose documentation gives what each
+//! bound costs and buys.
 //!
 //! The wear volume does not depend on the step in the Archard phase (each pass removes
 //! `k F L / H` whatever the pressure shape); stepping moves wear across the track. A
-//! max-norm measure stalled at steps of 1: the row entering contact at the rim of the
+//! max-norm measure stalls at steps of 1: the row entering contact at the rim of the
 //! widening groove changes by 2.5% of the peak every cycle, however slowly the rest moves.
 
 use crate::scene::CycleStep;
