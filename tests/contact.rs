@@ -5,41 +5,18 @@
 //! Grid convention: the domain is centred on the sphere apex, which lies on a cell corner
 //! (even N), as in the public peer solvers of `docs/peers.md`.
 
+mod common {
+    pub mod physics;
+}
+
+use common::physics::{
+    DOMAIN_M, LOAD_CHECK, LOAD_N, check_tolerance, paper_hertz as hertz, paper_pair, relative_error,
+};
 use tribosim::contact::{
     ContactError, ContactProblem, ContactSolution, DcFft, DenseOperator, ElasticConstant,
-    ElasticPair, Grid, Hertz, Kernel, Material, Operator, SolverOptions, SumOperator, solve,
+    ElasticPair, Grid, Kernel, Material, Operator, SolverOptions, SumOperator, solve,
     solve_coupled, verify,
 };
-
-const RADIUS_M: f64 = 3e-3;
-const LOAD_N: f64 = 5.0;
-const DOMAIN_M: f64 = 0.256e-3;
-
-fn paper_pair() -> ElasticPair {
-    ElasticPair::new(
-        Material::new(300e9, 0.21).expect("valid"),
-        Material::new(205e9, 0.28).expect("valid"),
-    )
-}
-
-fn hertz(pair: &ElasticPair, load_n: f64) -> Hertz {
-    Hertz {
-        radius_m: RADIUS_M,
-        load_n,
-        reduced_modulus_pa: pair.reduced_modulus_pa,
-    }
-}
-
-/// The independent check's tolerance: the solver promises every cell within `tolerance`
-/// of the largest displacement on its own FFT displacement; recomputing by another operator
-/// may differ by the FFT-versus-direct-sum discrepancy, bounded by 1e-12 in the unit tests.
-fn check_tolerance(options: &SolverOptions) -> f64 {
-    options.tolerance + 1e-12
-}
-
-/// The carried load must equal F to 1e-9 relative: the solver's own load tolerance (1e-11)
-/// plus the worst round-off of summing 1024^2 pressures in another order (1.2e-10).
-const LOAD_CHECK: f64 = 1e-9;
 
 struct Solved {
     grid: Grid,
@@ -120,7 +97,7 @@ fn hertz_pressure_profile_matches_the_analytic_one() {
             let r = s.grid.x(ix).hypot(s.grid.y(iy));
             if r < 0.8 * a {
                 let p = s.solution.pressure[iy * s.grid.nx + ix];
-                worst = worst.max((p / reference.pressure_pa(r) - 1.0).abs());
+                worst = worst.max(relative_error(p, reference.pressure_pa(r)));
             }
         }
     }
@@ -167,7 +144,7 @@ fn capped_paper_case() {
     assert!(sol.max_pressure_pa() <= cap);
     assert!(sol.plastic_area_m2(&s.grid, cap) > 0.0);
     assert!(sol.contact_area_m2(&s.grid) >= LOAD_N / cap);
-    assert!((sol.load_n(&s.grid) / LOAD_N - 1.0).abs() <= LOAD_CHECK);
+    assert!(relative_error(sol.load_n(&s.grid), LOAD_N) <= LOAD_CHECK);
 }
 
 #[test]
@@ -299,8 +276,10 @@ fn grid_of_1024_cells_per_side() {
     let reference = hertz(&pair, LOAD_N);
     let s = solve_sphere(1024, DOMAIN_M, LOAD_N, f64::INFINITY).expect("converges");
     // Finer than N = 256, whose bounds it must beat.
-    assert!((s.solution.max_pressure_pa() / reference.peak_pressure_pa() - 1.0).abs() < 2e-4);
-    assert!((s.solution.approach_m / reference.approach_m() - 1.0).abs() < 5e-5);
+    let peak = relative_error(s.solution.max_pressure_pa(), reference.peak_pressure_pa());
+    assert!(peak < 2e-4, "{peak}");
+    let approach = relative_error(s.solution.approach_m, reference.approach_m());
+    assert!(approach < 5e-5, "{approach}");
 }
 
 #[test]

@@ -1,43 +1,29 @@
 //! The hard cases of the contact core and the wear loop (docs/stability.md): each converges,
 //! or is refused with a named error that says which field to change and to what.
 
+mod common {
+    pub mod physics;
+}
+
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use common::physics::{
+    LOAD_CHECK, check_tolerance, paper_hertz, paper_pair, relative_error, scene, simulate,
+};
 use tribosim::contact::{
-    ContactError, ContactProblem, DcFft, ElasticPair, Grid, Hertz, Kernel, Material, SolverOptions,
-    solve, solve_coupled, verify,
+    ContactError, ContactProblem, DcFft, ElasticPair, Grid, Kernel, Material, SolverOptions, solve,
+    solve_coupled, verify,
 };
 use tribosim::corrosion::CorrosionError;
-use tribosim::scene::Scene;
 use tribosim::simulation::{
     Model, SimulationError, SimulationResult, first_contact, parse_scene_str, run,
 };
-
-fn scene(json: &str) -> Scene {
-    parse_scene_str(json).expect("valid scene")
-}
 
 /// The one field a scene is refused for, and its message.
 fn refused(json: &str) -> (String, String) {
     let errors = parse_scene_str(json).expect_err("refused").0;
     assert_eq!(errors.len(), 1, "{errors:?}");
     (errors[0].path.clone(), errors[0].message.clone())
-}
-
-fn simulate(scene: &Scene) -> Result<SimulationResult, SimulationError> {
-    run(scene, &mut |_| {}, &AtomicBool::new(false))
-}
-
-/// The independent check's tolerances, as in tests/contact.rs: the solver's own tolerance
-/// plus the 1e-12 FFT-against-direct-sum allowance, and 1e-9 on the carried load.
-const CHECK_TOLERANCE: f64 = 1e-8 + 1e-12;
-const LOAD_CHECK: f64 = 1e-9;
-
-fn paper_pair() -> ElasticPair {
-    ElasticPair::new(
-        Material::new(300e9, 0.21).expect("valid"),
-        Material::new(205e9, 0.28).expect("valid"),
-    )
 }
 
 /// Every number of every record is finite: no NaN or infinity reaches a result.
@@ -69,11 +55,7 @@ fn warm_start_with_a_single_free_cell_converges() {
     // Without the solver's steepest-descent step the iteration stands still there until the
     // iteration limit.
     let pair = paper_pair();
-    let hertz = Hertz {
-        radius_m: 3e-3,
-        load_n: 5.0,
-        reduced_modulus_pa: pair.reduced_modulus_pa,
-    };
+    let hertz = paper_hertz(&pair, 5.0);
     let grid = Grid::square(64, 0.256e-3).expect("valid");
     let separation = grid.sample(|x, y| hertz.separation_m(x, y));
     let cap = 480e6;
@@ -94,7 +76,10 @@ fn warm_start_with_a_single_free_cell_converges() {
     let mut op = DcFft::new(&Kernel::normal(&grid, &pair));
     let solution = solve(&mut op, &problem, &options, Some(&warm)).expect("converges");
     let check = verify(&mut op, &problem, &solution);
-    assert!(check.passes(CHECK_TOLERANCE, LOAD_CHECK), "{check:?}");
+    assert!(
+        check.passes(check_tolerance(&options), LOAD_CHECK),
+        "{check:?}"
+    );
 }
 
 #[test]
@@ -164,7 +149,7 @@ fn softening_toward_zero_runs_on_a_domain_sized_for_the_lowest_cap() {
     let result = simulate(&s).expect("runs");
     assert_finite(&result);
     let last = result.cycles.last().expect("records");
-    assert!((last.hardness_mpa / 20.0 - 1.0).abs() < 1e-9, "{last:?}");
+    assert!(relative_error(last.hardness_mpa, 20.0) < 1e-9, "{last:?}");
     for r in &result.cycles {
         let cap = r.hardness_mpa / 2.8;
         assert!(r.max_pressure_mpa <= cap * (1.0 + 1e-12));
@@ -340,11 +325,10 @@ fn contact_narrower_than_one_and_a_half_cells_is_refused() {
 fn peak_pressure_error(cells: f64) -> f64 {
     let pair = paper_pair();
     let a = cells * 4e-6;
-    let hertz = Hertz {
-        radius_m: 3e-3,
-        load_n: 4.0 * pair.reduced_modulus_pa * a.powi(3) / (3.0 * 3e-3),
-        reduced_modulus_pa: pair.reduced_modulus_pa,
-    };
+    let hertz = paper_hertz(
+        &pair,
+        4.0 * pair.reduced_modulus_pa * a.powi(3) / (3.0 * 3e-3),
+    );
     let grid = Grid::square(64, 0.256e-3).expect("valid");
     let separation = grid.sample(|x, y| hertz.separation_m(x, y));
     let problem = ContactProblem {
@@ -408,11 +392,7 @@ fn coupled_hertz(strength: f64) -> Result<(), ContactError> {
         Material::new(300e9, 0.3).expect("valid"),
     );
     let beta = pair.delta_nu / (2.0 * (1.0 - pair.nu_star));
-    let hertz = Hertz {
-        radius_m: 3e-3,
-        load_n: 5.0,
-        reduced_modulus_pa: pair.reduced_modulus_pa,
-    };
+    let hertz = paper_hertz(&pair, 5.0);
     let grid = Grid::square(64, 3.0 * hertz.contact_radius_m())?;
     let separation = grid.sample(|x, y| hertz.separation_m(x, y));
     let problem = ContactProblem {
@@ -433,7 +413,10 @@ fn coupled_hertz(strength: f64) -> Result<(), ContactError> {
     )?;
     let mut full = DcFft::sum(&normal, &coupling);
     let check = verify(&mut full, &problem, &solution);
-    assert!(check.passes(CHECK_TOLERANCE, LOAD_CHECK), "{check:?}");
+    assert!(
+        check.passes(check_tolerance(&options), LOAD_CHECK),
+        "{check:?}"
+    );
     Ok(())
 }
 

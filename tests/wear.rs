@@ -1,18 +1,20 @@
 //! The wear simulation against Archard's law, the paper's observations and its failure modes.
 
+mod common {
+    pub mod physics;
+}
+
 use std::f64::consts::PI;
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use common::physics::{relative_error, scene};
+
 use tribosim::contact::ContactError;
-use tribosim::scene::{Scene, parse_scene_str};
+use tribosim::scene::Scene;
 use tribosim::simulation::{CycleRecord, Model, SimulationError, SimulationResult, run};
 
-fn scene(json: &str) -> Scene {
-    parse_scene_str(json).expect("valid scene")
-}
-
 fn simulate(scene: &Scene) -> SimulationResult {
-    run(scene, &mut |_| {}, &AtomicBool::new(false)).expect("runs")
+    common::physics::simulate(scene).expect("runs")
 }
 
 /// Archard's volume per cycle, eq. 14 with s = one lap of the track, mm^3.
@@ -45,7 +47,7 @@ fn elastic_wear_is_linear_and_equals_archard() {
     // Archard's volume is linear in the sliding distance: V(300) / V(150) = 2, to round-off.
     assert!((volume(300) / volume(150) - 2.0).abs() < ARCHARD_EXACT);
     let expected = 300.0 * archard_lap_mm3(&s, 1.19e-4, 2473e6);
-    assert!((volume(300) / expected - 1.0).abs() < ARCHARD_EXACT);
+    assert!(relative_error(volume(300), expected) < ARCHARD_EXACT);
     assert!(result.cycles.iter().all(|r| r.plastic_area_mm2 == 0.0));
 }
 
@@ -116,7 +118,7 @@ fn paper_scene_yields_first_then_wears_by_archard() {
             .sum();
         let grown = pair[1].wear_volume_mm3 - pair[0].wear_volume_mm3;
         assert!(
-            (grown / expected - 1.0).abs() < ARCHARD_EXACT,
+            relative_error(grown, expected) < ARCHARD_EXACT,
             "cycle {}",
             pair[1].cycle
         );
@@ -153,7 +155,7 @@ fn corrosion_follows_eq18_and_faraday_in_the_users_units() {
     let rate_cm3_s = 0.01 * area_cm2 * 55.85 / (2.0 * 96_485.332_12 * 7.9);
     let dt = last.time_s - before.time_s;
     let grown_mm3 = last.wac_volume_mm3.expect("on") - before.wac_volume_mm3.expect("on");
-    assert!((grown_mm3 / (rate_cm3_s * dt * 1e3) - 1.0).abs() < 1e-12);
+    assert!(relative_error(grown_mm3, rate_cm3_s * dt * 1e3) < 1e-12);
     // The depassivated track widens, so the potential falls during rubbing (paper Fig. 6).
     let first = result.cycles[0].potential_v.expect("on");
     assert!(last.potential_v.expect("on") < first);
