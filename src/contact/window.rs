@@ -197,11 +197,9 @@ mod tests {
         }
     }
 
-    /// Solves the paper's first cycle (5 N, cap 2455 MPa / 2.8, 96 cells over 300 um) in a
-    /// window around the contact of `previous_load_n` and checks the answer on the whole
-    /// grid with the full operator, as the solver's own stopping test promises. Returns the
-    /// window fraction of the two solves.
-    fn check_window_from(previous_load_n: f64) -> f64 {
+    /// The paper's ball at 5 N over 96 cells across 300 um: the grid, Hertz's contact and
+    /// the separation.
+    fn paper_case() -> (Grid, Hertz, Vec<f64>) {
         let grid = Grid::square(96, 300e-6).expect("valid");
         let hertz = Hertz {
             radius_m: 3e-3,
@@ -209,6 +207,15 @@ mod tests {
             reduced_modulus_pa: 130.17e9,
         };
         let separation = grid.sample(|x, y| hertz.separation_m(x, y));
+        (grid, hertz, separation)
+    }
+
+    /// Solves the paper's first cycle (cap 2455 MPa / 2.8) in a window around the contact
+    /// of `previous_load_n` and checks the answer on the whole grid with the full operator,
+    /// as the solver's own stopping test promises. Returns the window fraction of the two
+    /// solves.
+    fn check_window_from(previous_load_n: f64) -> f64 {
+        let (grid, _, separation) = paper_case();
         let problem = |load_n| ContactProblem {
             grid,
             separation: &separation,
@@ -244,13 +251,7 @@ mod tests {
 
     #[test]
     fn a_focus_starts_the_first_solve_in_a_window() {
-        let grid = Grid::square(96, 300e-6).expect("valid");
-        let hertz = Hertz {
-            radius_m: 3e-3,
-            load_n: 5.0,
-            reduced_modulus_pa: 130.17e9,
-        };
-        let separation = grid.sample(|x, y| hertz.separation_m(x, y));
+        let (grid, hertz, separation) = paper_case();
         let problem = ContactProblem {
             grid,
             separation: &separation,

@@ -173,6 +173,16 @@ mod tests {
     }
 
     #[test]
+    fn corrosion_model_is_in_si_units() {
+        let model = Corrosion::default().model();
+        // Each is one multiplication by a power of ten: one rounding (1e-15 relative).
+        assert!(relative_error(model.anodic_current_density_a_m2, 100.0) < 1e-15);
+        assert!(relative_error(model.exposed_area_m2, 2.56e-4) < 1e-15);
+        assert!(relative_error(model.molar_mass_kg_mol, 55.85e-3) < 1e-15);
+        assert!(relative_error(model.density_kg_m3, 7900.0) < 1e-15);
+    }
+
+    #[test]
     fn hardness_law_follows_the_table_or_stays_constant() {
         let constant = Scene::default().hardness_law().expect("no table");
         assert_eq!(constant, HardnessLaw::constant(2473e6));
