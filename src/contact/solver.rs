@@ -13,11 +13,11 @@
 //! nearly every loaded cell at the cap), one projected steepest-descent step over the free
 //! and the wrongly bounded cells takes the place of the CG step.
 //!
-//! One iteration of [`solve`], step by step: measure the gap and the residual
-//! ([`PolonskyKeer::measure`]); stop, or restore the load, once the residual meets the
-//! tolerance ([`PolonskyKeer::converged`]); build the conjugate direction
-//! ([`PolonskyKeer::direction`]), or fall back to steepest descent; find the step length
-//! ([`PolonskyKeer::step_length`]); step, truncate and re-enter ([`PolonskyKeer::advance`]).
+//! One iteration of [`solve`], step by step (the methods of its private state): measure the
+//! gap and the residual (`measure`); stop, or restore the load, once the residual meets the
+//! tolerance (`converged`); build the conjugate direction (`direction`), or fall back to
+//! steepest descent (`steepest_descent`); find the step length (`step_length`); step,
+//! truncate and re-enter (`advance`).
 //!
 //! # Preconditioning
 //! When the operator offers one ([`Operator::preconditioner`]; [`super::DcFft`] does), the
@@ -38,7 +38,7 @@
 //!
 //! # Stopping test
 //! The solve succeeds when the relative residual of [`super::residual`] meets the tolerance
-//! on a freshly computed `u` and the load is carried to [`LOAD_TOLERANCE`].
+//! on a freshly computed `u` and the load is carried to 1e-11 (`LOAD_TOLERANCE`).
 
 use super::error::ContactError;
 use super::grid::Grid;
@@ -138,15 +138,20 @@ struct PolonskyKeer<'a> {
     /// 1 on the free cells, 0 elsewhere: the sums over the free set become dot products,
     /// with no branch and no accumulator chained through memory.
     free: Vec<f64>,
+    /// Whether the operator offers a preconditioner.
     preconditioned: bool,
+    /// Operator applications so far.
     applies: usize,
     /// Whether `u` was computed from `p` by an apply, not updated along a step.
     fresh: bool,
     /// Pressure per unit of gap given to a re-entering cell (Polonsky-Keer: the last step
     /// length, for a direction made of gaps).
     entry_rate: f64,
+    /// `r.z` (or `r.r`) of the last direction, the denominator of the Fletcher-Reeves ratio.
     rho_old: f64,
+    /// Whether the next direction starts afresh, after a re-entry or a fallback step.
     restart: bool,
+    /// The last positive step length.
     tau_last: f64,
     /// The relative residual of the last measure.
     residual: f64,

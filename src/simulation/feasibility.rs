@@ -22,15 +22,16 @@ use crate::scene::{self, DomainSize, FieldError, GridSize, Scene, SceneErrors, S
 /// 0.84-0.88 and failed (NotConverged, or the contact driven to the domain edge, however
 /// large the domain) from 0.88-0.92 on; 20-cycle runs at 0.85 converged. Pairs with both
 /// Poisson ratios >= 0 have |beta| <= 0.5, so every friction up to 1.6 passes.
-pub const MAX_COUPLING: f64 = 0.8;
+const MAX_COUPLING: f64 = 0.8;
 /// Fewest cells per contact radius. Measured on the paper's Hertz case at grid 64 over
 /// 256 um, loads giving 0.5 to 15 cells per radius: from 1.43 cells the peak pressure errs
 /// by 5.6% at most (the approach by 2%); at 1.27 cells by 15%, and more as the contact
 /// shrinks, up to 87% at 0.5 cells.
-pub const MIN_CELLS_PER_CONTACT_RADIUS: f64 = 1.5;
+const MIN_CELLS_PER_CONTACT_RADIUS: f64 = 1.5;
 
 /// Every problem with `scene`: its fields against their own ranges, then, when those pass,
-/// whether the simulation can run it. Empty paths are the scene's own (`test.load_n`, ...).
+/// whether the simulation can run it. The paths are the scene's (`test.load_n`);
+/// [`parse_scene`] gives them as they stand in the user's document.
 pub fn check(scene: &Scene) -> Result<(), SceneErrors> {
     scene.validate()?;
     let errors = field_errors(scene);

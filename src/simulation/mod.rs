@@ -23,9 +23,7 @@ use crate::scene::SceneErrors;
 /// The default cycle-step bound, owned by the scene; here beside [`MAX_STEP`] for the
 /// callers that study the stepping (the benchmarks).
 pub use crate::scene::STEP_CHANGE_BOUND;
-pub use feasibility::{
-    MAX_COUPLING, MIN_CELLS_PER_CONTACT_RADIUS, check, parse_scene, parse_scene_str,
-};
+pub use feasibility::{check, parse_scene, parse_scene_str};
 pub use first::{FirstContact, first_contact};
 pub use result::{
     CycleRecord, Model, ModelChoice, PressureMap, Profile, SimulationResult, Summary,
