@@ -122,9 +122,13 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
     ) -> Result<u64, SimulationError> {
         let setup = self.setup;
         let n = cycle as f64;
+        // The hardness of this cycle and the cap it gives (eq. 12).
         let cap = setup.yield_pressure_pa(n);
         let hardness_pa = setup.hardness.hardness_pa(n);
+        // The contact on the current surface (eqs. 2-12).
         let (solution, separation) = self.solve_contact(cycle, cap)?;
+        // The groove yielding cuts (eq. 13) and one Archard pass without its k / H
+        // (eqs. 15-16).
         let plastic = yield_depth(&self.grid, &solution, &separation, cap);
         let pass = pass_pressure_integral(&self.grid, &solution.pressure);
         let total = setup.scene.test.cycles;
@@ -132,9 +136,10 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             .stepper
             .next(cycle, total, plastic.iter().any(|&d| d > 0.0), &pass);
         self.max_step = self.max_step.max(step);
-        // This cycle: yielding, then one pass of Archard wear at this cycle's hardness.
+        // The profile update (eq. 17): yielding, then the pass at this cycle's hardness.
         self.groove.deepen(&plastic, 1.0);
         self.groove.deepen(&pass, setup.archard_k / hardness_pa);
+        // Corrosion (eq. 18, Faraday), the record, then the cycles the solve stands for.
         let reading = self.corrode(cycle, &solution, hardness_pa)?;
         self.record(cycle, &solution, cap, reading, on_cycle);
         self.wear_skipped(cycle, step, &pass, reading.as_ref());
