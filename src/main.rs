@@ -10,8 +10,8 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use tribosim::bench::{self, BenchTarget};
-use tribosim::scene::{Scene, parse_scene_str, presets};
-use tribosim::simulation::{first_contact, run};
+use tribosim::scene::{Scene, presets};
+use tribosim::simulation::{first_contact, parse_scene_str, run};
 
 #[derive(Parser)]
 #[command(

@@ -8,11 +8,13 @@
 use serde::Serialize;
 
 use crate::contact::{
-    ContactError, ContactProblem, CoupledSolver, DcFft, Grid, Kernel, SolverOptions, solve,
+    ContactError, ContactProblem, ContactSolver, CoupledSolver, DcFft, Grid, Kernel, SolverOptions,
+    solve,
 };
 use crate::scene::parse_scene_str;
 use crate::simulation::{
-    COUPLING_SENSITIVITY, DOMAIN_PER_CONTACT_RADIUS, Setup, SimulationError, SimulationResult,
+    COUPLING_SENSITIVITY, DOMAIN_PER_CONTACT_RADIUS, Model, Setup, SimulationError,
+    SimulationResult,
 };
 
 use super::contact::paper_hertz;
@@ -122,7 +124,7 @@ pub fn auto_studies() -> Result<AutoStudies, AutoError> {
     ] {
         wear.push(row("domain", setting, result, &widest));
     }
-    let domain_growth = reasons(&base, "domain_growth");
+    let domain_growth = reasons(&base, Model::DomainGrowth);
 
     // Coupling: the paper's mu delta-nu, modelled (auto) or left out.
     let uncoupled = simulate(r#"{"numerics": {"grid": 64, "coupling": "off"}}"#)?;
@@ -155,7 +157,7 @@ pub fn auto_studies() -> Result<AutoStudies, AutoError> {
     ));
     let plasticity = [&base, &light_auto]
         .into_iter()
-        .flat_map(|r| reasons(r, "plasticity"))
+        .flat_map(|r| reasons(r, Model::Plasticity))
         .collect();
 
     Ok(AutoStudies {
@@ -187,7 +189,7 @@ fn auto_grid() -> Result<AutoGrid, SimulationError> {
     })
 }
 
-fn reasons(result: &SimulationResult, name: &str) -> Vec<String> {
+fn reasons(result: &SimulationResult, name: Model) -> Vec<String> {
     result
         .models
         .iter()

@@ -1,9 +1,12 @@
 //! An independent check of a contact solution that does not trust the solver: the
 //! displacement is recomputed from the pressure by an operator of the caller's choice (the
 //! dense direct sum on small grids, the FFT operator on large ones), and every cell is
-//! tested against the conditions it must meet.
+//! tested against the complementarity conditions of [`super::residual`], one kind of
+//! violation at a time.
 
-use super::{ContactProblem, ContactSolution, Operator};
+use super::operator::Operator;
+use super::problem::{ContactProblem, ContactSolution};
+use super::residual::Bound;
 
 /// What the check found; [`Verification::passes`] decides against a tolerance.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,14 +59,15 @@ pub fn verify(
         let gap = (ui + hi - solution.approach_m) / scale;
         if !(pi.is_finite() && (0.0..=cap).contains(&pi)) {
             report.out_of_bounds += 1;
-        } else if pi <= 0.0 {
-            report.worst_penetration_outside = report.worst_penetration_outside.max(-gap);
-        } else if pi >= cap {
-            report.worst_opening_at_cap = report.worst_opening_at_cap.max(gap);
-        } else {
-            report.worst_open_or_penetrating_in_contact =
-                report.worst_open_or_penetrating_in_contact.max(gap.abs());
+            continue;
         }
+        let bound = Bound::of(pi, cap);
+        let worst = match bound {
+            Bound::Zero => &mut report.worst_penetration_outside,
+            Bound::Cap => &mut report.worst_opening_at_cap,
+            Bound::Free => &mut report.worst_open_or_penetrating_in_contact,
+        };
+        *worst = worst.max(bound.violation(gap));
     }
     let carried = p.iter().sum::<f64>() * problem.grid.cell_area();
     report.load_error = (carried - problem.load_n).abs() / problem.load_n;

@@ -15,14 +15,16 @@
 //! residual, since solving to the final tolerance against a coupling displacement that is
 //! about to change is wasted work. They never stop above [`INNER_FLOOR`] times the target:
 //! an inner solve that just meets the target leaves no room for the coupling update, and
-//! the outer loop stalls a hair above the tolerance (seen at cycle 844 of a 3600-cycle run). Measured on the paper's
-//! Hertz case at N = 256 (mu 0.45): 114 inner iterations with exact inner solves, 52 with
-//! these.
+//! the outer loop can stall a hair above the tolerance. Measured on the paper's Hertz case
+//! at N = 256 (mu 0.45): 114 inner iterations with exact inner solves, 52 with these.
 
-use super::solver::approach;
-use super::{
-    ContactError, ContactProblem, ContactSolution, DcFft, Kernel, Operator, SolverOptions, solve,
-};
+use super::error::ContactError;
+use super::fft::DcFft;
+use super::influence::Kernel;
+use super::operator::Operator;
+use super::problem::{ContactProblem, ContactSolution, ContactSolver, SolverOptions};
+use super::residual::{approach, complementarity_residual};
+use super::solver::solve;
 
 /// Outer iterations allowed; each is a warm-started inner solve.
 pub const MAX_OUTER_ITERATIONS: usize = 100;
@@ -44,20 +46,13 @@ pub fn solve_coupled(
     warm_start: Option<&[f64]>,
 ) -> Result<ContactSolution, ContactError> {
     let n = problem.grid.len();
-    let cap = problem.yield_pressure_pa;
     let mut coupling_u = vec![0.0; n];
     let mut separation = problem.separation.to_vec();
     let mut warm: Option<Vec<f64>> = warm_start.map(<[f64]>::to_vec);
     if let Some(p) = &warm {
         if p.len() == n {
             coupling.apply(p, &mut coupling_u);
-            for ((s, &h), &c) in separation
-                .iter_mut()
-                .zip(problem.separation)
-                .zip(&coupling_u)
-            {
-                *s = h + c;
-            }
+            shift_separation(&mut separation, problem.separation, &coupling_u);
         }
     }
     let (mut iterations, mut applies) = (0, 0);
@@ -71,22 +66,8 @@ pub fn solve_coupled(
             max_iterations: options.max_iterations.saturating_sub(iterations).max(1),
             tolerance: (INNER_FLOOR * options.tolerance).max(INNER_FRACTION * residual.min(1.0)),
         };
-        // An inner failure is the run's: report it against the user's tolerance and with
-        // every iteration spent, not the inner solve's looser target.
-        let mut solution = match solve(normal, &inner, &budget, warm.as_deref()) {
-            Err(ContactError::NotConverged {
-                iterations: inner_iterations,
-                residual: inner_residual,
-                ..
-            }) => {
-                return Err(ContactError::NotConverged {
-                    iterations: iterations + inner_iterations,
-                    residual: inner_residual,
-                    tolerance: options.tolerance,
-                });
-            }
-            outcome => outcome?,
-        };
+        let mut solution = solve(normal, &inner, &budget, warm.as_deref())
+            .map_err(|e| as_outer_failure(e, iterations, options))?;
         iterations += solution.iterations;
         applies += solution.operator_applies + 1;
         coupling.apply(&solution.pressure, &mut coupling_u);
@@ -95,34 +76,14 @@ pub fn solve_coupled(
         for (u, &c) in solution.displacement.iter_mut().zip(&coupling_u) {
             *u += c;
         }
-        let delta = approach(
+        let cap = problem.yield_pressure_pa;
+        let (p, u, h) = (
             &solution.pressure,
             &solution.displacement,
             problem.separation,
-            cap,
         );
-        let u_max = solution
-            .displacement
-            .iter()
-            .fold(0.0f64, |m, v| m.max(v.abs()));
-        let mut worst = 0.0f64;
-        for ((&p, &u), &h) in solution
-            .pressure
-            .iter()
-            .zip(&solution.displacement)
-            .zip(problem.separation)
-        {
-            let g = u + h - delta;
-            let violation = if p <= 0.0 {
-                (-g).max(0.0)
-            } else if p >= cap {
-                g.max(0.0)
-            } else {
-                g.abs()
-            };
-            worst = worst.max(violation);
-        }
-        residual = worst / u_max;
+        let delta = approach(p, u, h, cap);
+        residual = complementarity_residual(p, u, h, delta, cap);
         if residual <= options.tolerance {
             solution.approach_m = delta;
             solution.iterations = iterations;
@@ -130,13 +91,7 @@ pub fn solve_coupled(
             solution.residual = residual;
             return Ok(solution);
         }
-        for ((s, &h), &c) in separation
-            .iter_mut()
-            .zip(problem.separation)
-            .zip(&coupling_u)
-        {
-            *s = h + c;
-        }
+        shift_separation(&mut separation, problem.separation, &coupling_u);
         warm = Some(solution.pressure);
     }
     Err(ContactError::NotConverged {
@@ -144,6 +99,31 @@ pub fn solve_coupled(
         residual,
         tolerance: options.tolerance,
     })
+}
+
+/// `shifted = h + K_c p`: the coupling displacement moved into the separation.
+fn shift_separation(shifted: &mut [f64], separation: &[f64], coupling_u: &[f64]) {
+    for ((s, &h), &c) in shifted.iter_mut().zip(separation).zip(coupling_u) {
+        *s = h + c;
+    }
+}
+
+/// An inner failure is the run's: a non-convergence is reported against the user's
+/// tolerance and with every iteration spent (`spent` before this inner solve), not the
+/// inner solve's looser target.
+fn as_outer_failure(error: ContactError, spent: usize, options: &SolverOptions) -> ContactError {
+    match error {
+        ContactError::NotConverged {
+            iterations,
+            residual,
+            ..
+        } => ContactError::NotConverged {
+            iterations: spent + iterations,
+            residual,
+            tolerance: options.tolerance,
+        },
+        other => other,
+    }
 }
 
 /// Iterations granted to the direct solve on the summed operator before falling back.
@@ -176,8 +156,14 @@ impl CoupledSolver {
         }
     }
 
-    /// Solves `problem` with the coupling term.
-    pub fn solve(
+    /// Whether the direct route is still in use (false once it failed to converge).
+    pub fn direct_works(&self) -> bool {
+        self.direct_works
+    }
+}
+
+impl ContactSolver for CoupledSolver {
+    fn solve(
         &mut self,
         problem: &ContactProblem,
         options: &SolverOptions,
@@ -209,19 +195,8 @@ impl CoupledSolver {
         Ok(solution)
     }
 
-    /// Whether the direct route is still in use (false once it failed to converge).
-    pub fn direct_works(&self) -> bool {
-        self.direct_works
-    }
-}
-
-/// The full operator `K_n + K_c`, applied in one pass.
-impl Operator for CoupledSolver {
-    fn shape(&self) -> (usize, usize) {
-        self.summed.shape()
-    }
-
-    fn apply(&mut self, input: &[f64], output: &mut [f64]) {
-        self.summed.apply(input, output);
+    /// The full operator `K_n + K_c`, applied in one pass.
+    fn operator(&mut self) -> &mut dyn Operator {
+        &mut self.summed
     }
 }

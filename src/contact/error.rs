@@ -1,16 +1,36 @@
 //! The ways a contact solve can fail. Each is a value the caller can match on and report;
 //! none is a panic.
 
+use std::fmt;
+
 use thiserror::Error;
+
+/// One of the two elastic constants of an isotropic material.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ElasticConstant {
+    /// Young's modulus `E`, Pa.
+    YoungsModulus,
+    /// Poisson's ratio `nu`.
+    PoissonRatio,
+}
+
+impl fmt::Display for ElasticConstant {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::YoungsModulus => "Young's modulus (Pa)",
+            Self::PoissonRatio => "Poisson's ratio",
+        })
+    }
+}
 
 /// Why a contact problem could not be solved.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum ContactError {
     /// A material constant is outside its physical range.
-    #[error("invalid material: {field} = {value} (allowed: {allowed})")]
+    #[error("invalid material: {constant} = {value} (allowed: {allowed})")]
     InvalidMaterial {
-        /// Which constant, e.g. `disc.poisson_ratio`.
-        field: &'static str,
+        /// Which constant.
+        constant: ElasticConstant,
         /// The value given.
         value: f64,
         /// The allowed range, in words.

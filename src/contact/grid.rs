@@ -1,6 +1,9 @@
-//! The computational domain: a regular grid of rectangular cells centred on the ball apex.
+//! The computational domain: a regular grid of rectangular cells centred on the ball apex,
+//! and rectangular windows of its cells.
 
-use super::ContactError;
+use std::ops::Range;
+
+use super::error::ContactError;
 
 /// A regular `nx` x `ny` grid of cells of size `dx` x `dy` (metres) covering
 /// `[-nx dx / 2, nx dx / 2] x [-ny dy / 2, ny dy / 2]`.
@@ -21,8 +24,9 @@ pub struct Grid {
 }
 
 impl Grid {
-    /// The largest cells per side accepted: the padded 2N x 2N spectra of a 4096 grid
-    /// would need several gigabytes.
+    /// The largest cells per side accepted: the DC-FFT pads a grid to 2N x 2N, and a 4096
+    /// grid's padded spectra (8192^2 complex values, 0.5 GiB each, several alive at once)
+    /// would need gigabytes.
     pub const MAX_CELLS_PER_SIDE: usize = 2048;
 
     /// A square grid of `n` x `n` cells covering a square of side `side_m`.
@@ -95,6 +99,108 @@ impl Grid {
     }
 }
 
+/// A rectangle of cells `[x0, x0 + nx) x [y0, y0 + ny)` of a grid: the part of a field a
+/// windowed solve works on, the loaded part of a pressure map, or where a grid sits inside
+/// a grown one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Window {
+    /// First column.
+    pub x0: usize,
+    /// First row.
+    pub y0: usize,
+    /// Columns.
+    pub nx: usize,
+    /// Rows.
+    pub ny: usize,
+}
+
+impl Window {
+    /// The bounding box of the cells of `field` (on `grid`) with positive values, or `None`
+    /// if there are none.
+    pub fn loaded(grid: &Grid, field: &[f64]) -> Option<Self> {
+        let (mut x0, mut x1, mut y0, mut y1) = (usize::MAX, 0, usize::MAX, 0);
+        for (i, _) in field.iter().enumerate().filter(|(_, v)| **v > 0.0) {
+            let (ix, iy) = (i % grid.nx, i / grid.nx);
+            (x0, x1, y0, y1) = (x0.min(ix), x1.max(ix), y0.min(iy), y1.max(iy));
+        }
+        (x0 != usize::MAX).then_some(Self {
+            x0,
+            y0,
+            nx: x1 - x0 + 1,
+            ny: y1 - y0 + 1,
+        })
+    }
+
+    /// `nx` x `ny` cells centred on the cell `(cx, cy)` of `grid`, shifted (and cut) to
+    /// stay inside it.
+    pub fn centred(grid: &Grid, (cx, cy): (usize, usize), nx: usize, ny: usize) -> Self {
+        let span = |centre: usize, n: usize, len: usize| {
+            let n = n.min(len);
+            (centre.saturating_sub(n / 2).min(len - n), n)
+        };
+        let (x0, nx) = span(cx, nx, grid.nx);
+        let (y0, ny) = span(cy, ny, grid.ny);
+        Self { x0, y0, nx, ny }
+    }
+
+    /// The window grown by `cells` on every side, cut at the edges of `grid`.
+    pub fn padded(&self, cells: usize, grid: &Grid) -> Self {
+        let (x0, y0) = (self.x0.saturating_sub(cells), self.y0.saturating_sub(cells));
+        let x1 = (self.x0 + self.nx - 1 + cells).min(grid.nx - 1);
+        let y1 = (self.y0 + self.ny - 1 + cells).min(grid.ny - 1);
+        Self {
+            x0,
+            y0,
+            nx: x1 - x0 + 1,
+            ny: y1 - y0 + 1,
+        }
+    }
+
+    /// The cell at the window's centre (of an even side's middle two, the later one).
+    pub fn centre(&self) -> (usize, usize) {
+        (self.x0 + self.nx / 2, self.y0 + self.ny / 2)
+    }
+
+    /// Column indices of `grid` inside the window.
+    pub fn columns(&self) -> Range<usize> {
+        self.x0..self.x0 + self.nx
+    }
+
+    /// Row indices of `grid` inside the window.
+    pub fn rows(&self) -> Range<usize> {
+        self.y0..self.y0 + self.ny
+    }
+
+    /// Whether the window is the whole of `grid`.
+    pub fn covers(&self, grid: &Grid) -> bool {
+        self.nx == grid.nx && self.ny == grid.ny
+    }
+
+    /// Whether the cell at `index` of `grid` lies inside the window.
+    pub fn contains(&self, grid: &Grid, index: usize) -> bool {
+        let (ix, iy) = (index % grid.nx, index / grid.nx);
+        self.columns().contains(&ix) && self.rows().contains(&iy)
+    }
+
+    /// The window's part of `field` (on `grid`), row-major.
+    pub fn extract(&self, grid: &Grid, field: &[f64]) -> Vec<f64> {
+        let mut out = Vec::with_capacity(self.nx * self.ny);
+        for iy in self.rows() {
+            out.extend_from_slice(&field[iy * grid.nx + self.x0..][..self.nx]);
+        }
+        out
+    }
+
+    /// `field` (the window's cells, row-major) placed in a field of `grid`, zero outside.
+    pub fn embed(&self, grid: &Grid, field: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; grid.len()];
+        for (row, iy) in field.chunks_exact(self.nx).zip(self.y0..) {
+            out[iy * grid.nx + self.x0..][..self.nx].copy_from_slice(row);
+        }
+        out
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -106,6 +212,30 @@ mod tests {
             assert!((g.x(i) + g.x(7 - i)).abs() < 1e-18);
         }
         assert!((g.x(4) - 0.5e-6).abs() < 1e-18, "apex on a cell corner");
+    }
+
+    #[test]
+    fn windows_stay_inside_the_grid_and_round_trip_a_field() {
+        let grid = Grid::square(64, 64e-6).expect("valid");
+        let mut pressure = vec![0.0; grid.len()];
+        pressure[2 * 64 + 60] = 1.0;
+        pressure[10 * 64 + 50] = 1.0;
+        let loaded = Window::loaded(&grid, &pressure).expect("loaded");
+        assert_eq!(
+            loaded,
+            Window {
+                x0: 50,
+                y0: 2,
+                nx: 11,
+                ny: 9
+            }
+        );
+        let w = Window::centred(&grid, loaded.centre(), 24, 24);
+        assert!(w.x0 + w.nx <= 64 && w.y0 + w.ny <= 64);
+        assert!(w.contains(&grid, 2 * 64 + 60) && w.contains(&grid, 10 * 64 + 50));
+        assert_eq!(w.embed(&grid, &w.extract(&grid, &pressure)), pressure);
+        assert_eq!(loaded.padded(4, &grid).columns(), 46..64);
+        assert!(Window::loaded(&grid, &[0.0; 4096]).is_none());
     }
 
     #[test]

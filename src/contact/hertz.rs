@@ -63,8 +63,8 @@ mod tests {
 
     #[test]
     fn paper_values() {
-        // Paper Section 2.3: p0 = 1221 MPa; Section 5.1: Hertzian area 6e-3 mm^2 (6.1e-3 in
-        // issue 2). E* = 130.17 GPa from the moduli in GPa (the paper prints MPa, a slip).
+        // Paper Section 2.3: p0 = 1221 MPa; Section 5.1: Hertzian area 6e-3 mm^2 (6.1e-3 to
+        // two digits). E* = 130.17 GPa from the moduli in GPa (the paper prints MPa, a slip).
         let hertz = Hertz {
             radius_m: 3e-3,
             load_n: 5.0,

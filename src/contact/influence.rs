@@ -324,8 +324,8 @@ mod tests {
     fn kernel_lattice_equals_pointwise_integrals() {
         let grid = Grid::new(5, 4, 1.0e-6, 1.5e-6).expect("valid");
         let pair = ElasticPair::new(
-            crate::contact::Material::new(300e9, 0.21, "ball").expect("valid"),
-            crate::contact::Material::new(205e9, 0.28, "disc").expect("valid"),
+            crate::contact::Material::new(300e9, 0.21).expect("valid"),
+            crate::contact::Material::new(205e9, 0.28).expect("valid"),
         );
         let normal = Kernel::normal(&grid, &pair);
         let coupling = Kernel::coupling(&grid, &pair, 0.45);

@@ -1,6 +1,6 @@
 //! Elastic constants of the two bodies and their combinations (paper eqs. 6 and 8).
 
-use super::ContactError;
+use super::error::{ContactError, ElasticConstant};
 
 /// An isotropic linear-elastic material, SI units.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -12,28 +12,20 @@ pub struct Material {
 }
 
 impl Material {
-    /// A material, checked: E finite and > 0, nu in the open interval (-1, 0.5).
-    /// `name` prefixes the field in the error, e.g. `"disc"`.
-    pub fn new(
-        youngs_modulus_pa: f64,
-        poisson_ratio: f64,
-        name: &'static str,
-    ) -> Result<Self, ContactError> {
-        let (e_field, nu_field) = match name {
-            "ball" => ("ball.youngs_modulus", "ball.poisson_ratio"),
-            "disc" => ("disc.youngs_modulus", "disc.poisson_ratio"),
-            _ => ("youngs_modulus", "poisson_ratio"),
-        };
+    /// A material, checked: E finite and > 0, nu in the open interval (-1, 0.5). The error
+    /// names the constant; which body and which input field it came from is the caller's to
+    /// say.
+    pub fn new(youngs_modulus_pa: f64, poisson_ratio: f64) -> Result<Self, ContactError> {
         if !(youngs_modulus_pa.is_finite() && youngs_modulus_pa > 0.0) {
             return Err(ContactError::InvalidMaterial {
-                field: e_field,
+                constant: ElasticConstant::YoungsModulus,
                 value: youngs_modulus_pa,
                 allowed: "finite and > 0",
             });
         }
         if !(poisson_ratio > -1.0 && poisson_ratio < 0.5) {
             return Err(ContactError::InvalidMaterial {
-                field: nu_field,
+                constant: ElasticConstant::PoissonRatio,
                 value: poisson_ratio,
                 allowed: "-1 < nu < 0.5",
             });
@@ -85,8 +77,8 @@ mod tests {
     use super::*;
 
     fn paper_pair() -> ElasticPair {
-        let ball = Material::new(300e9, 0.21, "ball").expect("valid");
-        let disc = Material::new(205e9, 0.28, "disc").expect("valid");
+        let ball = Material::new(300e9, 0.21).expect("valid");
+        let disc = Material::new(205e9, 0.28).expect("valid");
         ElasticPair::new(ball, disc)
     }
 
@@ -109,7 +101,7 @@ mod tests {
 
     #[test]
     fn delta_nu_vanishes_for_identical_bodies_and_has_paper_sign() {
-        let steel = Material::new(205e9, 0.28, "disc").expect("valid");
+        let steel = Material::new(205e9, 0.28).expect("valid");
         assert!(ElasticPair::new(steel, steel).delta_nu.abs() < 1e-16);
         // Alumina on 316L: (0.58 * 80.08 - 0.44 * 123.97) / 204.05 = -0.0397.
         assert!((paper_pair().delta_nu + 0.0397).abs() < 5e-5);
@@ -117,10 +109,10 @@ mod tests {
 
     #[test]
     fn rejects_unphysical_constants() {
-        assert!(Material::new(-1.0, 0.3, "disc").is_err());
-        assert!(Material::new(f64::NAN, 0.3, "disc").is_err());
-        assert!(Material::new(200e9, 0.5, "disc").is_err());
-        assert!(Material::new(200e9, -1.0, "ball").is_err());
-        assert!(Material::new(200e9, f64::NAN, "ball").is_err());
+        assert!(Material::new(-1.0, 0.3).is_err());
+        assert!(Material::new(f64::NAN, 0.3).is_err());
+        assert!(Material::new(200e9, 0.5).is_err());
+        assert!(Material::new(200e9, -1.0).is_err());
+        assert!(Material::new(200e9, f64::NAN).is_err());
     }
 }

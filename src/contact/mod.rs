@@ -1,9 +1,13 @@
-//! The contact core: influence coefficients, the DC-FFT operator and the bounded solver.
+//! The contact core: influence coefficients, the DC-FFT operator and the bounded solvers.
 //!
 //! The pieces are kept apart as in Tamaas and ContactMechanics: [`Grid`] and
 //! [`ElasticPair`] describe the problem, [`Kernel`] holds the influence coefficients,
-//! an [`Operator`] applies them ([`DcFft`] fast, [`DenseOperator`] by direct summation),
-//! and the solver works on any operator.
+//! an [`Operator`] applies them ([`DcFft`] fast, [`DenseOperator`] by direct summation)
+//! and may offer a [`Preconditioner`], and a [`ContactSolver`] solves a [`ContactProblem`]:
+//! [`NormalSolver`] (preconditioned Polonsky-Keer on any operator), [`CoupledSolver`] (with
+//! the friction coupling term) and [`WindowedSolver`] (on a window around the contact,
+//! checked on the whole grid). [`residual`] holds the complementarity conditions they all
+//! meet, and [`verify`] checks a solution against them independently.
 
 pub mod check;
 pub mod coupled;
@@ -14,18 +18,27 @@ mod hertz;
 pub mod influence;
 mod material;
 mod operator;
+mod plans;
 mod precondition;
+mod problem;
+pub mod residual;
 pub mod solver;
+mod window;
 
 pub use check::{Verification, verify};
 pub use coupled::{CoupledSolver, solve_coupled};
-pub use error::ContactError;
+pub use error::{ContactError, ElasticConstant};
 pub use fft::DcFft;
-pub(crate) use fft::{BLOCK, Plans, STRIDE_PAD};
-pub use grid::Grid;
+pub(crate) use fft::{BLOCK, STRIDE_PAD};
+pub use grid::{Grid, Window};
 pub use hertz::Hertz;
 pub use influence::Kernel;
 pub use material::{ElasticPair, Material};
-pub use operator::{DenseOperator, Operator, SumOperator};
+pub use operator::{DenseOperator, Operator, Preconditioner, SumOperator};
+pub(crate) use plans::Plans;
+pub use plans::fft_friendly;
 pub use precondition::FourierInverse;
-pub use solver::{ContactProblem, ContactSolution, SolverOptions, solve};
+pub use problem::{ContactProblem, ContactSolution, ContactSolver, SolverOptions};
+pub use residual::complementarity_residual;
+pub use solver::{NormalSolver, solve};
+pub use window::{MARGIN_FRACTION, MIN_MARGIN, WindowedSolver};

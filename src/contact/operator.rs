@@ -1,8 +1,9 @@
 //! The linear map from cell pressures to surface displacements. The solver only needs
 //! `apply`, so it runs unchanged on the fast [`super::DcFft`], on the [`DenseOperator`]
-//! reference, or on a [`SumOperator`] of both kernels.
+//! reference, or on a [`SumOperator`] of both kernels; an operator may also offer an
+//! approximate inverse ([`Preconditioner`]) to speed the solver up.
 
-use super::{FourierInverse, Kernel};
+use super::influence::Kernel;
 
 /// A linear operator on fields over an `nx` x `ny` grid (row-major, x fastest).
 pub trait Operator {
@@ -15,9 +16,18 @@ pub trait Operator {
 
     /// An approximate inverse the solver may precondition with; `None` (the default)
     /// runs plain conjugate gradients.
-    fn preconditioner(&mut self) -> Option<&mut FourierInverse> {
+    fn preconditioner(&mut self) -> Option<&mut dyn Preconditioner> {
         None
     }
+}
+
+/// An approximate inverse `M^-1` of an operator, applied to the solver's gap on the free
+/// cells (e.g. [`super::FourierInverse`]). It only changes how fast the solver converges,
+/// never what it converges to: the stopping test is on the true residual.
+pub trait Preconditioner {
+    /// `output = M^-1 input`. Takes `&mut self` so implementations keep their scratch
+    /// buffers and allocate nothing per call.
+    fn apply(&mut self, input: &[f64], output: &mut [f64]);
 }
 
 /// Direct summation `u_I = sum_J K(I - J) p_J`, O(N^4): the reference the FFT operator is

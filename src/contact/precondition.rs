@@ -17,8 +17,9 @@
 
 use rustfft::num_complex::Complex;
 
-use super::Kernel;
-use super::fft::Plans;
+use super::influence::Kernel;
+use super::operator::Preconditioner;
+use super::plans::Plans;
 
 /// The inverse of a kernel's periodic wrap on its own grid.
 pub struct FourierInverse {
@@ -113,9 +114,11 @@ impl FourierInverse {
                 .process_with_scratch(column, &mut self.plans.complex_scratch);
         }
     }
+}
 
+impl Preconditioner for FourierInverse {
     /// `output = M^-1 input`: the inverse of the wrapped kernel, without its mean.
-    pub fn apply(&mut self, input: &[f64], output: &mut [f64]) {
+    fn apply(&mut self, input: &[f64], output: &mut [f64]) {
         let (nx, ny) = (self.nx, self.ny);
         assert_eq!(input.len(), nx * ny, "input does not match the grid");
         assert_eq!(output.len(), nx * ny, "output does not match the grid");

@@ -1,6 +1,6 @@
 //! The bounded contact solver: find pressures `0 <= p <= Y` carrying the load `W` such that
-//! the gap `g = K p + h - delta` is zero where `0 < p < Y`, non-negative where `p = 0` and
-//! non-positive where `p = Y` (the elastic-perfectly-plastic cap of eq. 12).
+//! the gap `g = K p + h - delta` meets the complementarity conditions of [`super::residual`]
+//! (the elastic-perfectly-plastic cap of eq. 12 as the upper bound).
 //!
 //! # Algorithm
 //! Polonsky & Keer's conjugate gradient (Wear 231, 1999) with load control, extended with the
@@ -12,6 +12,12 @@
 //! rule and restart the conjugacy. When the free cells cannot move (at most one is free,
 //! nearly every loaded cell at the cap), one projected steepest-descent step over the free
 //! and the wrongly bounded cells takes the place of the CG step.
+//!
+//! One iteration of [`solve`], step by step (the methods of its private state): measure the
+//! gap and the residual (`measure`); stop, or restore the load, once the residual meets the
+//! tolerance (`converged`); build the conjugate direction (`direction`), or fall back to
+//! steepest descent (`steepest_descent`); find the step length (`step_length`); step,
+//! truncate and re-enter (`advance`).
 //!
 //! # Preconditioning
 //! When the operator offers one ([`Operator::preconditioner`]; [`super::DcFft`] does), the
@@ -26,99 +32,380 @@
 //! The displacement `u = K p` is updated as `u - tau K t`, reusing the `K t` that the step
 //! length needs, whenever the step changed no bound. Only iterations that moved a cell onto
 //! or off a bound rescale to the load and recompute `u` (a second apply). Before success is
-//! reported, `u` is always recomputed from `p`, so no drift from the updates survives.
+//! reported, `u` is always recomputed from `p`, so no drift from the updates survives. The
+//! gap, the free set and the residual come from one fused pass over the grid, and nothing
+//! is allocated per iteration.
 //!
-//! # Stopping test (relative, documented in `numerics.tolerance`)
-//! `residual = max_i v_i / max_i |u_i|`, where `v_i = |g_i|` on free cells, `max(-g_i, 0)`
-//! on zero cells and `max(g_i, 0)` on capped cells: the worst complementarity violation,
-//! cell by cell, relative to the largest elastic displacement. The solve succeeds when
-//! `residual <= tolerance` on a freshly computed `u` and the load is carried to 1e-12.
+//! # Stopping test
+//! The solve succeeds when the relative residual of [`super::residual`] meets the tolerance
+//! on a freshly computed `u` and the load is carried to 1e-11 (`LOAD_TOLERANCE`).
 
-use super::{ContactError, Grid, Operator};
+use super::error::ContactError;
+use super::grid::Grid;
+use super::operator::Operator;
+use super::problem::{ContactProblem, ContactSolution, ContactSolver, SolverOptions};
+use super::residual::{Bound, Residual, approach};
 
 /// Relative load error accepted at convergence. Summing N^2 pressures in f64 errs by up to
 /// N^2 * 1.1e-16 in the worst case (1.2e-10 at N = 1024), typically sqrt(N^2) times that;
-/// 1e-11 is met after the final rescale and stays far inside issue 2's 1e-9.
+/// 1e-11 is met after the final rescale and stays far inside the 1e-9 the contact tests
+/// require of the carried load (`tests/contact.rs`).
 const LOAD_TOLERANCE: f64 = 1e-11;
 
-/// Solver settings.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SolverOptions {
-    /// Relative residual to reach (see the module documentation).
-    pub tolerance: f64,
-    /// Iterations allowed before [`ContactError::NotConverged`].
-    pub max_iterations: usize,
+/// The preconditioned Polonsky-Keer solver on one operator: [`solve`] as a
+/// [`ContactSolver`].
+#[derive(Debug)]
+pub struct NormalSolver<O> {
+    operator: O,
 }
 
-impl Default for SolverOptions {
-    fn default() -> Self {
-        Self {
-            tolerance: 1e-8,
-            max_iterations: 2000,
+impl<O: Operator> NormalSolver<O> {
+    /// The solver of `operator` (e.g. [`super::DcFft`] of the normal kernel).
+    pub fn new(operator: O) -> Self {
+        Self { operator }
+    }
+}
+
+impl<O: Operator> ContactSolver for NormalSolver<O> {
+    fn solve(
+        &mut self,
+        problem: &ContactProblem,
+        options: &SolverOptions,
+        warm_start: Option<&[f64]>,
+    ) -> Result<ContactSolution, ContactError> {
+        solve(&mut self.operator, problem, options, warm_start)
+    }
+
+    fn operator(&mut self) -> &mut dyn Operator {
+        &mut self.operator
+    }
+}
+
+/// Solves one contact problem on `operator`, optionally warm-started from `warm_start`
+/// (e.g. the previous wear cycle's pressure). Fails with a named [`ContactError`], never
+/// silently: an impossible load, a contact reaching the domain edge, or no convergence.
+pub fn solve(
+    operator: &mut dyn Operator,
+    problem: &ContactProblem,
+    options: &SolverOptions,
+    warm_start: Option<&[f64]>,
+) -> Result<ContactSolution, ContactError> {
+    problem.validate(options)?;
+    let mut state = PolonskyKeer::start(operator, problem, warm_start)?;
+    for iteration in 1..=options.max_iterations {
+        let delta = state.measure();
+        if state.residual <= options.tolerance {
+            match state.converged(operator, delta, iteration - 1)? {
+                Some(solution) => return Ok(solution),
+                None => continue,
+            }
         }
+        let num = state.direction(operator);
+        if num <= 0.0 {
+            state.steepest_descent(operator);
+            continue;
+        }
+        let tau = state.step_length(operator, num);
+        state.advance(operator, tau);
     }
+    Err(ContactError::NotConverged {
+        iterations: options.max_iterations,
+        residual: state.residual,
+        tolerance: options.tolerance,
+    })
 }
 
-/// One contact problem on a grid.
-#[derive(Debug, Clone, Copy)]
-pub struct ContactProblem<'a> {
-    /// The grid the fields live on.
-    pub grid: Grid,
-    /// Separation `h` between the undeformed surfaces at zero approach, m, per cell.
-    pub separation: &'a [f64],
-    /// Normal load, N.
-    pub load_n: f64,
-    /// Pressure cap `Y`, Pa; `f64::INFINITY` for a purely elastic contact.
-    pub yield_pressure_pa: f64,
+/// The state of one solve between iterations. The work vectors are allocated once, at the
+/// start.
+struct PolonskyKeer<'a> {
+    grid: Grid,
+    separation: &'a [f64],
+    cap: f64,
+    /// The load in pressure units: `W / cell area`, the sum the pressures must reach.
+    target: f64,
+    /// Pressure.
+    p: Vec<f64>,
+    /// Displacement `K p`, updated along with the steps.
+    u: Vec<f64>,
+    /// Gap `u + h - delta`.
+    g: Vec<f64>,
+    /// Search direction.
+    t: Vec<f64>,
+    /// The gap on the free cells, then `K t` once the direction is applied.
+    r: Vec<f64>,
+    /// The preconditioned gap `M^-1 r` (empty without a preconditioner).
+    z: Vec<f64>,
+    /// 1 on the free cells, 0 elsewhere: the sums over the free set become dot products,
+    /// with no branch and no accumulator chained through memory.
+    free: Vec<f64>,
+    /// Whether the operator offers a preconditioner.
+    preconditioned: bool,
+    /// Operator applications so far.
+    applies: usize,
+    /// Whether `u` was computed from `p` by an apply, not updated along a step.
+    fresh: bool,
+    /// Pressure per unit of gap given to a re-entering cell (Polonsky-Keer: the last step
+    /// length, for a direction made of gaps).
+    entry_rate: f64,
+    /// `r.z` (or `r.r`) of the last direction, the denominator of the Fletcher-Reeves ratio.
+    rho_old: f64,
+    /// Whether the next direction starts afresh, after a re-entry or a fallback step.
+    restart: bool,
+    /// The last positive step length.
+    tau_last: f64,
+    /// The relative residual of the last measure.
+    residual: f64,
+    /// The load of the last measure, in pressure units.
+    load: f64,
 }
 
-/// A converged contact.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ContactSolution {
-    /// Pressure per cell, Pa.
-    pub pressure: Vec<f64>,
-    /// Elastic displacement `K p` per cell (both bodies together), m.
-    pub displacement: Vec<f64>,
-    /// Rigid-body approach `delta`, m.
-    pub approach_m: f64,
-    /// CG iterations.
-    pub iterations: usize,
-    /// Operator applications (each one padded FFT round trip for [`super::DcFft`]).
-    pub operator_applies: usize,
-    /// The relative residual reached.
-    pub residual: f64,
-}
-
-impl ContactSolution {
-    /// The load carried, N.
-    pub fn load_n(&self, grid: &Grid) -> f64 {
-        self.pressure.iter().sum::<f64>() * grid.cell_area()
+impl<'a> PolonskyKeer<'a> {
+    /// The uniform pressure, or the warm start clipped to `[0, Y]`, at the load, and its
+    /// displacement. Refuses a load the domain cannot carry at the cap.
+    fn start(
+        operator: &mut dyn Operator,
+        problem: &ContactProblem<'a>,
+        warm_start: Option<&[f64]>,
+    ) -> Result<Self, ContactError> {
+        let grid = problem.grid;
+        let (n, h, cap) = (grid.len(), problem.separation, problem.yield_pressure_pa);
+        let target = problem.load_n / grid.cell_area();
+        if target >= cap * n as f64 {
+            return Err(ContactError::LoadExceedsCapacity {
+                load_n: problem.load_n,
+                capacity_n: cap * grid.area(),
+            });
+        }
+        let mut p = match warm_start {
+            Some(w) if w.len() == n && w.iter().any(|&v| v > 0.0) => {
+                w.iter().map(|&v| v.clamp(0.0, cap)).collect()
+            }
+            _ => vec![target / n as f64; n],
+        };
+        // Before the first apply the displacement is unknown: order by the separation alone.
+        rescale_to_load(&mut p, cap, target, h);
+        let mut u = vec![0.0; n];
+        operator.apply(&p, &mut u);
+        let preconditioned = operator.preconditioner().is_some();
+        Ok(Self {
+            grid,
+            separation: h,
+            cap,
+            target,
+            p,
+            u,
+            g: vec![0.0; n],
+            t: vec![0.0; n],
+            r: vec![0.0; n],
+            z: if preconditioned {
+                vec![0.0; n]
+            } else {
+                Vec::new()
+            },
+            free: vec![0.0; n],
+            preconditioned,
+            applies: 1,
+            fresh: true,
+            entry_rate: 0.0,
+            rho_old: 0.0,
+            restart: true,
+            tau_last: 0.0,
+            residual: f64::INFINITY,
+            load: 0.0,
+        })
     }
 
-    /// Largest pressure, Pa.
-    pub fn max_pressure_pa(&self) -> f64 {
-        self.pressure.iter().fold(0.0, |m, &p| m.max(p))
+    /// One fused pass: the approach, the gap, the free mask, the gap on the free cells
+    /// (into `r`, unused until the next apply), the load and the relative residual.
+    /// Returns the approach.
+    fn measure(&mut self) -> f64 {
+        let cap = self.cap;
+        let delta = approach(&self.p, &self.u, self.separation, cap);
+        let (p, u, h) = (&self.p[..], &self.u[..], self.separation);
+        let (g, free, r) = (&mut self.g[..], &mut self.free[..], &mut self.r[..]);
+        let (mut residual, mut load) = (Residual::default(), 0.0);
+        for i in 0..p.len() {
+            let (pi, gi) = (p[i], u[i] + h[i] - delta);
+            g[i] = gi;
+            load += pi;
+            let bound = Bound::of(pi, cap);
+            residual.add(bound, u[i], gi);
+            free[i] = if bound == Bound::Free { 1.0 } else { 0.0 };
+            r[i] = free[i] * gi;
+        }
+        self.residual = residual.value();
+        self.load = load;
+        delta
     }
 
-    /// Area of the cells in contact (p > 0), m^2.
-    pub fn contact_area_m2(&self, grid: &Grid) -> f64 {
-        self.pressure.iter().filter(|&&p| p > 0.0).count() as f64 * grid.cell_area()
+    /// The residual met the tolerance. The solution, if the load is carried and `u` is fresh
+    /// (after `iterations` iterations); otherwise the load is restored or `u` recomputed,
+    /// and the iteration goes on (`None`). A contact reaching the domain edge is refused.
+    fn converged(
+        &mut self,
+        operator: &mut dyn Operator,
+        delta: f64,
+        iterations: usize,
+    ) -> Result<Option<ContactSolution>, ContactError> {
+        if (self.load - self.target).abs() > LOAD_TOLERANCE * self.target {
+            // Round-off in many small steps moved the load: restore it exactly.
+            rescale_to_load(&mut self.p, self.cap, self.target, &self.g);
+            self.recompute(operator);
+            return Ok(None);
+        }
+        if !self.fresh {
+            // Converged on the updated displacement: confirm on a fresh one.
+            self.recompute(operator);
+            return Ok(None);
+        }
+        check_edges(&self.grid, &self.p, self.target)?;
+        Ok(Some(ContactSolution {
+            pressure: std::mem::take(&mut self.p),
+            displacement: std::mem::take(&mut self.u),
+            approach_m: delta,
+            iterations,
+            operator_applies: self.applies,
+            residual: self.residual,
+        }))
     }
 
-    /// Area of the cells at the cap (p = Y), m^2.
-    pub fn plastic_area_m2(&self, grid: &Grid, yield_pressure_pa: f64) -> f64 {
-        let capped = self
-            .pressure
-            .iter()
-            .filter(|&&p| p >= yield_pressure_pa)
-            .count();
-        capped as f64 * grid.cell_area()
+    /// `u = K p`, from scratch.
+    fn recompute(&mut self, operator: &mut dyn Operator) {
+        operator.apply(&self.p, &mut self.u);
+        self.applies += 1;
+        self.fresh = true;
+    }
+
+    /// The preconditioned gap `z = M^-1 g` over the free cells (`z = g` without one), then
+    /// the conjugate direction over the free cells, projected to sum to zero there, so a
+    /// step keeps the load. (`g` sums to zero by the choice of delta, up to round-off.)
+    /// Returns `g.t`, positive when the direction descends.
+    fn direction(&mut self, operator: &mut dyn Operator) -> f64 {
+        let n_free = sum(&self.free);
+        let t_old_sum = dot(&self.free, &self.t);
+        let (rho, z_sum) = match operator.preconditioner() {
+            Some(inverse) => {
+                inverse.apply(&self.r, &mut self.z);
+                (dot(&self.r, &self.z), dot(&self.free, &self.z))
+            }
+            None => (dot(&self.r, &self.r), sum(&self.r)),
+        };
+        let beta = if self.restart || self.rho_old == 0.0 {
+            0.0
+        } else {
+            rho / self.rho_old
+        };
+        self.rho_old = rho;
+        let t_mean = if n_free > 0.0 {
+            (z_sum + beta * t_old_sum) / n_free
+        } else {
+            0.0
+        };
+        let source = if self.preconditioned {
+            &self.z
+        } else {
+            &self.g
+        };
+        for ((ti, &si), &fi) in self.t.iter_mut().zip(source).zip(&self.free) {
+            *ti = fi * (si + beta * *ti - t_mean);
+        }
+        dot(&self.g, &self.t)
+    }
+
+    /// The free cells cannot move: at most one is free (a load-preserving step over one cell
+    /// is zero), nearly every loaded cell at the cap. The re-entry rule alone then stalls
+    /// (no step length yet) or cycles (the rescale to the load sends the re-entered cells
+    /// back to the cap), as the softening-disc cases of `tests/stability.rs` do. Step
+    /// instead along the gap over the free and the wrongly bounded cells; if there is no
+    /// such direction, start again from the uniform pressure.
+    fn steepest_descent(&mut self, operator: &mut dyn Operator) {
+        let stepped = violator_step(
+            operator,
+            &mut self.p,
+            &self.g,
+            &mut self.t,
+            &mut self.r,
+            self.cap,
+            &mut self.applies,
+        );
+        if !stepped {
+            let uniform = self.target / self.p.len() as f64;
+            self.p.fill(uniform);
+        }
+        rescale_to_load(&mut self.p, self.cap, self.target, &self.g);
+        self.recompute(operator);
+        self.restart = true;
+    }
+
+    /// Applies the operator to the direction (`r = K t`) and returns the exact line search
+    /// `g.t / t.Kt` (the last positive one when `t.Kt` is not positive). Also sets the
+    /// re-entry rate.
+    fn step_length(&mut self, operator: &mut dyn Operator, num: f64) -> f64 {
+        operator.apply(&self.t, &mut self.r);
+        self.applies += 1;
+        let den = dot(&self.t, &self.r);
+        let tau = if den > 0.0 { num / den } else { self.tau_last };
+        if tau > 0.0 {
+            self.tau_last = tau;
+        }
+        // A preconditioned direction is not made of gaps, so its step length is no
+        // pressure per gap; the direction's own compliance t.t / t.Kt is, and matches
+        // Polonsky-Keer's rate when t is the gap.
+        // A direction without a positive t.Kt (only the non-symmetric coupled operator can
+        // give one; no direction at all took the steepest-descent branch) keeps the last
+        // rate: a preconditioned step length has other units and would stall re-entry.
+        let rate = if !self.preconditioned {
+            tau
+        } else if den > 0.0 {
+            dot(&self.t, &self.t) / den
+        } else {
+            self.entry_rate
+        };
+        if rate > 0.0 {
+            self.entry_rate = rate;
+        }
+        tau
+    }
+
+    /// Step, truncation at the bounds, re-entry of wrongly bounded cells; `u` follows the
+    /// step and is recomputed if any bound changed, after the load is restored.
+    fn advance(&mut self, operator: &mut dyn Operator, tau: f64) {
+        let (cap, rate) = (self.cap, self.entry_rate);
+        let (p, u) = (&mut self.p[..], &mut self.u[..]);
+        let (t, r, g) = (&self.t[..], &self.r[..], &self.g[..]);
+        let (mut bounds_hit, mut entered) = (false, false);
+        for i in 0..p.len() {
+            let pi = &mut p[i];
+            if *pi > 0.0 && *pi < cap {
+                *pi -= tau * t[i];
+                if *pi <= 0.0 {
+                    *pi = 0.0;
+                    bounds_hit = true;
+                } else if *pi >= cap {
+                    *pi = cap;
+                    bounds_hit = true;
+                }
+            } else if *pi <= 0.0 && g[i] < 0.0 {
+                *pi = (-rate * g[i]).min(cap);
+                entered = true;
+            } else if *pi >= cap && g[i] > 0.0 {
+                *pi = (cap - rate * g[i]).max(0.0);
+                entered = true;
+            }
+            u[i] -= tau * r[i];
+        }
+        if bounds_hit || entered {
+            rescale_to_load(&mut self.p, cap, self.target, &self.g);
+            self.recompute(operator);
+        }
+        self.fresh = bounds_hit || entered;
+        self.restart = entered;
     }
 }
 
 /// Dot product with four independent accumulators: a single running sum is a serial chain
-/// of additions (and was kept on the stack), which profiling showed as a third of the
-/// solver's own time at N = 256.
+/// of additions (kept on the stack), a third of the solver's own time at N = 256 in a profile of
+/// `tribosim bench contact`.
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     let mut acc = [0.0; 4];
     let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
@@ -147,31 +434,6 @@ fn sum(a: &[f64]) -> f64 {
         }
     }
     acc.iter().sum::<f64>() + tail
-}
-
-/// `delta = mean of u + h` over the free cells, or over all loaded cells when every loaded
-/// cell sits at the cap.
-pub(crate) fn approach(
-    pressure: &[f64],
-    displacement: &[f64],
-    separation: &[f64],
-    cap: f64,
-) -> f64 {
-    let mut free = (0.0, 0usize);
-    let mut loaded = (0.0, 0usize);
-    for ((&p, &u), &h) in pressure.iter().zip(displacement).zip(separation) {
-        if p > 0.0 {
-            loaded = (loaded.0 + u + h, loaded.1 + 1);
-            if p < cap {
-                free = (free.0 + u + h, free.1 + 1);
-            }
-        }
-    }
-    if free.1 > 0 {
-        free.0 / free.1 as f64
-    } else {
-        loaded.0 / loaded.1.max(1) as f64
-    }
 }
 
 /// Scales the cells below the cap so the total is `target`; cells pushed over the cap are
@@ -227,242 +489,6 @@ fn grow_contact(pressure: &mut [f64], cap: f64, mut deficit: f64, raw_gap: &[f64
         pressure[i] = deficit.min(cap);
         deficit -= pressure[i];
     }
-}
-
-fn validate(problem: &ContactProblem, options: &SolverOptions) -> Result<(), ContactError> {
-    let invalid = |m: String| Err(ContactError::InvalidProblem(m));
-    if problem.separation.len() != problem.grid.len() {
-        return invalid(format!(
-            "separation has {} values for {} cells",
-            problem.separation.len(),
-            problem.grid.len()
-        ));
-    }
-    if let Some(i) = problem.separation.iter().position(|h| !h.is_finite()) {
-        return invalid(format!("separation[{i}] is not finite"));
-    }
-    if !(problem.load_n.is_finite() && problem.load_n > 0.0) {
-        return invalid(format!("load {} N: must be finite and > 0", problem.load_n));
-    }
-    if problem.yield_pressure_pa.is_nan() || problem.yield_pressure_pa <= 0.0 {
-        return invalid(format!(
-            "yield pressure {} Pa: must be > 0 (infinite for no cap)",
-            problem.yield_pressure_pa
-        ));
-    }
-    if !(options.tolerance > 0.0 && options.tolerance.is_finite()) {
-        return invalid(format!("tolerance {}: must be > 0", options.tolerance));
-    }
-    Ok(())
-}
-
-/// Solves one contact problem on `operator`, optionally warm-started from `warm_start`
-/// (e.g. the previous wear cycle's pressure). Fails with a named [`ContactError`], never
-/// silently: an impossible load, a contact reaching the domain edge, or no convergence.
-pub fn solve(
-    operator: &mut dyn Operator,
-    problem: &ContactProblem,
-    options: &SolverOptions,
-    warm_start: Option<&[f64]>,
-) -> Result<ContactSolution, ContactError> {
-    validate(problem, options)?;
-    let grid = problem.grid;
-    let (n, h, cap) = (grid.len(), problem.separation, problem.yield_pressure_pa);
-    let target = problem.load_n / grid.cell_area();
-    if target >= cap * n as f64 {
-        return Err(ContactError::LoadExceedsCapacity {
-            load_n: problem.load_n,
-            capacity_n: cap * grid.area(),
-        });
-    }
-
-    let mut p = match warm_start {
-        Some(w) if w.len() == n && w.iter().any(|&v| v > 0.0) => {
-            w.iter().map(|&v| v.clamp(0.0, cap)).collect()
-        }
-        _ => vec![target / n as f64; n],
-    };
-    // Before the first apply the displacement is unknown: order by the separation alone.
-    rescale_to_load(&mut p, cap, target, h);
-    let mut u = vec![0.0; n];
-    operator.apply(&p, &mut u);
-    let mut applies = 1;
-    let mut fresh = true;
-
-    let (mut t, mut r, mut g) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    // 1 on the free cells, 0 elsewhere: the sums over the free set become dot products,
-    // with no branch and no accumulator chained through memory.
-    let mut free = vec![0.0; n];
-    let preconditioned = operator.preconditioner().is_some();
-    let mut z = if preconditioned {
-        vec![0.0; n]
-    } else {
-        Vec::new()
-    };
-    // Pressure per unit of gap given to a re-entering cell (Polonsky-Keer: the last step
-    // length, for a direction made of gaps).
-    let mut entry_rate = 0.0;
-    let mut rho_old = 0.0;
-    let mut restart = true;
-    let mut tau_last = 0.0;
-    let mut residual = f64::INFINITY;
-    let is_free = |v: f64| v > 0.0 && v < cap;
-
-    for iteration in 1..=options.max_iterations {
-        let delta = approach(&p, &u, h, cap);
-        // The gap, the free mask, the gap on the free cells (into r, free until the apply
-        // below) and the worst complementarity violation.
-        let (mut worst, mut u_max, mut load) = (0.0f64, 0.0f64, 0.0);
-        for i in 0..n {
-            let (pi, gi) = (p[i], u[i] + h[i] - delta);
-            g[i] = gi;
-            u_max = u_max.max(u[i].abs());
-            load += pi;
-            let violation = if pi <= 0.0 {
-                (-gi).max(0.0)
-            } else if pi >= cap {
-                gi.max(0.0)
-            } else {
-                gi.abs()
-            };
-            worst = worst.max(violation);
-            free[i] = if is_free(pi) { 1.0 } else { 0.0 };
-            r[i] = free[i] * gi;
-        }
-        residual = worst / u_max;
-        if residual <= options.tolerance {
-            if (load - target).abs() > LOAD_TOLERANCE * target {
-                // Round-off in many small steps moved the load: restore it exactly.
-                rescale_to_load(&mut p, cap, target, &g);
-                operator.apply(&p, &mut u);
-                applies += 1;
-                fresh = true;
-                continue;
-            }
-            if fresh {
-                check_edges(&grid, &p, target)?;
-                return Ok(ContactSolution {
-                    pressure: p,
-                    displacement: u,
-                    approach_m: delta,
-                    iterations: iteration - 1,
-                    operator_applies: applies,
-                    residual,
-                });
-            }
-            // Converged on the updated displacement: confirm on a fresh one.
-            operator.apply(&p, &mut u);
-            applies += 1;
-            fresh = true;
-            continue;
-        }
-
-        // The preconditioned gap z = M^-1 g over the free cells (z = g without one), then
-        // the conjugate direction over the free cells, projected to sum to zero there, so
-        // a step keeps the load. (g sums to zero by the choice of delta, up to round-off.)
-        let n_free = sum(&free);
-        let t_old_sum = dot(&free, &t);
-        let (rho, z_sum) = match operator.preconditioner() {
-            Some(inverse) => {
-                inverse.apply(&r, &mut z);
-                (dot(&r, &z), dot(&free, &z))
-            }
-            None => (dot(&r, &r), sum(&r)),
-        };
-        let beta = if restart || rho_old == 0.0 {
-            0.0
-        } else {
-            rho / rho_old
-        };
-        rho_old = rho;
-        let t_mean = if n_free > 0.0 {
-            (z_sum + beta * t_old_sum) / n_free
-        } else {
-            0.0
-        };
-        let source = if preconditioned { &z } else { &g };
-        for ((ti, &si), &fi) in t.iter_mut().zip(source).zip(&free) {
-            *ti = fi * (si + beta * *ti - t_mean);
-        }
-        let num = dot(&g, &t);
-        if num <= 0.0 {
-            // The free cells cannot move: at most one is free (a load-preserving step over
-            // one cell is zero), nearly every loaded cell at the cap. The re-entry rule alone
-            // then stalls (no step length yet) or cycles (the rescale to the load sends the
-            // re-entered cells back to the cap), as a softening disc's warm starts showed.
-            // Step instead along the gap over the free and the wrongly bounded cells; if
-            // there is no such direction, start again from the uniform pressure.
-            if !violator_step(operator, &mut p, &g, &mut t, &mut r, cap, &mut applies) {
-                p.fill(target / n as f64);
-            }
-            rescale_to_load(&mut p, cap, target, &g);
-            operator.apply(&p, &mut u);
-            applies += 1;
-            fresh = true;
-            restart = true;
-            continue;
-        }
-
-        operator.apply(&t, &mut r);
-        applies += 1;
-        let den = dot(&t, &r);
-        let tau = if den > 0.0 { num / den } else { tau_last };
-        if tau > 0.0 {
-            tau_last = tau;
-        }
-        // A preconditioned direction is not made of gaps, so its step length is no
-        // pressure per gap; the direction's own compliance t.t / t.Kt is, and matches
-        // Polonsky-Keer's rate when t is the gap.
-        // A direction without a positive t.Kt (only the non-symmetric coupled operator can
-        // give one; no direction at all took the steepest-descent branch above) keeps the
-        // last rate: a preconditioned step length has other units and would stall re-entry.
-        let rate = if !preconditioned {
-            tau
-        } else if den > 0.0 {
-            dot(&t, &t) / den
-        } else {
-            entry_rate
-        };
-        if rate > 0.0 {
-            entry_rate = rate;
-        }
-
-        // Step, truncation at the bounds, re-entry of wrongly bounded cells; u follows the
-        // step and is recomputed below if any bound changed.
-        let (mut bounds_hit, mut entered) = (false, false);
-        for i in 0..n {
-            let pi = &mut p[i];
-            if is_free(*pi) {
-                *pi -= tau * t[i];
-                if *pi <= 0.0 {
-                    *pi = 0.0;
-                    bounds_hit = true;
-                } else if *pi >= cap {
-                    *pi = cap;
-                    bounds_hit = true;
-                }
-            } else if *pi <= 0.0 && g[i] < 0.0 {
-                *pi = (-entry_rate * g[i]).min(cap);
-                entered = true;
-            } else if *pi >= cap && g[i] > 0.0 {
-                *pi = (cap - entry_rate * g[i]).max(0.0);
-                entered = true;
-            }
-            u[i] -= tau * r[i];
-        }
-        if bounds_hit || entered {
-            rescale_to_load(&mut p, cap, target, &g);
-            operator.apply(&p, &mut u);
-            applies += 1;
-        }
-        fresh = bounds_hit || entered;
-        restart = entered;
-    }
-    Err(ContactError::NotConverged {
-        iterations: options.max_iterations,
-        residual,
-        tolerance: options.tolerance,
-    })
 }
 
 /// Projected steepest descent over the cells that may move: the free ones and those on a

@@ -1,53 +1,54 @@
-//! From JSON to a validated [`Scene`], with every problem located by path.
-//!
-//! Why the field-by-field retry: serde stops at the first error, and errors from deserialising
-//! a `serde_json::Value` carry no location at all (`serde_path_to_error` is not a dependency).
-//! So when the whole document fails, each section field is deserialised alone. Every section
-//! field has a default, so a one-field object deserialises exactly when that field is
-//! well-formed; its failure is reported at its dotted path with serde's own message ("invalid
-//! type: string \"5\", expected f64", "unknown field `lod_n`, expected one of `load_n`, ..."),
-//! which names the expected type and, for typos, the valid names. The well-formed fields are
-//! then deserialised and range-checked, so type and range problems come back together.
+//! From JSON to a [`Scene`] whose fields are each within range, with every problem located
+//! by path: presets resolved, the document deserialised field by field where it fails
+//! ([`super::located`]), defaults filled, the ranges checked ([`super::validate`]) and any
+//! further checks of the caller run.
 
-use serde::Deserialize;
-use serde::de::DeserializeOwned;
-use serde_json::{Map, Value};
+use serde_json::Value;
 
-use super::{
-    Ball, Corrosion, DEFAULT_ARCHARD_K, Disc, FieldError, Numerics, Scene, SceneErrors,
-    TestConditions, Wear, preset, validate,
-};
-
-/// The top-level fields of a scene, in the contract's order.
-const SECTIONS: [&str; 7] = [
-    "name",
-    "ball",
-    "disc",
-    "test",
-    "wear",
-    "corrosion",
-    "numerics",
-];
+use super::located::deserialize_located;
+use super::validate;
+use super::{DEFAULT_ARCHARD_K, FieldError, Scene, SceneErrors, preset};
 
 /// Parses scene JSON text; malformed JSON is a single error with an empty path whose message
-/// carries serde_json's line and column.
+/// carries serde_json's line and column. See [`parse_scene`].
 pub fn parse_scene_str(text: &str) -> Result<Scene, SceneErrors> {
+    parse_scene_str_with(text, |_| Vec::new())
+}
+
+/// [`parse_scene_str`] with the caller's further checks, as [`parse_scene_with`].
+pub fn parse_scene_str_with(
+    text: &str,
+    further: impl FnOnce(&Scene) -> Vec<FieldError>,
+) -> Result<Scene, SceneErrors> {
     let json: Value = serde_json::from_str(text)
         .map_err(|e| SceneErrors(vec![FieldError::new("", format!("not valid JSON: {e}"))]))?;
-    parse_scene(&json)
+    parse_scene_with(&json, further)
 }
 
 /// Parses a scene: resolves `{"preset": ..., "overrides": ...}`, fills every default and
-/// validates, returning all problems at once. With a preset, paths start with `overrides.`,
-/// which is where the user's text is.
+/// checks each field against its own range, returning all problems at once. With a preset,
+/// paths start with `overrides.`, which is where the user's text is. Whether the simulation
+/// can run the scene is not judged here: `simulation::parse_scene` adds that.
 pub fn parse_scene(json: &Value) -> Result<Scene, SceneErrors> {
+    parse_scene_with(json, |_| Vec::new())
+}
+
+/// [`parse_scene`] with the caller's `further` checks, run on the scene once each of its
+/// fields is within its own range (they may then combine fields freely) and located in the
+/// document like the others.
+pub fn parse_scene_with(
+    json: &Value,
+    further: impl FnOnce(&Scene) -> Vec<FieldError>,
+) -> Result<Scene, SceneErrors> {
     let (document, prefix) = preset::resolve(json)?;
     let mut errors = Vec::new();
     if let Some(mut scene) = deserialize_located(&document, &mut errors) {
         if scene.wear.archard_k.is_none() && scene.wear.archard_calibration.is_none() {
             scene.wear.archard_k = Some(DEFAULT_ARCHARD_K);
         }
-        errors.extend(validate::check(&scene));
+        let own = validate::check(&scene);
+        let combined = if own.is_empty() { further(&scene) } else { own };
+        errors.extend(combined);
         if errors.is_empty() {
             return Ok(scene);
         }
@@ -64,181 +65,9 @@ pub fn parse_scene(json: &Value) -> Result<Scene, SceneErrors> {
     Err(SceneErrors(errors))
 }
 
-/// Deserialises `document`; on failure records each ill-formed field and returns the scene
-/// built from the well-formed ones (or `None` if not even that is possible).
-fn deserialize_located(document: &Value, errors: &mut Vec<FieldError>) -> Option<Scene> {
-    let Some(top) = document.as_object() else {
-        errors.push(FieldError::new(
-            "",
-            format!("a scene must be a JSON object, got {document}"),
-        ));
-        return None;
-    };
-    let top = drop_non_objects(top, errors);
-    if errors.is_empty() {
-        if let Ok(scene) = Scene::deserialize(&Value::Object(top.clone())) {
-            return Some(scene);
-        }
-    }
-    let mut kept = Map::new();
-    for (key, value) in &top {
-        let field = match key.as_str() {
-            "name" => whole::<String>(key, value, errors),
-            "ball" => by_field::<Ball>(key, value, errors),
-            "disc" => by_field::<Disc>(key, value, errors),
-            "test" => by_field::<TestConditions>(key, value, errors),
-            "wear" => by_field::<Wear>(key, value, errors),
-            "corrosion" => by_field::<Option<Corrosion>>(key, value, errors),
-            "numerics" => by_field::<Numerics>(key, value, errors),
-            _ => {
-                let expected: Vec<String> = SECTIONS.iter().map(|s| format!("`{s}`")).collect();
-                errors.push(FieldError::new(
-                    key.as_str(),
-                    format!(
-                        "unknown field `{key}`, expected one of {}",
-                        expected.join(", ")
-                    ),
-                ));
-                None
-            }
-        };
-        if let Some(field) = field {
-            kept.insert(key.clone(), field);
-        }
-    }
-    match Scene::deserialize(&Value::Object(kept)) {
-        Ok(scene) => Some(scene),
-        Err(e) => {
-            errors.push(FieldError::new("", e.to_string()));
-            None
-        }
-    }
-}
-
-/// `top` without the sections (and `wear.archard_calibration`) that are not objects, each
-/// recorded as an error. Serde's derived structs also accept a JSON array of the fields in
-/// declaration order, so `"ball": [3]` would silently set the radius; the contract's shape is
-/// an object, and this keeps it so.
-fn drop_non_objects(top: &Map<String, Value>, errors: &mut Vec<FieldError>) -> Map<String, Value> {
-    let mut kept = top.clone();
-    for (key, value) in top {
-        let optional = key == "corrosion";
-        let is_section = SECTIONS.contains(&key.as_str()) && key != "name";
-        if is_section && !(value.is_object() || (optional && value.is_null())) {
-            errors.push(FieldError::new(
-                key.as_str(),
-                format!("must be an object of `{key}` fields, got {value}"),
-            ));
-            kept.remove(key);
-        }
-    }
-    if let Some(Value::Object(wear)) = kept.get_mut("wear") {
-        if let Some(calibration) = wear.get("archard_calibration") {
-            if !(calibration.is_object() || calibration.is_null()) {
-                errors.push(FieldError::new(
-                    "wear.archard_calibration",
-                    format!(
-                        "must be an object {{\"time_s\": ..., \"wear_volume_mm3\": ...}}, \
-                         got {calibration}"
-                    ),
-                ));
-                wear.remove("archard_calibration");
-            }
-        }
-    }
-    kept
-}
-
-/// `value` if it deserialises as a `T`, else an error at `path`.
-fn whole<T: DeserializeOwned>(
-    path: &str,
-    value: &Value,
-    errors: &mut Vec<FieldError>,
-) -> Option<Value> {
-    match T::deserialize(value) {
-        Ok(_) => Some(value.clone()),
-        Err(e) => {
-            errors.push(FieldError::new(path, e.to_string()));
-            None
-        }
-    }
-}
-
-/// The fields of the section object `value` that deserialise alone as a `T`; an error at
-/// `path.field` for each one that does not.
-fn by_field<T: DeserializeOwned>(
-    path: &str,
-    value: &Value,
-    errors: &mut Vec<FieldError>,
-) -> Option<Value> {
-    let Value::Object(object) = value else {
-        return whole::<T>(path, value, errors);
-    };
-    let mut kept = Map::new();
-    for (key, field) in object {
-        let alone = Value::Object(Map::from_iter([(key.clone(), field.clone())]));
-        match T::deserialize(&alone) {
-            Ok(_) => {
-                kept.insert(key.clone(), field.clone());
-            }
-            Err(e) => {
-                let field_path = format!("{path}.{key}");
-                let refined = if field_path == "disc.hardness_table" {
-                    table_errors(&field_path, field)
-                } else {
-                    Vec::new()
-                };
-                if refined.is_empty() {
-                    let hint = hint(&field_path).unwrap_or_default();
-                    errors.push(FieldError::new(field_path, format!("{e}{hint}")));
-                } else {
-                    errors.extend(refined);
-                }
-            }
-        }
-    }
-    Some(Value::Object(kept))
-}
-
-/// Element-level type errors in a hardness table, so a bad cell is named by its indices
-/// rather than the whole table. Empty when the problem is not in an element.
-fn table_errors(path: &str, value: &Value) -> Vec<FieldError> {
-    let Some(rows) = value.as_array() else {
-        return Vec::new();
-    };
-    let mut errors = Vec::new();
-    for (i, row) in rows.iter().enumerate() {
-        match row.as_array() {
-            Some(pair) if pair.len() == 2 => {
-                for (j, cell) in pair.iter().enumerate() {
-                    if !cell.is_number() {
-                        errors.push(FieldError::new(
-                            format!("{path}[{i}][{j}]"),
-                            format!("must be a number, got {cell}"),
-                        ));
-                    }
-                }
-            }
-            _ => errors.push(FieldError::new(
-                format!("{path}[{i}]"),
-                format!("must be a [cycles, hardness_mpa] pair, got {row}"),
-            )),
-        }
-    }
-    errors
-}
-
-/// The allowed range, for fields whose serde type error would not say it.
-fn hint(path: &str) -> Option<&'static str> {
-    match path {
-        "test.cycles" => Some("; must be a whole number in 1..=1000000"),
-        "numerics.grid" => Some("; must be \"auto\" or a whole number of cells in 8..=2048"),
-        _ => None,
-    }
-}
-
 #[cfg(test)]
 mod tests {
+    use super::super::located::SECTIONS;
     use super::super::{
         AnodicArea, ArchardCalibration, CycleStep, DomainSize, GridSize, Switch, presets,
     };

@@ -22,7 +22,8 @@ use super::error::ApiError;
 use super::events;
 use super::export;
 use super::jobs::{Deletion, JobStatus, SubmitError};
-use crate::scene::{parse_scene, presets};
+use crate::scene::presets;
+use crate::simulation::parse_scene;
 
 /// The OpenAPI description, served as is.
 pub const OPENAPI_YAML: &str = include_str!("../../openapi.yaml");

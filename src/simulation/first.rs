@@ -54,7 +54,7 @@ pub fn first_contact(scene: &Scene) -> Result<FirstContact, SimulationError> {
         yield_pressure_pa: cap,
     };
     let solution = setup
-        .operators(&grid)
+        .solver(&grid)
         .solve(&problem, &setup.options, None)
         .map_err(|source| SimulationError::Contact { cycle: 1, source })?;
     Ok(FirstContact {

@@ -1,13 +1,17 @@
-//! A simulation run: the scene's setup, the per-cycle loop and its result. Plain
-//! synchronous code; a caller (the command line, the service) drives it through a callback
-//! and a cancel flag.
+//! A simulation run: whether a scene can run ([`check`], [`parse_scene`]), its setup and the
+//! sizing rules behind it, the per-cycle loop and its result. Plain synchronous code; a
+//! caller (the command line, the service) drives it through a callback and a cancel flag.
 
+mod electrochemistry;
+mod feasibility;
 mod first;
+mod growth;
 mod result;
 mod run;
 mod setup;
+mod sizing;
 mod stepping;
-mod window;
+mod warm;
 
 use thiserror::Error;
 
@@ -16,22 +20,31 @@ use crate::corrosion::CorrosionError;
 use crate::hardness::HardnessError;
 use crate::scene::SceneErrors;
 
+/// The default cycle-step bound, owned by the scene; here beside [`MAX_STEP`] for the
+/// callers that study the stepping (the benchmarks).
+pub use crate::scene::STEP_CHANGE_BOUND;
+pub use feasibility::{check, parse_scene, parse_scene_str};
 pub use first::{FirstContact, first_contact};
-pub use result::{CycleRecord, ModelChoice, PressureMap, Profile, SimulationResult, Summary};
-pub use run::run;
-pub use setup::{
-    CELLS_PER_CONTACT_RADIUS, COUPLING_SENSITIVITY, ContactOperators, DOMAIN_PER_CONTACT_RADIUS,
-    Setup,
+pub use result::{
+    CycleRecord, Model, ModelChoice, PressureMap, Profile, SimulationResult, Summary,
 };
-pub use stepping::{MAX_STEP, STEP_CHANGE_BOUND};
+pub use run::run;
+pub use setup::{COUPLING_SENSITIVITY, Setup};
+pub use sizing::{CELLS_PER_CONTACT_RADIUS, DOMAIN_PER_CONTACT_RADIUS};
+pub use stepping::MAX_STEP;
 
 /// Why a run stopped without a result.
 #[derive(Debug, Error)]
 pub enum SimulationError {
-    /// The scene has invalid fields (all of them listed).
+    /// The scene has invalid fields, or describes a contact the simulation cannot run (all
+    /// of the problems listed).
     #[error("invalid scene: {0}")]
     Scene(#[from] SceneErrors),
-    /// The contact could not be solved at this cycle (0: while setting up).
+    /// The contact core refused a material or the grid built from a scene that passed its
+    /// checks: the scene's checks and the core disagree, a defect rather than bad input.
+    #[error("setting up the contact: {0} (the scene passed its checks, so this is a defect)")]
+    Setup(#[source] ContactError),
+    /// The contact could not be solved at this cycle.
     #[error("cycle {cycle}: {source}")]
     Contact {
         /// The cycle being solved.

@@ -3,7 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::contact::{Grid, Window};
 use crate::scene::Scene;
+use crate::wear::Groove;
 
 /// A whole run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -25,12 +27,37 @@ pub struct SimulationResult {
 /// One model switched on or off, with the reason in words and numbers.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ModelChoice {
-    /// `plasticity`, `coupling`, `grid`, `cycle_step`, ...
-    pub name: String,
+    /// Which model or numerical choice.
+    pub name: Model,
     /// Whether the run uses it.
     pub active: bool,
     /// Why, e.g. `"p0 1221 MPa > Y 883 MPa"`.
     pub reason: String,
+}
+
+/// The physical models and numerical choices a run reports on, named in the JSON as
+/// `plasticity`, `coupling`, `grid`, ...
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Model {
+    /// The elastic-perfectly-plastic pressure cap (eq. 12).
+    Plasticity,
+    /// The friction coupling of normal and tangential tractions (eq. 7).
+    Coupling,
+    /// The first grid and domain.
+    Grid,
+    /// The hardness law (Fig. 9).
+    WorkHardening,
+    /// A growth of the auto domain during the run (one entry per growth).
+    DomainGrowth,
+    /// Cycle stepping: one solve standing for several cycles.
+    CycleStep,
+    /// Solving on a window around the contact.
+    SolveWindow,
+    /// Archard wear (eqs. 14-16).
+    Archard,
+    /// Wear-accelerated corrosion (eq. 18 and Faraday).
+    Corrosion,
 }
 
 /// The state after one solved cycle.
@@ -78,6 +105,17 @@ pub struct Profile {
     pub depth_um: Vec<f64>,
 }
 
+impl Profile {
+    /// The depth of `groove` on `grid` at `cycle`.
+    pub fn of(cycle: u64, grid: &Grid, groove: &Groove) -> Self {
+        Self {
+            cycle,
+            y_um: (0..grid.ny).map(|iy| grid.y(iy) * 1e6).collect(),
+            depth_um: groove.depth_m().iter().map(|d| d * 1e6).collect(),
+        }
+    }
+}
+
 /// The contact pressure over the grid at one cycle.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PressureMap {
@@ -89,6 +127,33 @@ pub struct PressureMap {
     pub y_um: Vec<f64>,
     /// Pressure, MPa, indexed `[iy][ix]`.
     pub pressure_mpa: Vec<Vec<f64>>,
+}
+
+impl PressureMap {
+    /// `pressure` (Pa, on `grid`) over the contact's bounding box plus two cells, in MPa;
+    /// empty when no cell is loaded.
+    pub fn of(cycle: u64, grid: &Grid, pressure: &[f64]) -> Self {
+        let Some(shown) = Window::loaded(grid, pressure).map(|w| w.padded(2, grid)) else {
+            return Self {
+                cycle,
+                x_um: Vec::new(),
+                y_um: Vec::new(),
+                pressure_mpa: Vec::new(),
+            };
+        };
+        let row = |iy: usize| {
+            shown
+                .columns()
+                .map(|ix| pressure[iy * grid.nx + ix] / 1e6)
+                .collect()
+        };
+        Self {
+            cycle,
+            x_um: shown.columns().map(|ix| grid.x(ix) * 1e6).collect(),
+            y_um: shown.rows().map(|iy| grid.y(iy) * 1e6).collect(),
+            pressure_mpa: shown.rows().map(row).collect(),
+        }
+    }
 }
 
 /// Totals of a run.
@@ -109,4 +174,32 @@ pub struct Summary {
     pub solves: usize,
     /// Solver iterations over all solves.
     pub iterations: usize,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn models_are_named_in_the_json_as_before() {
+        let names = [
+            (Model::Plasticity, "plasticity"),
+            (Model::Coupling, "coupling"),
+            (Model::Grid, "grid"),
+            (Model::WorkHardening, "work_hardening"),
+            (Model::DomainGrowth, "domain_growth"),
+            (Model::CycleStep, "cycle_step"),
+            (Model::SolveWindow, "solve_window"),
+            (Model::Archard, "archard"),
+            (Model::Corrosion, "corrosion"),
+        ];
+        for (model, name) in names {
+            let json = serde_json::to_value(model).expect("serialises");
+            assert_eq!(json, serde_json::json!(name));
+            assert_eq!(
+                serde_json::from_value::<Model>(json).expect("parses"),
+                model
+            );
+        }
+    }
 }

@@ -1,30 +1,37 @@
-//! The cycle loop (paper Fig. 4): solve the contact on the current surface, deepen the groove
-//! by yielding and by Archard wear, estimate the corrosion, record, repeat.
+//! The cycle loop of the paper's Fig. 4. Each solved cycle, in order:
+//!
+//! 1. the hardness of the cycle gives the pressure cap (eq. 12, Section 4.5);
+//! 2. the contact is solved on the current surface (eqs. 2-12, [`crate::contact`]);
+//! 3. where the pressure sits at the cap the disc yields: the groove deepens by the
+//!    remaining interpenetration (eq. 13, [`crate::wear::yield_depth`]);
+//! 4. one pass of Archard wear removes `k / H` times the pressure integrated along the
+//!    sliding direction (eqs. 15-16, [`crate::wear::pass_pressure_integral`]);
+//! 5. the profile update: the groove moves the surface for the next solve (eq. 17,
+//!    [`crate::wear::Groove`]);
+//! 6. the corrosion: the potential during rubbing (eq. 18) and the volume dissolved
+//!    (Faraday), [`super::electrochemistry`];
+//! 7. the record; then the cycles the solve stands for ([`super::stepping`]) wear at the
+//!    same pressure, and an auto domain grows if the contact nears its edge
+//!    ([`super::growth`]).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use crate::contact::{ContactProblem, Grid};
-use crate::scene::{AnodicArea, DomainSize, Scene};
+use crate::contact::{
+    ContactProblem, ContactSolution, ContactSolver, Grid, MARGIN_FRACTION, MIN_MARGIN, Window,
+    WindowedSolver,
+};
+use crate::scene::{DomainSize, Scene};
 use crate::wear::{Groove, pass_pressure_integral, yield_depth};
 
-use super::setup::fft_friendly;
+use super::electrochemistry::{Cell, Reading, Surface};
+use super::growth::{GROW_AT_EDGE_CELLS, GROW_AT_FRACTION, near_edges, widen};
 use super::stepping::Stepper;
-use super::window::{MARGIN_FRACTION, MIN_MARGIN, WindowedSolver};
+use super::warm::WarmStart;
 use super::{
-    CycleRecord, ModelChoice, PressureMap, Profile, Setup, SimulationError, SimulationResult,
-    Summary,
+    CycleRecord, Model, ModelChoice, PressureMap, Profile, Setup, SimulationError,
+    SimulationResult, Summary,
 };
-
-/// The domain grows when pressure reaches this fraction of the half-width from the centre...
-const GROW_AT_FRACTION: f64 = 0.8;
-/// ... or comes within this many cells of the edge, whichever is first: on grids under 20
-/// cells 20% is under two cells, and the contact reached the edge ring (failing the solve)
-/// before the growth saw it.
-const GROW_AT_EDGE_CELLS: f64 = 2.0;
-
-/// Growth factor of the domain side (then rounded up to an FFT-friendly size).
-const GROWTH: f64 = 1.25;
 
 /// Cycles at which the depth profile is kept (paper Figs. 12 and 15 use 10 and 300; Table 3
 /// times at 60 rpm are 10, 60, 300, 1800 and 3600), plus the last cycle.
@@ -41,24 +48,8 @@ pub fn run(
 ) -> Result<SimulationResult, SimulationError> {
     let started = Instant::now();
     let setup = Setup::new(scene)?;
-    let scene = &setup.scene;
-    let corrosion = scene.corrosion.as_ref().map(|c| (c.model(), c));
-    let mut models = setup.models.clone();
-    let mut grid = setup.grid;
-    let mut solver = WindowedSolver::new(&setup, grid);
-    let mut ball = setup.ball_separation(&grid);
-    let mut groove = Groove::new(&grid);
-    let mut stepper = Stepper::new(scene.numerics.cycle_step, scene.numerics.cycle_step_bound);
-    let mut history = WarmStart::default();
-    let (period, track_length) = (scene.cycle_period_s(), scene.track_length_m());
-    let total = scene.test.cycles;
-    let grows = scene.numerics.domain_um == DomainSize::Auto;
-
-    let mut records = Vec::new();
-    let mut profiles = Vec::new();
-    let mut maps = Vec::new();
-    let (mut wac_m3, mut solves, mut iterations, mut max_step) = (0.0, 0usize, 0usize, 1u64);
-    let mut window_fraction_sum = 0.0;
+    let mut state = Run::new(&setup, |grid: &Grid| setup.solver(grid));
+    let total = setup.scene.test.cycles;
     let mut cycle = 1;
     while cycle <= total {
         if cancel.load(Ordering::Relaxed) {
@@ -66,297 +57,308 @@ pub fn run(
                 cycles_done: cycle - 1,
             });
         }
-        let n = cycle as f64;
-        let cap = setup.yield_pressure_pa(n);
-        let separation = groove.separation(&ball, &grid);
-        let problem = ContactProblem {
+        cycle += state.cycle(cycle, on_cycle)?;
+    }
+    Ok(state.finish(started))
+}
+
+/// A run between cycles: the surface, the solver of its grid, and what has been recorded.
+struct Run<'a, F> {
+    setup: &'a Setup,
+    /// Builds the contact solver of a grid (or of a window of it).
+    factory: F,
+    grid: Grid,
+    solver: WindowedSolver<F>,
+    /// The unworn ball's height over `grid`.
+    ball: Vec<f64>,
+    groove: Groove,
+    stepper: Stepper,
+    history: WarmStart,
+    cell: Option<Cell<'a>>,
+    /// Whether the domain may grow (it is left to the simulation).
+    grows: bool,
+    models: Vec<ModelChoice>,
+    records: Vec<CycleRecord>,
+    profiles: Vec<Profile>,
+    maps: Vec<PressureMap>,
+    solves: usize,
+    iterations: usize,
+    max_step: u64,
+    /// Window fractions of the solvers of grids grown out of.
+    window_fraction_sum: f64,
+}
+
+impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
+    fn new(setup: &'a Setup, factory: F) -> Self {
+        let scene = &setup.scene;
+        let grid = setup.grid;
+        Self {
+            setup,
+            factory,
             grid,
+            solver: WindowedSolver::new(grid, factory),
+            ball: setup.ball_separation(&grid),
+            groove: Groove::new(&grid),
+            stepper: Stepper::new(scene.numerics.cycle_step, scene.numerics.cycle_step_bound),
+            history: WarmStart::default(),
+            cell: scene.corrosion.as_ref().map(Cell::new),
+            grows: scene.numerics.domain_um == DomainSize::Auto,
+            models: setup.models.clone(),
+            records: Vec::new(),
+            profiles: Vec::new(),
+            maps: Vec::new(),
+            solves: 0,
+            iterations: 0,
+            max_step: 1,
+            window_fraction_sum: 0.0,
+        }
+    }
+
+    /// One solved cycle and the cycles it stands for; returns how many that is.
+    fn cycle(
+        &mut self,
+        cycle: u64,
+        on_cycle: &mut dyn FnMut(&CycleRecord),
+    ) -> Result<u64, SimulationError> {
+        let setup = self.setup;
+        let n = cycle as f64;
+        // The hardness of this cycle and the cap it gives (eq. 12).
+        let cap = setup.yield_pressure_pa(n);
+        let hardness_pa = setup.hardness.hardness_pa(n);
+        // The contact on the current surface (eqs. 2-12).
+        let (solution, separation) = self.solve_contact(cycle, cap)?;
+        // The groove yielding cuts (eq. 13) and one Archard pass without its k / H
+        // (eqs. 15-16).
+        let plastic = yield_depth(&self.grid, &solution, &separation, cap);
+        let pass = pass_pressure_integral(&self.grid, &solution.pressure);
+        let total = setup.scene.test.cycles;
+        let step = self
+            .stepper
+            .next(cycle, total, plastic.iter().any(|&d| d > 0.0), &pass);
+        self.max_step = self.max_step.max(step);
+        // The profile update (eq. 17): yielding, then the pass at this cycle's hardness.
+        self.groove.deepen(&plastic, 1.0);
+        self.groove.deepen(&pass, setup.archard_k / hardness_pa);
+        // Corrosion (eq. 18, Faraday), the record, then the cycles the solve stands for.
+        let reading = self.corrode(cycle, &solution, hardness_pa)?;
+        self.record(cycle, &solution, cap, reading, on_cycle);
+        self.wear_skipped(cycle, step, &pass, reading.as_ref());
+        self.grow_if_crowded(cycle, solution.pressure);
+        Ok(step)
+    }
+
+    /// The contact on the current surface, warm-started from the last pressures; with the
+    /// separation it was solved on.
+    fn solve_contact(
+        &mut self,
+        cycle: u64,
+        cap: f64,
+    ) -> Result<(ContactSolution, Vec<f64>), SimulationError> {
+        let separation = self.groove.separation(&self.ball, &self.grid);
+        let problem = ContactProblem {
+            grid: self.grid,
             separation: &separation,
-            load_n: scene.load_n(),
+            load_n: self.setup.scene.load_n(),
             yield_pressure_pa: cap,
         };
-        let solution = solver
+        let solution = self
+            .solver
             .solve(
-                &setup,
                 &problem,
-                &setup.options,
-                history.guess(cycle, cap).as_deref(),
-                history.last(),
+                &self.setup.options,
+                self.history.guess(cycle, cap).as_deref(),
             )
             .map_err(|source| SimulationError::Contact { cycle, source })?;
-        solves += 1;
-        iterations += solution.iterations;
+        self.solves += 1;
+        self.iterations += solution.iterations;
+        Ok((solution, separation))
+    }
 
-        let plastic = yield_depth(&grid, &solution, &separation, cap);
-        let is_plastic = plastic.iter().any(|&d| d > 0.0);
-        let pass = pass_pressure_integral(&grid, &solution.pressure);
-        let step = stepper.next(cycle, total, is_plastic, &pass);
-        max_step = max_step.max(step);
-
-        // This cycle: yielding, then one pass of Archard wear at this cycle's hardness.
-        groove.deepen(&plastic, 1.0);
-        groove.deepen(&pass, setup.archard_k / setup.hardness.hardness_pa(n));
-        let contact_area = solution.contact_area_m2(&grid);
-        let anodic = corrosion.as_ref().map(|(_, c)| {
-            let area = match c.anodic_area {
-                AnodicArea::WearTrack => groove.worn_width_m() * track_length,
-                AnodicArea::RealContact => crate::corrosion::real_contact_area_m2(
-                    scene.load_n(),
-                    setup.hardness.hardness_pa(n),
-                ),
-                AnodicArea::BemContact => contact_area,
-            };
-            area * c.anodic_area_factor
-        });
-        let potential = match (&corrosion, anodic) {
-            (Some((model, _)), Some(area)) => {
-                wac_m3 += model.wac_volume_m3(area, period);
-                Some(
-                    model
-                        .potential_v(area)
-                        .map_err(|source| SimulationError::Corrosion { cycle, source })?,
-                )
-            }
-            _ => None,
+    /// Eq. 18 and Faraday for this cycle, when the scene has a corrosion section.
+    fn corrode(
+        &mut self,
+        cycle: u64,
+        solution: &ContactSolution,
+        hardness_pa: f64,
+    ) -> Result<Option<Reading>, SimulationError> {
+        let scene = &self.setup.scene;
+        let Some(cell) = self.cell.as_mut() else {
+            return Ok(None);
         };
+        let surface = Surface {
+            groove: &self.groove,
+            contact_area_m2: solution.contact_area_m2(&self.grid),
+            load_n: scene.load_n(),
+            hardness_pa,
+            track_length_m: scene.track_length_m(),
+        };
+        cell.solved_cycle(&surface, scene.cycle_period_s())
+            .map(Some)
+            .map_err(|source| SimulationError::Corrosion { cycle, source })
+    }
+
+    /// The cycle's record, to the caller and the result; the first pressure map and the
+    /// profiles of the chosen cycles.
+    fn record(
+        &mut self,
+        cycle: u64,
+        solution: &ContactSolution,
+        cap: f64,
+        reading: Option<Reading>,
+        on_cycle: &mut dyn FnMut(&CycleRecord),
+    ) {
+        let (setup, grid) = (self.setup, &self.grid);
+        let n = cycle as f64;
+        let track_length = setup.scene.track_length_m();
         let record = CycleRecord {
             cycle,
-            time_s: n * period,
-            wear_volume_mm3: groove.area_m2() * track_length * 1e9,
-            max_depth_um: groove.max_depth_m() * 1e6,
+            time_s: n * setup.scene.cycle_period_s(),
+            wear_volume_mm3: self.groove.area_m2() * track_length * 1e9,
+            max_depth_um: self.groove.max_depth_m() * 1e6,
             max_pressure_mpa: solution.max_pressure_pa() / 1e6,
-            contact_area_mm2: contact_area * 1e6,
-            plastic_area_mm2: solution.plastic_area_m2(&grid, cap) * 1e6,
+            contact_area_mm2: solution.contact_area_m2(grid) * 1e6,
+            plastic_area_mm2: solution.plastic_area_m2(grid, cap) * 1e6,
             hardness_mpa: setup.hardness.hardness_pa(n) / 1e6,
             approach_um: solution.approach_m * 1e6,
             iterations: solution.iterations,
-            potential_v: potential,
-            anodic_area_mm2: anodic.map(|a| a * 1e6),
-            wac_volume_mm3: potential.map(|_| wac_m3 * 1e9),
+            potential_v: reading.map(|r| r.potential_v),
+            anodic_area_mm2: reading.map(|r| r.anodic_area_m2 * 1e6),
+            wac_volume_mm3: reading.map(|r| r.wac_m3 * 1e9),
         };
         on_cycle(&record);
-        records.push(record);
+        self.records.push(record);
         if cycle == 1 {
-            maps.push(pressure_map(cycle, &grid, &solution.pressure));
+            self.maps
+                .push(PressureMap::of(cycle, grid, &solution.pressure));
         }
-        if PROFILE_CYCLES.contains(&cycle) || cycle == total {
-            profiles.push(profile(cycle, &grid, &groove));
+        if PROFILE_CYCLES.contains(&cycle) || cycle == setup.scene.test.cycles {
+            self.profiles.push(Profile::of(cycle, grid, &self.groove));
         }
+    }
 
-        // The cycles this solve stands for, after the first.
+    /// The cycles this solve stands for after its own wear at its pressure (`pass`) and
+    /// dissolve at its anodic area, each at its own hardness.
+    fn wear_skipped(&mut self, cycle: u64, step: u64, pass: &[f64], reading: Option<&Reading>) {
+        let setup = self.setup;
         let skipped = (cycle + 1..cycle + step)
             .map(|j| setup.archard_k / setup.hardness.hardness_pa(j as f64));
-        groove.deepen(&pass, skipped.sum());
-        if let (Some((model, _)), Some(area)) = (&corrosion, anodic) {
-            wac_m3 += model.wac_volume_m3(area, (step - 1) as f64 * period);
+        self.groove.deepen(pass, skipped.sum());
+        if let (Some(cell), Some(reading)) = (self.cell.as_mut(), reading) {
+            cell.skipped(reading, (step - 1) as f64 * setup.scene.cycle_period_s());
         }
+    }
 
-        let mut pressure = solution.pressure;
-        let crowded = near_edges(&grid, &pressure);
-        if grows && (crowded.0 || crowded.1) {
-            if let Some(wider) = widen(&grid, crowded) {
-                let offset = ((wider.nx - grid.nx) / 2, (wider.ny - grid.ny) / 2);
-                pressure = embed(&pressure, &grid, &wider, offset);
-                groove = groove.widened(offset.1);
-                grid = wider;
-                window_fraction_sum += solver.window_fraction_sum;
-                solver = WindowedSolver::new(&setup, grid);
-                ball = setup.ball_separation(&grid);
-                models.push(ModelChoice {
-                    name: "domain_growth".to_owned(),
-                    active: true,
-                    reason: format!(
-                        "at cycle {cycle} the contact came within {:.0}% (or {GROW_AT_EDGE_CELLS} cells) of the edge: grown to {} x {} cells ({:.1} x {:.1} um)",
-                        100.0 * (1.0 - GROW_AT_FRACTION),
-                        grid.nx,
-                        grid.ny,
-                        grid.nx as f64 * grid.dx * 1e6,
-                        grid.ny as f64 * grid.dy * 1e6
-                    ),
-                });
+    /// Grows an auto domain whose contact came near its edge, carrying the pressure and the
+    /// groove over; keeps the pressure for the next warm start.
+    fn grow_if_crowded(&mut self, cycle: u64, mut pressure: Vec<f64>) {
+        let crowded = near_edges(&self.grid, &pressure);
+        let wider = (self.grows && (crowded.0 || crowded.1))
+            .then(|| widen(&self.grid, crowded))
+            .flatten();
+        if let Some(wider) = wider {
+            let old = Window {
+                x0: (wider.nx - self.grid.nx) / 2,
+                y0: (wider.ny - self.grid.ny) / 2,
+                nx: self.grid.nx,
+                ny: self.grid.ny,
+            };
+            pressure = old.embed(&wider, &pressure);
+            self.groove = self.groove.widened(old.y0);
+            self.grid = wider;
+            self.window_fraction_sum += self.solver.window_fraction_sum();
+            self.solver = WindowedSolver::new(wider, self.factory);
+            self.solver.focus_on(&pressure);
+            self.ball = self.setup.ball_separation(&wider);
+            self.models.push(ModelChoice {
+                name: Model::DomainGrowth,
+                active: true,
+                reason: format!(
+                    "at cycle {cycle} the contact came within {:.0}% (or {GROW_AT_EDGE_CELLS} cells) of the edge: grown to {} x {} cells ({:.1} x {:.1} um)",
+                    100.0 * (1.0 - GROW_AT_FRACTION),
+                    wider.nx,
+                    wider.ny,
+                    wider.nx as f64 * wider.dx * 1e6,
+                    wider.ny as f64 * wider.dy * 1e6
+                ),
+            });
+        }
+        self.history.push(cycle, pressure);
+    }
+
+    /// The result: the last pressure map, the run's own model choices and the totals.
+    fn finish(mut self, started: Instant) -> SimulationResult {
+        let setup = self.setup;
+        let scene = &setup.scene;
+        // The last solved pressure, on the grid as it ended (embedded if the domain grew).
+        if let (Some(record), Some(pressure)) = (self.records.last(), self.history.last()) {
+            if record.cycle != 1 {
+                self.maps
+                    .push(PressureMap::of(record.cycle, &self.grid, pressure));
             }
         }
-        history.push(cycle, pressure);
-        cycle += step;
-    }
-
-    // The last solved pressure, on the grid as it ended (embedded if the domain grew).
-    if let (Some(record), Some(pressure)) = (records.last(), history.last()) {
-        if record.cycle != 1 {
-            maps.push(pressure_map(record.cycle, &grid, pressure));
-        }
-    }
-    models.push(ModelChoice {
-        name: "cycle_step".to_owned(),
-        active: max_step > 1,
-        reason: format!(
-            "{:?}: {solves} solves for {total} cycles, longest step {max_step}; a step keeps the per-pass wear profile within {:.2}% of the solved one",
-            scene.numerics.cycle_step,
-            scene.numerics.cycle_step_bound * 100.0
-        ),
-    });
-    window_fraction_sum += solver.window_fraction_sum;
-    models.push(ModelChoice {
-        name: "solve_window".to_owned(),
-        active: true,
-        reason: format!(
-            "each solve on the last contact's bounding box plus {:.0}% (at least {} cells), checked on the whole grid: on average {:.0}% of the grid's cells",
-            100.0 * MARGIN_FRACTION,
-            MIN_MARGIN,
-            100.0 * window_fraction_sum / solves as f64
-        ),
-    });
-    models.push(ModelChoice {
-        name: "archard".to_owned(),
-        active: setup.archard_k > 0.0,
-        reason: format!("k = {:.4e}", setup.archard_k),
-    });
-    models.push(ModelChoice {
-        name: "corrosion".to_owned(),
-        active: corrosion.is_some(),
-        reason: match &corrosion {
-            Some((_, c)) => format!(
-                "eq. 18 galvanic coupling, anodic area {:?} x {}",
-                c.anodic_area, c.anodic_area_factor
-            ),
-            None => "no corrosion section in the scene".to_owned(),
-        },
-    });
-    let summary = Summary {
-        cycles: total,
-        wear_volume_mm3: groove.area_m2() * track_length * 1e9,
-        max_depth_um: groove.max_depth_m() * 1e6,
-        wac_volume_mm3: corrosion.as_ref().map(|_| wac_m3 * 1e9),
-        wall_s: started.elapsed().as_secs_f64(),
-        solves,
-        iterations,
-    };
-    Ok(SimulationResult {
-        scene: scene.clone(),
-        models,
-        cycles: records,
-        profiles,
-        pressure_maps: maps,
-        summary,
-    })
-}
-
-/// The warm start of the next solve. Between solves the surface changes smoothly (Archard
-/// wear nearly constant per cycle), so a linear extrapolation of the last two pressures in
-/// the cycle number starts much closer than the last pressure alone (clipped to `[0, Y]`);
-/// right after a regrid, with no earlier pressure on the new grid, the last one is used as
-/// it is.
-#[derive(Debug, Default)]
-struct WarmStart {
-    last: Option<(u64, Vec<f64>)>,
-    before: Option<(u64, Vec<f64>)>,
-}
-
-impl WarmStart {
-    /// Records the pressure of `cycle`; a pressure from before a regrid (another size)
-    /// cannot be extrapolated from and is forgotten.
-    fn push(&mut self, cycle: u64, pressure: Vec<f64>) {
-        let size = pressure.len();
-        self.before = self
-            .last
-            .replace((cycle, pressure))
-            .filter(|(_, p)| p.len() == size);
-    }
-
-    fn last(&self) -> Option<&[f64]> {
-        self.last.as_ref().map(|(_, p)| p.as_slice())
-    }
-
-    fn guess(&self, cycle: u64, cap: f64) -> Option<Vec<f64>> {
-        let (c1, p1) = self.last.as_ref()?;
-        let Some((c0, p0)) = self.before.as_ref() else {
-            return Some(p1.clone());
+        self.window_fraction_sum += self.solver.window_fraction_sum();
+        let models = self.run_models();
+        let track_length = scene.track_length_m();
+        let summary = Summary {
+            cycles: scene.test.cycles,
+            wear_volume_mm3: self.groove.area_m2() * track_length * 1e9,
+            max_depth_um: self.groove.max_depth_m() * 1e6,
+            wac_volume_mm3: self.cell.as_ref().map(|c| c.wac_m3() * 1e9),
+            wall_s: started.elapsed().as_secs_f64(),
+            solves: self.solves,
+            iterations: self.iterations,
         };
-        let ratio = (cycle - c1) as f64 / (c1 - c0) as f64;
-        Some(
-            p1.iter()
-                .zip(p0)
-                .map(|(&a, &b)| (a + ratio * (a - b)).clamp(0.0, cap))
-                .collect(),
-        )
-    }
-}
-
-/// Whether loaded cells lie outside `GROW_AT_FRACTION` of the half-width (or within
-/// `GROW_AT_EDGE_CELLS` of the edge), along x and along y. The axes grow separately: as the
-/// groove deepens the contact widens across the track but shortens along it (paper
-/// Fig. 10), so only y keeps growing.
-fn near_edges(grid: &Grid, pressure: &[f64]) -> (bool, bool) {
-    let limit = |n: usize, d: f64| {
-        let half = n as f64 * d / 2.0;
-        (GROW_AT_FRACTION * half).min(half - GROW_AT_EDGE_CELLS * d)
-    };
-    let (limit_x, limit_y) = (limit(grid.nx, grid.dx), limit(grid.ny, grid.dy));
-    let mut near = (false, false);
-    for (i, &p) in pressure.iter().enumerate() {
-        if p > 0.0 {
-            near.0 |= grid.x(i % grid.nx).abs() > limit_x;
-            near.1 |= grid.y(i / grid.nx).abs() > limit_y;
+        SimulationResult {
+            scene: scene.clone(),
+            models,
+            cycles: self.records,
+            profiles: self.profiles,
+            pressure_maps: self.maps,
+            summary,
         }
     }
-    near
-}
 
-/// The grid with the same cells and about `GROWTH` times the side along the crowded axes, or
-/// `None` when neither can grow (the size limit).
-fn widen(grid: &Grid, (grow_x, grow_y): (bool, bool)) -> Option<Grid> {
-    // FFT-friendly sizes are even, so each axis grows by the same cells on both sides.
-    let grown = |n: usize, grow: bool| {
-        if grow {
-            fft_friendly((n as f64 * GROWTH).ceil() as usize).min(Grid::MAX_CELLS_PER_SIDE)
-        } else {
-            n
-        }
-    };
-    let (nx, ny) = (grown(grid.nx, grow_x), grown(grid.ny, grow_y));
-    (nx > grid.nx || ny > grid.ny)
-        .then(|| Grid::new(nx, ny, grid.dx, grid.dy).ok())
-        .flatten()
-}
-
-fn embed(field: &[f64], from: &Grid, to: &Grid, (ox, oy): (usize, usize)) -> Vec<f64> {
-    let mut out = vec![0.0; to.len()];
-    for (iy, row) in field.chunks_exact(from.nx).enumerate() {
-        let start = (iy + oy) * to.nx + ox;
-        out[start..start + from.nx].copy_from_slice(row);
-    }
-    out
-}
-
-fn profile(cycle: u64, grid: &Grid, groove: &Groove) -> Profile {
-    Profile {
-        cycle,
-        y_um: (0..grid.ny).map(|iy| grid.y(iy) * 1e6).collect(),
-        depth_um: groove.depth_m().iter().map(|d| d * 1e6).collect(),
-    }
-}
-
-/// The pressure over the contact's bounding box plus two cells, MPa.
-fn pressure_map(cycle: u64, grid: &Grid, pressure: &[f64]) -> PressureMap {
-    let (mut x0, mut x1, mut y0, mut y1) = (grid.nx, 0, grid.ny, 0);
-    for (i, &p) in pressure.iter().enumerate() {
-        if p > 0.0 {
-            let (ix, iy) = (i % grid.nx, i / grid.nx);
-            (x0, x1, y0, y1) = (x0.min(ix), x1.max(ix), y0.min(iy), y1.max(iy));
-        }
-    }
-    let (x0, y0) = (x0.saturating_sub(2), y0.saturating_sub(2));
-    let (x1, y1) = ((x1 + 2).min(grid.nx - 1), (y1 + 2).min(grid.ny - 1));
-    PressureMap {
-        cycle,
-        x_um: (x0..=x1).map(|ix| grid.x(ix) * 1e6).collect(),
-        y_um: (y0..=y1).map(|iy| grid.y(iy) * 1e6).collect(),
-        pressure_mpa: (y0..=y1)
-            .map(|iy| {
-                (x0..=x1)
-                    .map(|ix| pressure[iy * grid.nx + ix] / 1e6)
-                    .collect()
-            })
-            .collect(),
+    /// The setup's model choices and the run's: domain growths, then the cycle step, the
+    /// solve window, Archard wear and corrosion.
+    fn run_models(&mut self) -> Vec<ModelChoice> {
+        let setup = self.setup;
+        let numerics = &setup.scene.numerics;
+        let mut models = std::mem::take(&mut self.models);
+        models.push(ModelChoice {
+            name: Model::CycleStep,
+            active: self.max_step > 1,
+            reason: format!(
+                "{:?}: {} solves for {} cycles, longest step {}; a step keeps the per-pass wear profile within {:.2}% of the solved one",
+                numerics.cycle_step,
+                self.solves,
+                setup.scene.test.cycles,
+                self.max_step,
+                numerics.cycle_step_bound * 100.0
+            ),
+        });
+        models.push(ModelChoice {
+            name: Model::SolveWindow,
+            active: true,
+            reason: format!(
+                "each solve on the last contact's bounding box plus {:.0}% (at least {} cells), checked on the whole grid: on average {:.0}% of the grid's cells",
+                100.0 * MARGIN_FRACTION,
+                MIN_MARGIN,
+                100.0 * self.window_fraction_sum / self.solves as f64
+            ),
+        });
+        models.push(ModelChoice {
+            name: Model::Archard,
+            active: setup.archard_k > 0.0,
+            reason: format!("k = {:.4e}", setup.archard_k),
+        });
+        models.push(ModelChoice {
+            name: Model::Corrosion,
+            active: self.cell.is_some(),
+            reason: match &self.cell {
+                Some(cell) => cell.describe(),
+                None => "no corrosion section in the scene".to_owned(),
+            },
+        });
+        models
     }
 }

@@ -2,25 +2,17 @@
 //! the decisions of what to model, each recorded with its reason.
 
 use crate::contact::{
-    ContactError, ContactProblem, ContactSolution, CoupledSolver, DcFft, ElasticPair, Grid, Hertz,
-    Kernel, Material, Operator, SolverOptions, solve,
+    ContactSolver, CoupledSolver, DcFft, ElasticPair, Grid, Hertz, Kernel, NormalSolver,
+    SolverOptions,
 };
 use crate::hardness::HardnessLaw;
-use crate::scene::{GridSize, Scene, Switch};
+use crate::scene::{Scene, Switch};
 
-use super::{ModelChoice, SimulationError};
-
-/// Auto domain side in contact radii. DC-FFT convolves without wrap-around, so the answer
-/// does not depend on the domain as long as it holds the contact: the domain needs only the
-/// contact plus room to widen, and the run grows it when pressure comes near the edge. With
-/// 3 a the contact fills two thirds of the side, inside the 80% growth trigger. (The paper's
-/// 0.256 mm is 5.8 a for its scene: 3.7 times the cells for the same answer.)
-pub const DOMAIN_PER_CONTACT_RADIUS: f64 = 3.0;
-
-/// Auto cell density: the paper's 1 um cells across its 44.2 um contact radius. At this
-/// density the Hertz errors are -1.1e-4 (peak pressure), +6.4e-3 (area) and -2.3e-5
-/// (approach): `tribosim bench contact`, N = 256.
-pub const CELLS_PER_CONTACT_RADIUS: f64 = 44.0;
+use super::feasibility::check;
+use super::sizing::{
+    GridPlan, LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m,
+};
+use super::{Model, ModelChoice, SimulationError};
 
 /// The coupling term changes the pressures by at least 1.2 |mu delta-nu| relative to p0
 /// (measured on the paper's Hertz case: 1.21 to 1.26 at N = 64, 1.74 to 1.81 at N = 128, for
@@ -52,9 +44,9 @@ pub struct Setup {
     pub models: Vec<ModelChoice>,
 }
 
-fn choice(name: &str, active: bool, reason: String) -> ModelChoice {
+fn choice(name: Model, active: bool, reason: String) -> ModelChoice {
     ModelChoice {
-        name: name.to_owned(),
+        name,
         active,
         reason,
     }
@@ -63,7 +55,7 @@ fn choice(name: &str, active: bool, reason: String) -> ModelChoice {
 /// Resolves an on/off/auto switch (auto: `needed`) and records it with its reason.
 fn decide(
     models: &mut Vec<ModelChoice>,
-    name: &str,
+    name: Model,
     switch: Switch,
     needed: bool,
     reason: String,
@@ -77,156 +69,28 @@ fn decide(
     active
 }
 
-/// Smallest even `2^i 3^j >= n` (`i >= 1`): sizes rustfft transforms fastest, and even so
-/// the apex sits on a cell corner and a grown grid adds the same cells on both sides.
-pub(crate) fn fft_friendly(n: usize) -> usize {
-    let mut best = usize::MAX;
-    let mut three = 1;
-    while three < 2 * n {
-        let mut size = 2 * three;
-        while size < n {
-            size *= 2;
-        }
-        best = best.min(size);
-        three *= 3;
-    }
-    best
-}
-
 impl Setup {
-    /// Checks the scene and makes every decision. Fails with the scene's field errors.
+    /// Checks the scene ([`check`]: its fields, and whether it can be simulated) and makes
+    /// every decision.
     pub fn new(scene: &Scene) -> Result<Self, SimulationError> {
-        scene.validate()?;
-        // Errors while setting up are reported as cycle 0.
-        let setting_up = |source| SimulationError::Contact { cycle: 0, source };
-        let ball = Material::new(
-            scene.ball.youngs_modulus_pa(),
-            scene.ball.poisson_ratio,
-            "ball",
-        )
-        .map_err(setting_up)?;
-        let disc = Material::new(
-            scene.disc.youngs_modulus_pa(),
-            scene.disc.poisson_ratio,
-            "disc",
-        )
-        .map_err(setting_up)?;
-        let pair = ElasticPair::new(ball, disc);
+        check(scene)?;
+        let pair = elastic_pair(scene).map_err(SimulationError::Setup)?;
         let hardness = scene.hardness_law()?;
         let archard_k = scene.archard_k()?;
-        let hertz = Hertz {
-            radius_m: scene.ball_radius_m(),
-            load_n: scene.load_n(),
-            reduced_modulus_pa: pair.reduced_modulus_pa,
-        };
+        let hertz = hertz(scene, &pair);
         let options = SolverOptions {
             tolerance: scene.numerics.tolerance,
             ..SolverOptions::default()
         };
+        let lowest = lowest_yield(&hardness, scene.test.cycles, scene.disc.yield_factor);
         let mut models = Vec::new();
-
-        // Plasticity: pressures are highest on the unworn surface, so Hertz's p0 against the
-        // lowest yield pressure of the run decides whether the cap can ever act.
-        let factor = scene.disc.yield_factor;
-        let cycles = scene.test.cycles as f64;
-        let lowest_yield = (hardness.hardness_pa(1.0).min(hardness.hardness_pa(cycles))) / factor;
-        let p0 = hertz.peak_pressure_pa();
-        let reach = format!(
-            "p0 {:.0} MPa {} lowest Y {:.0} MPa (H / {factor})",
-            p0 / 1e6,
-            if p0 >= lowest_yield { ">=" } else { "<" },
-            lowest_yield / 1e6
-        );
-        let plasticity = decide(
-            &mut models,
-            "plasticity",
-            scene.wear.plasticity,
-            p0 >= lowest_yield,
-            reach,
-        );
-
-        let mu = scene.test.friction_coefficient;
-        let strength = (mu * pair.delta_nu).abs();
-        let measured = format!(
-            "|mu delta-nu| = {strength:.3e}; it moves pressures by >= {COUPLING_SENSITIVITY} times that, against tolerance {:.0e}",
-            options.tolerance
-        );
-        let coupling = decide(
-            &mut models,
-            "coupling",
-            scene.numerics.coupling,
-            COUPLING_SENSITIVITY * strength >= options.tolerance,
-            measured,
-        );
-
-        let radius = if plasticity {
-            let punch = (scene.load_n() / (std::f64::consts::PI * lowest_yield)).sqrt();
-            hertz.contact_radius_m().max(punch)
-        } else {
-            hertz.contact_radius_m()
-        };
-        let cell = radius / CELLS_PER_CONTACT_RADIUS;
-        let fitted =
-            |side: f64| fft_friendly((side / cell).ceil() as usize).min(Grid::MAX_CELLS_PER_SIDE);
-        let (cells, domain, how) = match (scene.numerics.grid, scene.numerics.domain_m()) {
-            (GridSize::Cells(n), Some(domain)) => (n, domain, "as requested".to_owned()),
-            (GridSize::Cells(n), None) => (
-                n,
-                DOMAIN_PER_CONTACT_RADIUS * radius,
-                format!(
-                    "cells as requested; domain auto, {DOMAIN_PER_CONTACT_RADIUS} contact radii"
-                ),
-            ),
-            (GridSize::Auto, Some(domain)) => (
-                fitted(domain),
-                domain,
-                format!(
-                    "domain as requested; cells auto, {CELLS_PER_CONTACT_RADIUS} per contact radius"
-                ),
-            ),
-            (GridSize::Auto, None) => {
-                // Keep the cell size; the side grows to the next fast FFT size.
-                let n = fitted(DOMAIN_PER_CONTACT_RADIUS * radius);
-                (
-                    n,
-                    n as f64 * cell,
-                    format!(
-                        "auto: {CELLS_PER_CONTACT_RADIUS} cells per contact radius, at least {DOMAIN_PER_CONTACT_RADIUS} radii"
-                    ),
-                )
-            }
-        };
-        let grid = Grid::square(cells, domain).map_err(setting_up)?;
-        models.push(choice(
-            "grid",
-            true,
-            format!(
-                "{cells} x {cells} cells of {:.3} um over {:.1} um ({how}); contact radius {:.1} um",
-                grid.dx * 1e6,
-                domain * 1e6,
-                radius * 1e6
-            ),
-        ));
-        models.push(choice(
-            "work_hardening",
-            matches!(hardness, HardnessLaw::Logarithmic { .. }),
-            match hardness {
-                HardnessLaw::Logarithmic { a_pa, b_pa } => format!(
-                    "H = {:.1} + {:.2} ln n MPa, fitted to the table and the bulk value{}",
-                    a_pa / 1e6,
-                    b_pa / 1e6,
-                    if hardness.is_decreasing() {
-                        " (decreasing: softening)"
-                    } else {
-                        ""
-                    }
-                ),
-                HardnessLaw::Constant { hardness_pa } => {
-                    format!("no table: H = {:.0} MPa throughout", hardness_pa / 1e6)
-                }
-            },
-        ));
-
+        let plasticity = decide_plasticity(&mut models, scene, &hertz, &lowest);
+        let coupling = decide_coupling(&mut models, scene, &pair, &options);
+        let radius = sizing_radius_m(&hertz, lowest.yield_pa, plasticity);
+        let plan = plan_grid(&scene.numerics, radius);
+        let grid = Grid::square(plan.cells, plan.domain_m).map_err(SimulationError::Setup)?;
+        models.push(grid_choice(&grid, &plan, radius));
+        models.push(work_hardening_choice(&hardness));
         Ok(Self {
             scene: scene.clone(),
             pair,
@@ -266,73 +130,110 @@ impl Setup {
         })
     }
 
-    /// The influence operators for `grid`.
-    pub fn operators(&self, grid: &Grid) -> ContactOperators {
+    /// The contact solver of `grid`: the normal operator alone, or with the coupling term.
+    pub fn solver(&self, grid: &Grid) -> Box<dyn ContactSolver> {
         let normal = Kernel::normal(grid, &self.pair);
         if self.coupling {
             let coupling = Kernel::coupling(grid, &self.pair, self.scene.test.friction_coefficient);
-            ContactOperators::Coupled(Box::new(CoupledSolver::new(&normal, &coupling)))
+            Box::new(CoupledSolver::new(&normal, &coupling))
         } else {
-            ContactOperators::Normal(Box::new(DcFft::new(&normal)))
+            Box::new(NormalSolver::new(DcFft::new(&normal)))
         }
     }
 }
 
-/// The operators of one grid: the normal kernel alone, or with the coupling kernel.
-#[derive(Debug)]
-pub enum ContactOperators {
-    /// Frictionless or similar materials: the symmetric normal operator.
-    Normal(Box<DcFft>),
-    /// With the friction coupling term.
-    Coupled(Box<CoupledSolver>),
+/// Plasticity: pressures are highest on the unworn surface, so Hertz's p0 against the lowest
+/// yield pressure of the run decides whether the cap can ever act.
+fn decide_plasticity(
+    models: &mut Vec<ModelChoice>,
+    scene: &Scene,
+    hertz: &Hertz,
+    lowest: &LowestYield,
+) -> bool {
+    let factor = scene.disc.yield_factor;
+    let p0 = hertz.peak_pressure_pa();
+    let reach = format!(
+        "p0 {:.0} MPa {} lowest Y {:.0} MPa (H / {factor})",
+        p0 / 1e6,
+        if p0 >= lowest.yield_pa { ">=" } else { "<" },
+        lowest.yield_pa / 1e6
+    );
+    decide(
+        models,
+        Model::Plasticity,
+        scene.wear.plasticity,
+        p0 >= lowest.yield_pa,
+        reach,
+    )
 }
 
-/// The full operator of the grid: normal, plus coupling when modelled.
-impl Operator for ContactOperators {
-    fn shape(&self) -> (usize, usize) {
-        match self {
-            Self::Normal(normal) => normal.shape(),
-            Self::Coupled(coupled) => coupled.shape(),
-        }
-    }
-
-    fn apply(&mut self, input: &[f64], output: &mut [f64]) {
-        match self {
-            Self::Normal(normal) => normal.apply(input, output),
-            Self::Coupled(coupled) => coupled.apply(input, output),
-        }
-    }
+/// The friction coupling term (eq. 7): modelled when it can move the pressures by more than
+/// the solver's tolerance (see [`COUPLING_SENSITIVITY`]).
+fn decide_coupling(
+    models: &mut Vec<ModelChoice>,
+    scene: &Scene,
+    pair: &ElasticPair,
+    options: &SolverOptions,
+) -> bool {
+    let mu = scene.test.friction_coefficient;
+    let strength = (mu * pair.delta_nu).abs();
+    let measured = format!(
+        "|mu delta-nu| = {strength:.3e}; it moves pressures by >= {COUPLING_SENSITIVITY} times that, against tolerance {:.0e}",
+        options.tolerance
+    );
+    decide(
+        models,
+        Model::Coupling,
+        scene.numerics.coupling,
+        COUPLING_SENSITIVITY * strength >= options.tolerance,
+        measured,
+    )
 }
 
-impl ContactOperators {
-    /// Solves one contact with or without the coupling term, as set up.
-    pub fn solve(
-        &mut self,
-        problem: &ContactProblem,
-        options: &SolverOptions,
-        warm_start: Option<&[f64]>,
-    ) -> Result<ContactSolution, ContactError> {
-        match self {
-            Self::Normal(normal) => solve(normal.as_mut(), problem, options, warm_start),
-            Self::Coupled(coupled) => coupled.solve(problem, options, warm_start),
-        }
-    }
+/// The first grid, as planned for the sizing radius `radius`.
+fn grid_choice(grid: &Grid, plan: &GridPlan, radius: f64) -> ModelChoice {
+    choice(
+        Model::Grid,
+        true,
+        format!(
+            "{} x {} cells of {:.3} um over {:.1} um ({}); contact radius {:.1} um",
+            plan.cells,
+            plan.cells,
+            grid.dx * 1e6,
+            plan.domain_m * 1e6,
+            plan.how,
+            radius * 1e6
+        ),
+    )
+}
+
+/// The hardness law in words.
+fn work_hardening_choice(hardness: &HardnessLaw) -> ModelChoice {
+    choice(
+        Model::WorkHardening,
+        matches!(hardness, HardnessLaw::Logarithmic { .. }),
+        match *hardness {
+            HardnessLaw::Logarithmic { a_pa, b_pa } => format!(
+                "H = {:.1} + {:.2} ln n MPa, fitted to the table and the bulk value{}",
+                a_pa / 1e6,
+                b_pa / 1e6,
+                if hardness.is_decreasing() {
+                    " (decreasing: softening)"
+                } else {
+                    ""
+                }
+            ),
+            HardnessLaw::Constant { hardness_pa } => {
+                format!("no table: H = {:.0} MPa throughout", hardness_pa / 1e6)
+            }
+        },
+    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::scene::parse_scene_str;
-
-    #[test]
-    fn fft_friendly_sizes() {
-        assert_eq!(fft_friendly(255), 256);
-        assert_eq!(fft_friendly(257), 288);
-        assert_eq!(fft_friendly(100), 108);
-        assert_eq!(fft_friendly(8), 8);
-        assert_eq!(fft_friendly(80), 96, "81 = 3^4 is odd");
-        assert_eq!(fft_friendly(3), 4);
-    }
 
     #[test]
     fn paper_scene_gets_the_paper_cells_and_both_models() {

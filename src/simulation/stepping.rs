@@ -4,24 +4,15 @@
 //! per-pass wear profile across the step. The controller measures that change between
 //! consecutive solves in the L1 norm relative to the profile (the share of the wear that
 //! moves), and keeps it below a bound per step: the scene's `numerics.cycle_step_bound`,
-//! by default [`STEP_CHANGE_BOUND`].
+//! by default [`crate::scene::STEP_CHANGE_BOUND`], whose documentation gives what each
+//! bound costs and buys.
 //!
 //! The wear volume does not depend on the step in the Archard phase (each pass removes
 //! `k F L / H` whatever the pressure shape); stepping moves wear across the track. A
-//! max-norm measure stalled at steps of 1: the row entering contact at the rim of the
+//! max-norm measure stalls at steps of 1: the row entering contact at the rim of the
 //! widening groove changes by 2.5% of the peak every cycle, however slowly the rest moves.
-//!
-//! Measured on the paper scene at grid 64 against every-cycle solving (`tribosim bench
-//! wear` gives the current numbers): bound 0.01 gives, at 300 cycles, 87 solves, volume
-//! exact and depth 6e-4; at 3600 cycles 326 solves (8.6 times faster), volume 9e-5 and depth
-//! 1e-4. Bound 0.03: depth 1.3e-3 and 3.3e-4 for no gain at 3600 cycles, where
-//! [`MAX_STEP`] dominates; 0.1 skipped the end of the yielding and erred by 1.6e-3 in
-//! volume at 300 cycles.
 
 use crate::scene::CycleStep;
-
-/// The default largest relative (L1) change of the per-pass wear profile across one step.
-pub const STEP_CHANGE_BOUND: f64 = 0.01;
 
 /// The longest step, cycles: keeps a record at least this often.
 pub const MAX_STEP: u64 = 50;
@@ -90,6 +81,7 @@ impl Stepper {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::STEP_CHANGE_BOUND;
 
     #[test]
     fn every_cycle_mode_steps_by_one() {

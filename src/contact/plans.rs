@@ -1,0 +1,77 @@
+//! Planned 2D FFTs: the row (real-to-complex and back) and column (complex) transforms with
+//! their scratch, planned once per grid and shared by the DC-FFT operator, its preconditioner
+//! and the benchmark's FFT pair.
+
+use std::sync::Arc;
+
+use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
+use rustfft::num_complex::Complex;
+use rustfft::{Fft, FftPlanner};
+
+/// Planned row (real-to-complex and back) and column (complex) transforms of a 2D FFT,
+/// with the scratch they need.
+pub(crate) struct Plans {
+    pub(crate) row_forward: Arc<dyn RealToComplex<f64>>,
+    pub(crate) row_inverse: Arc<dyn ComplexToReal<f64>>,
+    pub(crate) col_forward: Arc<dyn Fft<f64>>,
+    pub(crate) col_inverse: Arc<dyn Fft<f64>>,
+    pub(crate) real_scratch: Vec<Complex<f64>>,
+    pub(crate) complex_scratch: Vec<Complex<f64>>,
+}
+
+impl Plans {
+    /// Plans rows of `row_len` reals and columns of `col_len` complex values.
+    pub(crate) fn new(row_len: usize, col_len: usize) -> Self {
+        let mut real_planner = RealFftPlanner::<f64>::new();
+        let row_forward = real_planner.plan_fft_forward(row_len);
+        let row_inverse = real_planner.plan_fft_inverse(row_len);
+        let mut planner = FftPlanner::<f64>::new();
+        let col_forward = planner.plan_fft_forward(col_len);
+        let col_inverse = planner.plan_fft_inverse(col_len);
+        let real_scratch_len = row_forward
+            .get_scratch_len()
+            .max(row_inverse.get_scratch_len());
+        let complex_scratch_len = col_forward
+            .get_inplace_scratch_len()
+            .max(col_inverse.get_inplace_scratch_len());
+        Self {
+            row_forward,
+            row_inverse,
+            col_forward,
+            col_inverse,
+            real_scratch: vec![Complex::default(); real_scratch_len],
+            complex_scratch: vec![Complex::default(); complex_scratch_len],
+        }
+    }
+}
+
+/// Smallest even `2^i 3^j >= n` (`i >= 1`): sizes rustfft transforms fastest, and even so
+/// the apex sits on a cell corner and a grown grid adds the same cells on both sides.
+pub fn fft_friendly(n: usize) -> usize {
+    let mut best = usize::MAX;
+    let mut three = 1;
+    while three < 2 * n {
+        let mut size = 2 * three;
+        while size < n {
+            size *= 2;
+        }
+        best = best.min(size);
+        three *= 3;
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fft_friendly_sizes() {
+        assert_eq!(fft_friendly(255), 256);
+        assert_eq!(fft_friendly(257), 288);
+        assert_eq!(fft_friendly(100), 108);
+        assert_eq!(fft_friendly(8), 8);
+        assert_eq!(fft_friendly(80), 96, "81 = 3^4 is odd");
+        assert_eq!(fft_friendly(3), 4);
+    }
+}

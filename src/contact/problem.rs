@@ -1,0 +1,130 @@
+//! What every contact solver shares: the problem, the settings, the solution, and the
+//! [`ContactSolver`] interface that the normal ([`super::NormalSolver`]), the coupled
+//! ([`super::CoupledSolver`]) and the windowed ([`super::WindowedSolver`]) solvers implement.
+
+use super::error::ContactError;
+use super::grid::Grid;
+use super::operator::Operator;
+
+/// Solver settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverOptions {
+    /// Relative residual to reach (see [`super::residual`]).
+    pub tolerance: f64,
+    /// Iterations allowed before [`ContactError::NotConverged`].
+    pub max_iterations: usize,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-8,
+            max_iterations: 2000,
+        }
+    }
+}
+
+/// One contact problem on a grid.
+#[derive(Debug, Clone, Copy)]
+pub struct ContactProblem<'a> {
+    /// The grid the fields live on.
+    pub grid: Grid,
+    /// Separation `h` between the undeformed surfaces at zero approach, m, per cell.
+    pub separation: &'a [f64],
+    /// Normal load, N.
+    pub load_n: f64,
+    /// Pressure cap `Y`, Pa; `f64::INFINITY` for a purely elastic contact.
+    pub yield_pressure_pa: f64,
+}
+
+impl ContactProblem<'_> {
+    /// Refuses malformed fields and settings before any work is done.
+    pub(crate) fn validate(&self, options: &SolverOptions) -> Result<(), ContactError> {
+        let invalid = |m: String| Err(ContactError::InvalidProblem(m));
+        if self.separation.len() != self.grid.len() {
+            return invalid(format!(
+                "separation has {} values for {} cells",
+                self.separation.len(),
+                self.grid.len()
+            ));
+        }
+        if let Some(i) = self.separation.iter().position(|h| !h.is_finite()) {
+            return invalid(format!("separation[{i}] is not finite"));
+        }
+        if !(self.load_n.is_finite() && self.load_n > 0.0) {
+            return invalid(format!("load {} N: must be finite and > 0", self.load_n));
+        }
+        if self.yield_pressure_pa.is_nan() || self.yield_pressure_pa <= 0.0 {
+            return invalid(format!(
+                "yield pressure {} Pa: must be > 0 (infinite for no cap)",
+                self.yield_pressure_pa
+            ));
+        }
+        if !(options.tolerance > 0.0 && options.tolerance.is_finite()) {
+            return invalid(format!("tolerance {}: must be > 0", options.tolerance));
+        }
+        Ok(())
+    }
+}
+
+/// A converged contact.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactSolution {
+    /// Pressure per cell, Pa.
+    pub pressure: Vec<f64>,
+    /// Elastic displacement `K p` per cell (both bodies together), m.
+    pub displacement: Vec<f64>,
+    /// Rigid-body approach `delta`, m.
+    pub approach_m: f64,
+    /// CG iterations.
+    pub iterations: usize,
+    /// Operator applications (each one padded FFT round trip for [`super::DcFft`]).
+    pub operator_applies: usize,
+    /// The relative residual reached.
+    pub residual: f64,
+}
+
+impl ContactSolution {
+    /// The load carried, N.
+    pub fn load_n(&self, grid: &Grid) -> f64 {
+        self.pressure.iter().sum::<f64>() * grid.cell_area()
+    }
+
+    /// Largest pressure, Pa.
+    pub fn max_pressure_pa(&self) -> f64 {
+        self.pressure.iter().fold(0.0, |m, &p| m.max(p))
+    }
+
+    /// Area of the cells in contact (p > 0), m^2.
+    pub fn contact_area_m2(&self, grid: &Grid) -> f64 {
+        self.pressure.iter().filter(|&&p| p > 0.0).count() as f64 * grid.cell_area()
+    }
+
+    /// Area of the cells at the cap (p = Y), m^2.
+    pub fn plastic_area_m2(&self, grid: &Grid, yield_pressure_pa: f64) -> f64 {
+        let capped = self
+            .pressure
+            .iter()
+            .filter(|&&p| p >= yield_pressure_pa)
+            .count();
+        capped as f64 * grid.cell_area()
+    }
+}
+
+/// A way of solving contact problems on one grid.
+pub trait ContactSolver {
+    /// Solves `problem`, optionally warm-started from `warm_start` (e.g. the previous wear
+    /// cycle's pressure). Fails with a named [`ContactError`], never silently: an
+    /// impossible load, a contact reaching the domain edge, or no convergence.
+    fn solve(
+        &mut self,
+        problem: &ContactProblem,
+        options: &SolverOptions,
+        warm_start: Option<&[f64]>,
+    ) -> Result<ContactSolution, ContactError>;
+
+    /// The full operator whose complementarity conditions the solutions meet (the normal
+    /// kernel, plus the coupling kernel when the solver models it): what an independent
+    /// check ([`super::verify`]) must recompute the displacement with.
+    fn operator(&mut self) -> &mut dyn Operator;
+}

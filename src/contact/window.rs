@@ -1,0 +1,271 @@
+//! Solving on a window of the grid around the contact. DC-FFT convolves without
+//! wrap-around, so the displacements inside any window that holds all the pressure are
+//! exact: the solve only needs the contact's bounding box plus a margin, however large the
+//! domain. Each solve is then checked on the whole grid with one apply: no cell outside the
+//! window may penetrate. A contact that touches the window's edge, a load the window cannot
+//! carry at the yield pressure, or a penetration outside it enlarges the window and the
+//! solve is repeated; so the answer is the whole grid's, at the cost of the window's cells.
+
+use std::collections::HashMap;
+
+use super::error::ContactError;
+use super::grid::{Grid, Window};
+use super::operator::Operator;
+use super::plans::fft_friendly;
+use super::problem::{ContactProblem, ContactSolution, ContactSolver, SolverOptions};
+
+/// Margin around the last contact's bounding box, as a fraction of its extent...
+pub const MARGIN_FRACTION: f64 = 0.15;
+/// ... and at least this many cells: the contact moves by a cell or two per solve.
+pub const MIN_MARGIN: usize = 4;
+/// Growth of a window that turned out too small.
+const ENLARGE: f64 = 1.5;
+
+/// The window around the loaded cells of `pressure`: their bounding box plus the margin,
+/// each side rounded up to an FFT-friendly size. `None` if no cell is loaded.
+fn around(grid: &Grid, pressure: &[f64]) -> Option<Window> {
+    let loaded = Window::loaded(grid, pressure)?;
+    let sized = |extent: usize| {
+        let margin = MIN_MARGIN.max((MARGIN_FRACTION * extent as f64).ceil() as usize);
+        fft_friendly(extent + 2 * margin)
+    };
+    // The middle of the first and the last loaded cell, rounded down.
+    let middle = |first: usize, n: usize| (2 * first + n - 1) / 2;
+    let centre = (middle(loaded.x0, loaded.nx), middle(loaded.y0, loaded.ny));
+    Some(Window::centred(
+        grid,
+        centre,
+        sized(loaded.nx),
+        sized(loaded.ny),
+    ))
+}
+
+/// `window` grown by [`ENLARGE`] about its centre, to FFT-friendly sizes.
+fn enlarged(window: &Window, grid: &Grid) -> Window {
+    let grow = |n: usize| fft_friendly((n as f64 * ENLARGE).ceil() as usize);
+    Window::centred(grid, window.centre(), grow(window.nx), grow(window.ny))
+}
+
+/// The contact solver of one grid, working on windows around the last contact. It builds
+/// the solvers it needs (one for the whole grid, one per window shape) with `factory`.
+pub struct WindowedSolver<F> {
+    grid: Grid,
+    factory: F,
+    full: Box<dyn ContactSolver>,
+    by_shape: HashMap<(usize, usize), Box<dyn ContactSolver>>,
+    /// Where the next solve looks first: around the last solved contact.
+    focus: Option<Window>,
+    /// Cells solved over cells of the grid, summed over solves.
+    window_fraction_sum: f64,
+}
+
+impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
+    /// The solver of `grid`, building the solver of a grid or a window with `factory`. The
+    /// first solve runs on the whole grid unless [`WindowedSolver::focus_on`] says where
+    /// the contact is.
+    pub fn new(grid: Grid, mut factory: F) -> Self {
+        Self {
+            grid,
+            full: factory(&grid),
+            factory,
+            by_shape: HashMap::new(),
+            focus: None,
+            window_fraction_sum: 0.0,
+        }
+    }
+
+    /// The next solve starts in a window around the loaded cells of `pressure` (a field of
+    /// this grid, e.g. the last contact carried over from a smaller grid). Each solve
+    /// focuses the next on its own contact.
+    pub fn focus_on(&mut self, pressure: &[f64]) {
+        self.focus = around(&self.grid, pressure);
+    }
+
+    /// Cells solved over cells of the grid, summed over the solves so far (for the report).
+    pub fn window_fraction_sum(&self) -> f64 {
+        self.window_fraction_sum
+    }
+
+    /// Solves `problem` on `window` and checks the answer on the whole grid. `None` when the
+    /// window turned out too small.
+    fn solve_in(
+        &mut self,
+        window: Window,
+        problem: &ContactProblem,
+        options: &SolverOptions,
+        warm_start: Option<&[f64]>,
+    ) -> Result<Option<ContactSolution>, ContactError> {
+        let grid = self.grid;
+        let sub = Grid::new(window.nx, window.ny, grid.dx, grid.dy)?;
+        let separation = window.extract(&grid, problem.separation);
+        let warm = warm_start.map(|p| window.extract(&grid, p));
+        let sub_problem = ContactProblem {
+            grid: sub,
+            separation: &separation,
+            ..*problem
+        };
+        let factory = &mut self.factory;
+        let solver = self
+            .by_shape
+            .entry((window.nx, window.ny))
+            .or_insert_with(|| factory(&sub));
+        // Either failure says the window, not the domain, is too small.
+        let solution = match solver.solve(&sub_problem, options, warm.as_deref()) {
+            Err(ContactError::ContactAtEdge { .. } | ContactError::LoadExceedsCapacity { .. }) => {
+                return Ok(None);
+            }
+            outcome => outcome?,
+        };
+        let pressure = window.embed(&grid, &solution.pressure);
+        let mut displacement = vec![0.0; grid.len()];
+        self.full.operator().apply(&pressure, &mut displacement);
+        let scale = displacement.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let penetrates =
+            displacement
+                .iter()
+                .zip(problem.separation)
+                .enumerate()
+                .any(|(i, (u, h))| {
+                    !window.contains(&grid, i)
+                        && u + h - solution.approach_m < -options.tolerance * scale
+                });
+        if penetrates {
+            return Ok(None);
+        }
+        self.window_fraction_sum += (window.nx * window.ny) as f64 / grid.len() as f64;
+        Ok(Some(ContactSolution {
+            pressure,
+            displacement,
+            operator_applies: solution.operator_applies + 1,
+            ..solution
+        }))
+    }
+}
+
+impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> ContactSolver for WindowedSolver<F> {
+    /// Solves `problem` (on the whole grid) in a window around the last contact, enlarged
+    /// until the answer holds on the whole grid; on the whole grid when there is no last
+    /// contact or the window has grown to cover it.
+    fn solve(
+        &mut self,
+        problem: &ContactProblem,
+        options: &SolverOptions,
+        warm_start: Option<&[f64]>,
+    ) -> Result<ContactSolution, ContactError> {
+        let grid = self.grid;
+        let mut window = self.focus;
+        let solution = loop {
+            let Some(w) = window.filter(|w| !w.covers(&grid)) else {
+                self.window_fraction_sum += 1.0;
+                break self.full.solve(problem, options, warm_start)?;
+            };
+            match self.solve_in(w, problem, options, warm_start)? {
+                Some(solution) => break solution,
+                None => window = Some(enlarged(&w, &grid)),
+            }
+        };
+        self.focus = around(&grid, &solution.pressure);
+        Ok(solution)
+    }
+
+    fn operator(&mut self) -> &mut dyn Operator {
+        self.full.operator()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::{
+        CoupledSolver, DcFft, ElasticPair, Hertz, Kernel, Material, NormalSolver, verify,
+    };
+
+    /// The paper's pair, with the coupling term of its friction when `coupled`.
+    fn factory(coupled: bool) -> impl FnMut(&Grid) -> Box<dyn ContactSolver> {
+        let pair = ElasticPair::new(
+            Material::new(300e9, 0.21).expect("valid"),
+            Material::new(205e9, 0.28).expect("valid"),
+        );
+        move |grid: &Grid| -> Box<dyn ContactSolver> {
+            let normal = Kernel::normal(grid, &pair);
+            if coupled {
+                let coupling = Kernel::coupling(grid, &pair, 0.45);
+                Box::new(CoupledSolver::new(&normal, &coupling))
+            } else {
+                Box::new(NormalSolver::new(DcFft::new(&normal)))
+            }
+        }
+    }
+
+    /// The paper's ball at 5 N over 96 cells across 300 um: the grid, Hertz's contact and
+    /// the separation.
+    fn paper_case() -> (Grid, Hertz, Vec<f64>) {
+        let grid = Grid::square(96, 300e-6).expect("valid");
+        let hertz = Hertz {
+            radius_m: 3e-3,
+            load_n: 5.0,
+            reduced_modulus_pa: 130.17e9,
+        };
+        let separation = grid.sample(|x, y| hertz.separation_m(x, y));
+        (grid, hertz, separation)
+    }
+
+    /// Solves the paper's first cycle (cap 2455 MPa / 2.8) in a window around the contact
+    /// of `previous_load_n` and checks the answer on the whole grid with the full operator,
+    /// as the solver's own stopping test promises. Returns the window fraction of the two
+    /// solves.
+    fn check_window_from(previous_load_n: f64) -> f64 {
+        let (grid, _, separation) = paper_case();
+        let problem = |load_n| ContactProblem {
+            grid,
+            separation: &separation,
+            load_n,
+            yield_pressure_pa: 2455e6 / 2.8,
+        };
+        let options = SolverOptions::default();
+        let mut solver = WindowedSolver::new(grid, factory(true));
+        solver
+            .solve(&problem(previous_load_n), &options, None)
+            .expect("converges");
+        let windowed = solver
+            .solve(&problem(5.0), &options, None)
+            .expect("converges");
+        let check = verify(solver.operator(), &problem(5.0), &windowed);
+        // The solver's tolerance plus the 1e-12 FFT round-off bound (tests/contact.rs).
+        assert!(check.passes(options.tolerance + 1e-12, 1e-9), "{check:?}");
+        solver.window_fraction_sum()
+    }
+
+    #[test]
+    fn windowed_solution_is_a_solution_on_the_whole_grid() {
+        // First solve on the whole grid (fraction 1), the second on a window.
+        let fraction = check_window_from(5.0);
+        assert!(fraction < 1.6, "the second solve used a window: {fraction}");
+    }
+
+    #[test]
+    fn a_window_too_small_for_the_contact_is_enlarged() {
+        // Around a 0.05 N contact the window cannot hold the 5 N one: it must grow.
+        check_window_from(0.05);
+    }
+
+    #[test]
+    fn a_focus_starts_the_first_solve_in_a_window() {
+        let (grid, hertz, separation) = paper_case();
+        let problem = ContactProblem {
+            grid,
+            separation: &separation,
+            load_n: 5.0,
+            yield_pressure_pa: f64::INFINITY,
+        };
+        let a = hertz.contact_radius_m();
+        let guess = grid.sample(|x, y| if x.hypot(y) < a { 1.0 } else { 0.0 });
+        let mut solver = WindowedSolver::new(grid, factory(false));
+        solver.focus_on(&guess);
+        solver
+            .solve(&problem, &SolverOptions::default(), None)
+            .expect("converges");
+        let fraction = solver.window_fraction_sum();
+        assert!(fraction < 1.0, "solved on a window: {fraction}");
+    }
+}

@@ -1,0 +1,288 @@
+//! The sections of a scene (ball, disc, test, wear, corrosion, numerics) with the paper's
+//! values as their defaults, and their conversions to the core's SI types.
+
+use serde::{Deserialize, Serialize};
+
+use super::auto_or::{CycleStep, DomainSize, GridSize};
+use crate::contact::SolverOptions;
+use crate::corrosion::CorrosionModel;
+use crate::hardness::{HardnessError, HardnessLaw};
+
+/// Archard coefficient when a scene gives neither `archard_k` nor `archard_calibration`:
+/// Table 3's 300 s point, k = V H / (F s) with V = 1.18e-3 mm^3, H = 2854 MPa, F = 5 N and
+/// s = 300 s x 18.8 mm/s.
+pub const DEFAULT_ARCHARD_K: f64 = 1.19e-4;
+
+/// The default largest relative (L1) change of the per-pass wear profile across one
+/// automatic cycle step (`numerics.cycle_step_bound`). Measured on the paper scene at grid
+/// 64 against every-cycle solving (`tribosim bench wear` gives the current numbers): 0.01
+/// gives, at 300 cycles, 87 solves, volume exact and depth 6e-4; at 3600 cycles 326 solves
+/// (8.6 times faster), volume 9e-5 and depth 1e-4. 0.03: depth 1.3e-3 and 3.3e-4 for no gain
+/// at 3600 cycles, where the longest step (`simulation::MAX_STEP`) dominates; 0.1 skipped
+/// the end of the yielding and erred by 1.6e-3 in volume at 300 cycles.
+pub const STEP_CHANGE_BOUND: f64 = 0.01;
+
+/// The ball.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Ball {
+    /// Ball radius, mm.
+    pub radius_mm: f64,
+    /// Young's modulus, GPa.
+    pub youngs_modulus_gpa: f64,
+    /// Poisson's ratio.
+    pub poisson_ratio: f64,
+}
+
+impl Default for Ball {
+    fn default() -> Self {
+        Self {
+            radius_mm: 3.0,
+            youngs_modulus_gpa: 300.0,
+            poisson_ratio: 0.21,
+        }
+    }
+}
+
+impl Ball {
+    /// Young's modulus, Pa.
+    pub fn youngs_modulus_pa(&self) -> f64 {
+        self.youngs_modulus_gpa * 1e9
+    }
+}
+
+/// The disc.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Disc {
+    /// Young's modulus, GPa. (The paper prints "205 MPa", a typo for GPa.)
+    pub youngs_modulus_gpa: f64,
+    /// Poisson's ratio.
+    pub poisson_ratio: f64,
+    /// Bulk hardness, MPa: H at n = 1, and H throughout when there is no table.
+    pub hardness_mpa: f64,
+    /// Measured `(cycle, hardness_mpa)` pairs for the work-hardening fit H = A + B ln n.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hardness_table: Option<Vec<(f64, f64)>>,
+    /// Y = H / `yield_factor` (2.8 after Johnson).
+    pub yield_factor: f64,
+}
+
+impl Default for Disc {
+    fn default() -> Self {
+        Self {
+            youngs_modulus_gpa: 205.0,
+            poisson_ratio: 0.28,
+            hardness_mpa: 2473.0,
+            hardness_table: None,
+            yield_factor: 2.8,
+        }
+    }
+}
+
+impl Disc {
+    /// Young's modulus, Pa.
+    pub fn youngs_modulus_pa(&self) -> f64 {
+        self.youngs_modulus_gpa * 1e9
+    }
+
+    /// The hardness law: the least-squares log fit when a table is given, else constant.
+    pub fn hardness_law(&self) -> Result<HardnessLaw, HardnessError> {
+        match &self.hardness_table {
+            None => Ok(HardnessLaw::constant(self.hardness_mpa * 1e6)),
+            Some(table) => {
+                let table_pa: Vec<(f64, f64)> = table.iter().map(|&(n, h)| (n, h * 1e6)).collect();
+                HardnessLaw::fit(self.hardness_mpa * 1e6, &table_pa)
+            }
+        }
+    }
+}
+
+/// Load, kinematics and length of the test.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TestConditions {
+    /// Normal load, N.
+    pub load_n: f64,
+    /// Radius of the wear track on the disc, mm.
+    pub track_radius_mm: f64,
+    /// Disc rotation speed, revolutions per minute.
+    pub speed_rpm: f64,
+    /// Coulomb friction coefficient mu.
+    pub friction_coefficient: f64,
+    /// Number of passes of the ball over the track.
+    pub cycles: u64,
+}
+
+impl Default for TestConditions {
+    fn default() -> Self {
+        Self {
+            load_n: 5.0,
+            track_radius_mm: 2.992,
+            speed_rpm: 60.0,
+            friction_coefficient: 0.45,
+            cycles: 300,
+        }
+    }
+}
+
+/// Wear law settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Wear {
+    /// Archard coefficient k. Missing on input means "not given" (so a calibration may be
+    /// used instead); [`super::parse_scene`] fills in [`DEFAULT_ARCHARD_K`] when neither is
+    /// given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub archard_k: Option<f64>,
+    /// A measured point from which k is derived, in place of `archard_k`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub archard_calibration: Option<ArchardCalibration>,
+    /// Elastic-perfectly-plastic pressure cap.
+    pub plasticity: Switch,
+}
+
+impl Default for Wear {
+    fn default() -> Self {
+        Self {
+            archard_k: Some(DEFAULT_ARCHARD_K),
+            archard_calibration: None,
+            plasticity: Switch::Auto,
+        }
+    }
+}
+
+/// A measured wear volume after a rubbing time, from which k = V H / (F s) is derived.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ArchardCalibration {
+    /// Rubbing time, s.
+    pub time_s: f64,
+    /// Wear volume measured after `time_s`, mm^3.
+    pub wear_volume_mm3: f64,
+}
+
+/// The electrochemical cell (paper Section 5.1); units in the names.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Corrosion {
+    /// Free corrosion potential E_corr, V.
+    pub corrosion_potential_v: f64,
+    /// Cathodic Tafel constant a_c, V (fitted with current densities in A/cm^2).
+    pub tafel_a_c_v: f64,
+    /// Cathodic Tafel slope b_c, V per decade.
+    pub tafel_b_c_v_per_decade: f64,
+    /// Anodic current density on depassivated metal, A/cm^2.
+    pub anodic_current_density_a_cm2: f64,
+    /// Electrode area exposed to the electrolyte, cm^2.
+    pub exposed_area_cm2: f64,
+    /// Which area depassivates.
+    pub anodic_area: AnodicArea,
+    /// Multiplier on the chosen anodic area.
+    pub anodic_area_factor: f64,
+    /// Molar mass of the dissolving metal, g/mol.
+    pub molar_mass_g_mol: f64,
+    /// Charge number of the dissolution reaction.
+    pub valence: f64,
+    /// Density of the metal, g/cm^3.
+    pub density_g_cm3: f64,
+}
+
+impl Default for Corrosion {
+    fn default() -> Self {
+        Self {
+            corrosion_potential_v: -0.10,
+            tafel_a_c_v: -3.31,
+            tafel_b_c_v_per_decade: 0.56,
+            anodic_current_density_a_cm2: 0.01,
+            exposed_area_cm2: 2.56,
+            anodic_area: AnodicArea::WearTrack,
+            anodic_area_factor: 1.0,
+            molar_mass_g_mol: 55.85,
+            valence: 2.0,
+            density_g_cm3: 7.9,
+        }
+    }
+}
+
+impl Corrosion {
+    /// The cell in SI units.
+    pub fn model(&self) -> CorrosionModel {
+        CorrosionModel {
+            corrosion_potential_v: self.corrosion_potential_v,
+            tafel_a_c_v: self.tafel_a_c_v,
+            tafel_b_c_v_per_decade: self.tafel_b_c_v_per_decade,
+            anodic_current_density_a_m2: self.anodic_current_density_a_cm2 * 1e4,
+            exposed_area_m2: self.exposed_area_cm2 * 1e-4,
+            molar_mass_kg_mol: self.molar_mass_g_mol * 1e-3,
+            valence: self.valence,
+            density_kg_m3: self.density_g_cm3 * 1e3,
+        }
+    }
+}
+
+/// Which area depassivates and carries the anodic current.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AnodicArea {
+    /// Track width times track length.
+    WearTrack,
+    /// Real contact area of the asperities, F / H.
+    RealContact,
+    /// The contact area of the boundary-element solution.
+    BemContact,
+}
+
+/// A model switch: decided by the simulation, forced on, or forced off.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Switch {
+    /// The simulation decides.
+    Auto,
+    /// Always on.
+    On,
+    /// Always off.
+    Off,
+}
+
+/// Discretisation and solver settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Numerics {
+    /// Cells per side of the square grid.
+    pub grid: GridSize,
+    /// Side of the square domain.
+    pub domain_um: DomainSize,
+    /// Relative tolerance of the contact solver.
+    pub tolerance: f64,
+    /// Which cycles are solved.
+    pub cycle_step: CycleStep,
+    /// With `cycle_step: "auto"`, the largest relative (L1) change of the per-pass wear
+    /// profile one step may span.
+    pub cycle_step_bound: f64,
+    /// The mu * delta-nu coupling of normal and tangential tractions (eq. 7).
+    pub coupling: Switch,
+}
+
+impl Default for Numerics {
+    fn default() -> Self {
+        Self {
+            grid: GridSize::Auto,
+            domain_um: DomainSize::Auto,
+            tolerance: SolverOptions::default().tolerance,
+            cycle_step: CycleStep::Auto,
+            cycle_step_bound: STEP_CHANGE_BOUND,
+            coupling: Switch::Auto,
+        }
+    }
+}
+
+impl Numerics {
+    /// The domain side in m, or `None` when it is left to the simulation.
+    pub fn domain_m(&self) -> Option<f64> {
+        match self.domain_um {
+            DomainSize::Auto => None,
+            DomainSize::Micrometres(um) => Some(um * 1e-6),
+        }
+    }
+}

@@ -1,0 +1,74 @@
+//! Domain growth: as the groove deepens the contact widens across the track, and an auto
+//! domain grows before the pressure reaches its edge (where the solve would fail, since the
+//! half-space outside the domain would have carried load too).
+
+use crate::contact::Grid;
+
+use super::sizing::fitted_cells;
+
+/// The domain grows when pressure reaches this fraction of the half-width from the centre...
+pub(super) const GROW_AT_FRACTION: f64 = 0.8;
+/// ... or comes within this many cells of the edge, whichever is first: on grids under 20
+/// cells 20% is under two cells, and the contact reached the edge ring (failing the solve)
+/// before the growth saw it.
+pub(super) const GROW_AT_EDGE_CELLS: f64 = 2.0;
+
+/// Growth factor of the domain side (then rounded up to an FFT-friendly size).
+const GROWTH: f64 = 1.25;
+
+/// Whether loaded cells lie outside `GROW_AT_FRACTION` of the half-width (or within
+/// `GROW_AT_EDGE_CELLS` of the edge), along x and along y. The axes grow separately: as the
+/// groove deepens the contact widens across the track but shortens along it (paper
+/// Fig. 10), so only y keeps growing.
+pub(super) fn near_edges(grid: &Grid, pressure: &[f64]) -> (bool, bool) {
+    let limit = |n: usize, d: f64| {
+        let half = n as f64 * d / 2.0;
+        (GROW_AT_FRACTION * half).min(half - GROW_AT_EDGE_CELLS * d)
+    };
+    let (limit_x, limit_y) = (limit(grid.nx, grid.dx), limit(grid.ny, grid.dy));
+    let mut near = (false, false);
+    for (i, &p) in pressure.iter().enumerate() {
+        if p > 0.0 {
+            near.0 |= grid.x(i % grid.nx).abs() > limit_x;
+            near.1 |= grid.y(i / grid.nx).abs() > limit_y;
+        }
+    }
+    near
+}
+
+/// The grid with the same cells and about `GROWTH` times the side along the crowded axes, or
+/// `None` when neither can grow (the size limit).
+pub(super) fn widen(grid: &Grid, (grow_x, grow_y): (bool, bool)) -> Option<Grid> {
+    // FFT-friendly sizes are even, so each axis grows by the same cells on both sides.
+    let grown = |n: usize, grow: bool| {
+        if grow {
+            fitted_cells((n as f64 * GROWTH).ceil() as usize)
+        } else {
+            n
+        }
+    };
+    let (nx, ny) = (grown(grid.nx, grow_x), grown(grid.ny, grow_y));
+    (nx > grid.nx || ny > grid.ny)
+        .then(|| Grid::new(nx, ny, grid.dx, grid.dy).ok())
+        .flatten()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_the_crowded_axis_grows_and_the_largest_grid_does_not() {
+        let grid = Grid::square(64, 64e-6).expect("valid");
+        let mut pressure = vec![0.0; grid.len()];
+        // A cell 29.5 um across the track from the centre: beyond 80% of the 32 um half-side.
+        pressure[(32 + 29) * 64 + 32] = 1.0;
+        assert_eq!(near_edges(&grid, &pressure), (false, true));
+        let wider = widen(&grid, (false, true)).expect("grows");
+        // 64 x 1.25 = 80 cells, rounded up to 2^5 x 3 = 96.
+        assert_eq!((wider.nx, wider.ny), (64, 96));
+        assert_eq!(wider.dy.to_bits(), grid.dy.to_bits());
+        let largest = Grid::square(Grid::MAX_CELLS_PER_SIDE, 1e-3).expect("valid");
+        assert!(widen(&largest, (true, true)).is_none());
+    }
+}
