@@ -6,7 +6,7 @@
 use std::ops::RangeInclusive;
 
 use super::format::num;
-use super::{DomainSize, FieldError, GridSize, Scene};
+use super::{DomainSize, FieldError, GridSize, MAX_RECORD_CYCLES, RecordCycles, Scene};
 use crate::contact::Grid;
 
 /// Longest run accepted; a cap on run time and on the size of the result.
@@ -156,6 +156,17 @@ fn check_wear(c: &mut Checks, scene: &Scene) {
         );
     }
     c.positive("wear.archard_calibration.time_s", calibration.time_s, "s");
+    let conditions = [
+        ("hardness_mpa", calibration.hardness_mpa, "MPa"),
+        ("load_n", calibration.load_n, "N"),
+        ("speed_rpm", calibration.speed_rpm, "rpm"),
+        ("track_radius_mm", calibration.track_radius_mm, "mm"),
+    ];
+    for (field, value, unit) in conditions {
+        if let Some(value) = value {
+            c.positive(&format!("wear.archard_calibration.{field}"), value, unit);
+        }
+    }
     c.closed(
         "wear.archard_calibration.wear_volume_mm3",
         calibration.wear_volume_mm3,
@@ -223,6 +234,32 @@ fn check_numerics(c: &mut Checks, scene: &Scene) {
         CYCLE_STEP_BOUND.1,
         "",
     );
+    check_record_cycles(c, scene);
+}
+
+fn check_record_cycles(c: &mut Checks, scene: &Scene) {
+    let RecordCycles::Cycles(cycles) = &scene.numerics.record_cycles else {
+        return;
+    };
+    if cycles.len() > MAX_RECORD_CYCLES {
+        c.fail(
+            "numerics.record_cycles",
+            format!(
+                "names {} cycles; at most {MAX_RECORD_CYCLES} (each is a solve and a kept \
+                 profile)",
+                cycles.len()
+            ),
+        );
+    }
+    let total = scene.test.cycles;
+    for (i, &cycle) in cycles.iter().enumerate() {
+        if !(1..=total).contains(&cycle) {
+            c.fail(
+                &format!("numerics.record_cycles[{i}]"),
+                format!("must be a cycle of the run, in 1..={total}, got {cycle}"),
+            );
+        }
+    }
 }
 
 fn check_corrosion(c: &mut Checks, scene: &Scene) {
