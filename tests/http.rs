@@ -1,6 +1,6 @@
 //! The service as an operator runs it: the `tribosim serve` binary in its own process. Slow
-//! clients, the bounded shutdown on SIGTERM, the token's scheme and file, duplicate keys,
-//! long targets and the page built into the binary.
+//! clients, the cap on connections, the idle timeout, the bounded shutdown on SIGTERM, the
+//! token's scheme and file, duplicate keys, long targets and the page built into the binary.
 
 use std::io::{BufRead, BufReader, ErrorKind, Read, Write};
 use std::net::TcpStream;
@@ -347,4 +347,73 @@ async fn the_page_is_served_from_any_directory_and_static_dir_overrides_it() {
     let overridden = Served::start(dir.path(), &["--static-dir", flag], dir.path());
     let page = client.get(overridden.url("/")).send().await.expect("page");
     assert_eq!(page.text().await.expect("page text"), "<p>draft</p>");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn connections_beyond_the_cap_wait_until_one_closes() {
+    let dir = TempDir::new("cap");
+    // Only the cap can hold these connections: no timeout ends them during the test.
+    let server = Served::start(
+        dir.path(),
+        &[
+            "--max-connections",
+            "2",
+            "--header-timeout-s",
+            "3600",
+            "--idle-timeout-s",
+            "3600",
+        ],
+        dir.path(),
+    );
+    let held: Vec<_> = (0..2)
+        .map(|_| TcpStream::connect(&server.addr).expect("connect"))
+        .collect();
+    let impatient = reqwest::Client::builder()
+        .timeout(Duration::from_secs(1))
+        .build()
+        .expect("client");
+    let refused = impatient.get(server.url("/healthz")).send().await;
+    assert!(
+        refused.is_err(),
+        "a third connection is served while two are held"
+    );
+    drop(held);
+    let response = client()
+        .get(server.url("/healthz"))
+        .send()
+        .await
+        .expect("served once the held connections close");
+    assert_eq!(response.status(), 200);
+}
+
+#[test]
+fn a_connection_with_no_traffic_is_closed_after_the_idle_timeout() {
+    const IDLE_TIMEOUT_S: u64 = 1;
+    let dir = TempDir::new("idle");
+    let idle = IDLE_TIMEOUT_S.to_string();
+    let server = Served::start(
+        dir.path(),
+        &["--idle-timeout-s", &idle, "--header-timeout-s", "3600"],
+        dir.path(),
+    );
+    let mut stream = TcpStream::connect(&server.addr).expect("connect");
+    stream
+        .write_all(b"GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n")
+        .expect("request");
+    stream
+        .set_read_timeout(Some(PATIENCE))
+        .expect("read timeout");
+    let opened = Instant::now();
+    let mut answer = Vec::new();
+    // The answer, then the end of the stream when the kept-alive connection idles out.
+    stream
+        .read_to_end(&mut answer)
+        .expect("the server closes the idle connection");
+    let answer = String::from_utf8_lossy(&answer);
+    assert!(answer.starts_with("HTTP/1.1 200"), "{answer}");
+    eprintln!(
+        "idle connection closed {:?} after its request",
+        opened.elapsed()
+    );
+    assert!(opened.elapsed() >= Duration::from_secs(IDLE_TIMEOUT_S));
 }
