@@ -69,7 +69,7 @@ pub struct ServeArgs {
     #[arg(long, env = "TRIBOSIM_TOKEN", hide_env_values = true)]
     pub token: Option<String>,
     /// File holding the bearer token (its first line; surrounding whitespace is ignored).
-    #[arg(long, value_name = "PATH", conflicts_with = "token")]
+    #[arg(long, value_name = "PATH")]
     pub token_file: Option<PathBuf>,
     /// Origin allowed to call the API from a browser (repeatable); CORS is off without one.
     #[arg(long = "cors-origin", value_name = "ORIGIN")]
@@ -169,6 +169,9 @@ pub enum ServeError {
     /// A `--cors-origin` that is not a valid header value.
     #[error("invalid --cors-origin {0:?}")]
     CorsOrigin(String),
+    /// A token given both directly and in a file.
+    #[error("a token is given twice: pass --token-file, or --token or TRIBOSIM_TOKEN, not both")]
+    TokenTwice,
     /// The token file cannot be read.
     #[error("cannot read the token file {}: {source}", path.display())]
     TokenFile {
@@ -316,6 +319,9 @@ impl ServeArgs {
         let Some(path) = &self.token_file else {
             return Ok(self.token.clone());
         };
+        if self.token.is_some() {
+            return Err(ServeError::TokenTwice);
+        }
         let text = std::fs::read_to_string(path).map_err(|source| ServeError::TokenFile {
             path: path.clone(),
             source,
