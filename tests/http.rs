@@ -120,8 +120,10 @@ fn client() -> reqwest::Client {
 /// 200 ms, never finishing its headers. Returns how long after connecting the server closed
 /// the connection (`None` if it stayed open for [`PATIENCE`]).
 fn slow_client(addr: &str) -> Option<Duration> {
-    let mut stream = TcpStream::connect(addr).expect("connect");
+    // Timed from before the connection exists, so that the server's timer, which starts
+    // when it accepts, cannot have started earlier than this clock.
     let connected = Instant::now();
+    let mut stream = TcpStream::connect(addr).expect("connect");
     stream
         .write_all(b"GET /healthz HTTP/1.1\r\nHost: x\r\nX-Slow: ")
         .expect("first bytes");
