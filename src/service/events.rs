@@ -16,7 +16,8 @@ use futures_util::Stream;
 use serde::Deserialize;
 use tokio::sync::watch;
 
-use super::jobs::{Cycle, Job, JobRecord, Jobs};
+use super::job::{Cycle, Job, JobRecord};
+use super::registry::Jobs;
 
 /// Where one client is in one job's stream.
 struct Cursor {

@@ -15,9 +15,12 @@
 mod error;
 mod events;
 mod export;
-mod jobs;
+mod job;
+mod queue;
+mod registry;
 mod routes;
 mod store;
+mod worker;
 
 use std::future::Future;
 use std::io::{self, IsTerminal};
@@ -39,7 +42,7 @@ use tracing::Level;
 
 pub use routes::{OPENAPI_YAML, ROUTES, Route, Verb};
 
-use jobs::Jobs;
+use registry::Jobs;
 use store::Store;
 
 /// Largest request body accepted (a scene is a few kilobytes).

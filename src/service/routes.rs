@@ -21,7 +21,8 @@ use super::AppState;
 use super::error::ApiError;
 use super::events;
 use super::export;
-use super::jobs::{Deletion, JobStatus, SubmitError};
+use super::job::JobStatus;
+use super::registry::{Deletion, SubmitError};
 use crate::scene::presets;
 use crate::simulation::parse_scene;
 

@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 
 use uuid::Uuid;
 
-use super::jobs::JobRecord;
+use super::job::JobRecord;
 use crate::scene::Scene;
 
 const SCENE: &str = "scene.json";
