@@ -26,6 +26,9 @@ pub enum JobStatus {
     Failed,
     /// Stopped by a client.
     Cancelled,
+    /// Its stored scene is damaged, so it cannot run; `error` says what is wrong. DELETE
+    /// removes it.
+    Damaged,
 }
 
 impl JobStatus {
@@ -37,12 +40,16 @@ impl JobStatus {
             Self::Succeeded => "succeeded",
             Self::Failed => "failed",
             Self::Cancelled => "cancelled",
+            Self::Damaged => "damaged",
         }
     }
 
     /// Whether the job will not change any more.
     pub fn is_final(self) -> bool {
-        matches!(self, Self::Succeeded | Self::Failed | Self::Cancelled)
+        matches!(
+            self,
+            Self::Succeeded | Self::Failed | Self::Cancelled | Self::Damaged
+        )
     }
 }
 
@@ -61,8 +68,12 @@ pub struct JobRecord {
     pub cycles_total: u64,
     /// Seconds to completion, estimated from the running job's pace; null otherwise.
     pub eta_s: Option<f64>,
-    /// Why the job failed; null otherwise.
+    /// Why the job failed or is damaged; null otherwise.
     pub error: Option<String>,
+    /// Why a job that had finished was queued to run again (its stored result or record was
+    /// damaged); null for a job on its first run.
+    #[serde(default)]
+    pub rerun_reason: Option<String>,
     /// When the job was accepted.
     #[serde(with = "time::serde::rfc3339")]
     pub created_at: OffsetDateTime,
@@ -85,6 +96,7 @@ impl JobRecord {
             cycles_total: scene.test.cycles,
             eta_s: None,
             error: None,
+            rerun_reason: None,
             created_at: OffsetDateTime::now_utc(),
             started_at: None,
             finished_at: None,
@@ -104,6 +116,9 @@ pub struct Cycle {
 /// A job's mutable state.
 pub(super) struct JobState {
     pub(super) record: JobRecord,
+    /// What to run; `None` for a finished job (its scene stays on disk, and is read back
+    /// only if the job must run again).
+    pub(super) scene: Option<Arc<Scene>>,
     /// The cycles solved so far, or `None` once the job has finished (they are then read
     /// from `cycles.jsonl`).
     pub(super) cycles: Option<Vec<Cycle>>,
@@ -117,10 +132,11 @@ pub(super) struct JobState {
 pub struct Job {
     /// The job's id.
     pub id: Uuid,
-    /// What to run; `None` for a job that had finished before this process started (its
-    /// scene stays on disk, as it never runs again).
-    pub(super) scene: Option<Scene>,
     state: Mutex<JobState>,
+    /// Held across every file write of this job and the state change it records, so that
+    /// concurrent requests on one job (two DELETEs, a DELETE and the worker finishing) act
+    /// one after the other on both the disk and the memory. Taken before any other lock.
+    disk: Mutex<()>,
     /// Polled by `simulation::run` once per cycle.
     pub(super) cancel: AtomicBool,
     /// Bumped at every change (cycle or status), waking event-stream clients.
@@ -139,13 +155,14 @@ impl Job {
     pub(super) fn new(record: JobRecord, scene: Option<Scene>, cycles: Option<Vec<Cycle>>) -> Self {
         Self {
             id: record.id,
-            scene,
             state: Mutex::new(JobState {
                 record,
+                scene: scene.map(Arc::new),
                 cycles,
                 started: None,
                 cancel_requested: false,
             }),
+            disk: Mutex::new(()),
             cancel: AtomicBool::new(false),
             changed: watch::Sender::new(()),
         }
@@ -155,6 +172,11 @@ impl Job {
         // A panic while holding the lock cannot leave the state half-updated in a way that
         // matters more than losing the service, so a poisoned lock is still used.
         self.state.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// The job's disk lock (see [`Job`]).
+    pub(super) fn disk(&self) -> MutexGuard<'_, ()> {
+        self.disk.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     /// The job record, with the ETA of a running job.

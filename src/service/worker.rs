@@ -17,6 +17,7 @@ use time::OffsetDateTime;
 use super::job::{Job, JobStatus};
 use super::registry::Jobs;
 use super::store::CyclesWriter;
+use crate::scene::Scene;
 use crate::simulation::{self, CycleRecord, SimulationError};
 
 impl Jobs {
@@ -28,7 +29,7 @@ impl Jobs {
                 std::thread::Builder::new()
                     .name(format!("tribosim-worker-{n}"))
                     .spawn(move || {
-                        while let Some(job) = jobs.next_job() {
+                        while let Some(job) = jobs.queue.next() {
                             jobs.run_job(&job);
                         }
                     })
@@ -47,46 +48,51 @@ impl Jobs {
         }
     }
 
-    /// The next queued job, marked running; `None` once stopping.
-    fn next_job(&self) -> Option<Arc<Job>> {
-        loop {
-            let job = self.queue.next()?;
-            let mut state = job.state();
-            // A job cancelled while queued may still be in the queue.
-            if state.record.status != JobStatus::Queued {
-                continue;
-            }
-            state.record.status = JobStatus::Running;
-            state.record.started_at = Some(OffsetDateTime::now_utc());
-            state.started = Some(Instant::now());
-            drop(state);
-            return Some(job);
+    /// Marks a job taken from the queue running, on disk and in memory, and opens its cycle
+    /// log; `None` when it is no longer queued (cancelled while it waited).
+    fn start(&self, job: &Job) -> Option<Result<(Arc<Scene>, CyclesWriter), String>> {
+        let _disk = job.disk();
+        let mut record = job.record();
+        if record.status != JobStatus::Queued {
+            return None;
         }
+        let scene = job.state().scene.clone();
+        record.status = JobStatus::Running;
+        record.started_at = Some(OffsetDateTime::now_utc());
+        job.update(|state| {
+            state.record = record.clone();
+            state.started = Some(Instant::now());
+        });
+        tracing::info!(id = %job.id, "job running");
+        let Some(scene) = scene else {
+            return Some(Err("the job's scene is not loaded".to_owned()));
+        };
+        Some(
+            self.store
+                .write_status(&record)
+                .and_then(|()| self.store.cycles_writer(job.id))
+                .map(|writer| (scene, writer))
+                .map_err(|e| format!("storage: {e}")),
+        )
     }
 
     fn run_job(&self, job: &Job) {
-        let id = job.id;
-        let record = job.record();
-        job.notify();
-        tracing::info!(%id, "job running");
-        let outcome = self
-            .store
-            .write_status(&record)
-            .and_then(|()| self.store.cycles_writer(id))
-            .map_err(|e| format!("storage: {e}"))
-            .and_then(|writer| {
-                // A panic in the simulation must fail its job, not kill the worker and leave
-                // the job `running` for ever.
-                panic::catch_unwind(AssertUnwindSafe(|| self.simulate(job, writer)))
-                    .unwrap_or_else(|payload| Err(panic_message(payload.as_ref())))
-            });
+        let Some(started) = self.start(job) else {
+            return;
+        };
+        let outcome = started.and_then(|(scene, writer)| {
+            // A panic in the simulation must fail its job, not kill the worker and leave the
+            // job `running` for ever.
+            panic::catch_unwind(AssertUnwindSafe(|| self.simulate(job, &scene, writer)))
+                .unwrap_or_else(|payload| Err(panic_message(payload.as_ref())))
+        });
         match outcome {
             Ok(true) => self.finish(job, JobStatus::Succeeded, None),
             Ok(false) => {
                 if job.state().cancel_requested {
                     self.finish(job, JobStatus::Cancelled, None);
                 } else {
-                    tracing::info!(%id, "job interrupted by shutdown; it runs again at the next start");
+                    tracing::info!(id = %job.id, "job interrupted by shutdown; it runs again at the next start");
                 }
             }
             Err(error) => self.finish(job, JobStatus::Failed, Some(error)),
@@ -95,10 +101,7 @@ impl Jobs {
 
     /// Runs the simulation, logging each cycle, and stores the result. `Ok(true)` when the
     /// job succeeded, `Ok(false)` when it was cancelled, `Err` with the reason when it failed.
-    fn simulate(&self, job: &Job, mut writer: CyclesWriter) -> Result<bool, String> {
-        let Some(scene) = &job.scene else {
-            return Err("the job's scene is not loaded".to_owned());
-        };
+    fn simulate(&self, job: &Job, scene: &Scene, mut writer: CyclesWriter) -> Result<bool, String> {
         let mut storage_error: Option<String> = None;
         let outcome = simulation::run(
             scene,
@@ -126,12 +129,12 @@ impl Jobs {
             return Err(error);
         }
         // Whatever the outcome, the final status will say the log is complete.
-        writer.finish().map_err(|e| format!("storage: {e}"))?;
+        let cycles = writer.finish().map_err(|e| format!("storage: {e}"))?;
         match outcome {
             Ok(result) => {
                 let json = serde_json::to_vec(&result).map_err(|e| format!("result: {e}"))?;
                 self.store
-                    .write_result(job.id, &json)
+                    .write_result(job.id, &json, cycles)
                     .map_err(|e| format!("storage: {e}"))?;
                 Ok(true)
             }
@@ -143,6 +146,7 @@ impl Jobs {
     /// Persists a final status, then shows it: a client that sees `succeeded` can download
     /// the result.
     fn finish(&self, job: &Job, status: JobStatus, error: Option<String>) {
+        let _disk = job.disk();
         let mut record = job.record();
         record.status = status;
         record.eta_s = None;
@@ -165,6 +169,7 @@ impl Jobs {
             state.record = record;
             state.started = None;
             state.cycles = None;
+            state.scene = None;
         });
     }
 }
