@@ -39,6 +39,12 @@ fn corrupt(path: &Path) {
 /// A kind of damage: its label, the file it hits (none for the intact job), and how.
 type Damage = (&'static str, &'static str, fn(&Path));
 
+/// Replaces a file by an empty directory of the same name.
+fn into_directory(path: &Path) {
+    fs::remove_file(path).expect("remove");
+    fs::create_dir(path).expect("directory");
+}
+
 fn job_file(dir: &Path, id: &str, file: &str) -> PathBuf {
     dir.join("jobs").join(id).join(file)
 }
@@ -77,11 +83,15 @@ async fn a_damaged_store_comes_up_serving_every_intact_job() {
     let mut first = ServerProcess::start(dir.path());
     // Each job gets one kind of damage: (label, file, how), the file's damage applied after
     // the job has succeeded and the server is dead.
-    let damage: [Damage; 11] = [
+    let damage: [Damage; 13] = [
         ("intact", "", |_| {}),
         ("status truncated", "status.json", truncate),
         ("status corrupt", "status.json", corrupt),
+        // A directory cannot be read as a file nor replaced by a rename: this status can
+        // neither be read nor rewritten at startup.
+        ("status unreadable", "status.json", into_directory),
         ("scene truncated", "scene.json", truncate),
+        ("scene unreadable", "scene.json", into_directory),
         ("scene corrupt", "scene.json", corrupt),
         ("result truncated", "result.json", truncate),
         ("result corrupt", "result.json", corrupt),
