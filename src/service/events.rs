@@ -103,6 +103,10 @@ impl Cursor {
         let read = tokio::task::spawn_blocking(move || match status {
             JobStatus::Succeeded => match jobs.store().read_cycles(job.id) {
                 Ok(bytes) => Some(bytes),
+                Err(damage) if damage.is_read_failure() => {
+                    tracing::error!(id = %job.id, "{damage}");
+                    Some(Vec::new())
+                }
                 Err(damage) => {
                     jobs.rerun(&job, &damage);
                     None

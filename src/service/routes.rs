@@ -351,6 +351,9 @@ async fn result_bytes(app: &AppState, id: Uuid) -> Result<Vec<u8>, ApiError> {
     let jobs = Arc::clone(&app.jobs);
     tokio::task::spawn_blocking(move || {
         jobs.store().read_result(id).map_err(|damage| {
+            if damage.is_read_failure() {
+                return ApiError::internal("reading a result", &damage);
+            }
             match jobs.rerun(&job, &damage) {
                 // Deleted between the status check and the read.
                 None => unknown_job(id),
@@ -359,7 +362,7 @@ async fn result_bytes(app: &AppState, id: Uuid) -> Result<Vec<u8>, ApiError> {
                         format!("job is damaged: {error}")
                     }
                     _ => format!(
-                        "the stored result was damaged ({damage}); the job is {} to run again",
+                        "the stored result was damaged ({damage}); the job runs again (now {})",
                         record.status.name()
                     ),
                 }),

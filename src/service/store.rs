@@ -85,6 +85,13 @@ pub enum Damage {
 }
 
 impl Damage {
+    /// Whether the file could not be read at all: possibly a fault of the machine (too
+    /// many open files, an I/O error) rather than of the file, so a request that meets it
+    /// fails and the next one tries again, instead of running the job again.
+    pub fn is_read_failure(&self) -> bool {
+        matches!(self, Self::Unreadable { .. })
+    }
+
     fn reading(file: &'static str, source: io::Error) -> Self {
         if source.kind() == io::ErrorKind::NotFound {
             Self::Missing(file)
