@@ -120,6 +120,11 @@ impl ApiError {
         Self::new(status, status.canonical_reason().unwrap_or("error"))
     }
 
+    /// 507: the server's disk is full; nothing of the request was kept.
+    pub fn insufficient_storage(message: impl Into<String>) -> Self {
+        Self::new(StatusCode::INSUFFICIENT_STORAGE, message)
+    }
+
     /// 500: a fault of the server (its storage), never of the request. The cause goes to the
     /// log; the client learns only that the server failed.
     pub fn internal(context: &str, cause: &dyn std::fmt::Display) -> Self {

@@ -16,7 +16,8 @@ use futures_util::Stream;
 use serde::Deserialize;
 use tokio::sync::watch;
 
-use super::jobs::{Cycle, Job, JobRecord, Jobs};
+use super::job::{Cycle, Job, JobRecord, JobStatus};
+use super::registry::Jobs;
 
 /// Where one client is in one job's stream.
 struct Cursor {
@@ -67,7 +68,13 @@ impl Cursor {
             let progress = self.job.progress_after(self.after);
             let cycles = match progress.cycles {
                 Some(cycles) => cycles,
-                None => self.cycles_on_disk().await,
+                None => match self.cycles_on_disk(progress.record.status).await {
+                    Some(cycles) => cycles,
+                    // The stored log was damaged and the job sent back to the queue: follow
+                    // its new run, unless it was deleted meanwhile.
+                    None if self.jobs.get(self.job.id).is_some() => continue,
+                    None => return None,
+                },
             };
             for cycle in cycles {
                 self.after = cycle.number;
@@ -86,34 +93,61 @@ impl Cursor {
         }
     }
 
-    /// The cycles after `self.after` of a finished job, from its durable log. An unreadable
-    /// log ends the cycles there (the status event still follows); the result download holds
-    /// every cycle in any case.
-    async fn cycles_on_disk(&self) -> Vec<Cycle> {
-        let path = self.jobs.store().cycles_path(self.job.id);
-        let text = match tokio::fs::read_to_string(&path).await {
-            Ok(text) => text,
-            Err(e) => {
-                if e.kind() != std::io::ErrorKind::NotFound {
-                    tracing::error!(id = %self.job.id, "cannot read {}: {e}", path.display());
+    /// The cycles after `self.after` of a finished job, from its durable log. A succeeded
+    /// job's log is checked against its manifest first: if it is damaged, the job is sent
+    /// back to the queue and `None` returned. The log of a job that stopped early holds what
+    /// was written before it stopped; an unreadable one ends the cycles there (the status
+    /// event still follows).
+    async fn cycles_on_disk(&self, status: JobStatus) -> Option<Vec<Cycle>> {
+        let (jobs, job) = (Arc::clone(&self.jobs), Arc::clone(&self.job));
+        let read = tokio::task::spawn_blocking(move || match status {
+            JobStatus::Succeeded => match jobs.store().read_cycles(job.id) {
+                Ok(bytes) => Some(bytes),
+                Err(damage) if damage.is_read_failure() => {
+                    tracing::error!(id = %job.id, "{damage}");
+                    Some(Vec::new())
                 }
-                return Vec::new();
+                Err(damage) => {
+                    jobs.rerun(&job, &damage);
+                    None
+                }
+            },
+            JobStatus::Damaged => Some(Vec::new()),
+            _ => match jobs.store().read_partial_cycles(job.id) {
+                Ok(bytes) => Some(bytes),
+                Err(e) => {
+                    if e.kind() != std::io::ErrorKind::NotFound {
+                        tracing::error!(id = %job.id, "cannot read the cycle log: {e}");
+                    }
+                    Some(Vec::new())
+                }
+            },
+        })
+        .await;
+        let bytes = match read {
+            Ok(bytes) => bytes?,
+            Err(e) => {
+                tracing::error!(id = %self.job.id, "reading the cycle log: {e}");
+                Vec::new()
             }
         };
         #[derive(Deserialize)]
         struct Number {
             cycle: u64,
         }
-        text.lines()
-            .map_while(|line| {
-                let number = serde_json::from_str::<Number>(line).ok()?.cycle;
-                Some(Cycle {
-                    number,
-                    json: line.into(),
+        let text = String::from_utf8_lossy(&bytes);
+        Some(
+            text.lines()
+                .map_while(|line| {
+                    let number = serde_json::from_str::<Number>(line).ok()?.cycle;
+                    Some(Cycle {
+                        number,
+                        json: line.into(),
+                    })
                 })
-            })
-            .filter(|cycle| cycle.number > self.after)
-            .collect()
+                .filter(|cycle| cycle.number > self.after)
+                .collect(),
+        )
     }
 }
 

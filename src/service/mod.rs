@@ -17,10 +17,13 @@
 mod error;
 mod events;
 mod export;
-mod jobs;
+mod job;
 mod listen;
+mod queue;
+mod registry;
 mod routes;
 mod store;
+mod worker;
 
 use std::future::Future;
 use std::io::{self, IsTerminal};
@@ -43,7 +46,7 @@ use tracing::Level;
 
 pub use routes::{MAX_URI_BYTES, OPENAPI_YAML, ROUTES, Route, Verb};
 
-use jobs::Jobs;
+use registry::Jobs;
 use store::Store;
 
 /// Largest request body accepted (a scene is a few kilobytes).

@@ -22,7 +22,9 @@ use super::AppState;
 use super::error::ApiError;
 use super::events;
 use super::export;
-use super::jobs::{Deletion, JobStatus, SubmitError};
+use super::job::JobStatus;
+use super::registry::{Deletion, SubmitError};
+use super::store::is_disk_full;
 use crate::json::{self, JsonError};
 use crate::scene::{FieldError, SceneErrors, presets};
 use crate::simulation::parse_scene;
@@ -320,6 +322,7 @@ async fn submit(State(app): State<AppState>, request: Request) -> Result<Respons
                 capacity,
                 retry_after_s,
             } => ApiError::queue_full(capacity, retry_after_s),
+            SubmitError::DiskFull => disk_full("the job was not accepted"),
             SubmitError::Storage(e) => ApiError::internal("storing the job", &e),
         })?;
     let location = format!("/api/v1/jobs/{}", record.id);
@@ -356,6 +359,12 @@ async fn list_jobs(State(app): State<AppState>) -> impl IntoResponse {
     Json(app.jobs.list())
 }
 
+fn disk_full(what: &str) -> ApiError {
+    ApiError::insufficient_storage(format!(
+        "the server's disk is full: {what}; retry once space is freed"
+    ))
+}
+
 fn unknown_job(id: Uuid) -> ApiError {
     ApiError::not_found(format!("no job {id}"))
 }
@@ -371,7 +380,13 @@ async fn delete_job(State(app): State<AppState>, JobId(id): JobId) -> Result<Res
         .await
         .map_err(|e| ApiError::internal("deleting a job", &e))?
         .ok_or_else(|| unknown_job(id))?
-        .map_err(|e| ApiError::internal("deleting a job", &e))?;
+        .map_err(|e| {
+            if is_disk_full(&e) {
+                disk_full("the job was not changed")
+            } else {
+                ApiError::internal("deleting a job", &e)
+            }
+        })?;
     Ok(match deletion {
         Deletion::Cancelled(record) => (StatusCode::OK, Json(record)).into_response(),
         Deletion::Cancelling(record) => (StatusCode::ACCEPTED, Json(record)).into_response(),
@@ -398,7 +413,8 @@ async fn job_events(
         .into_response())
 }
 
-/// The bytes of a succeeded job's `result.json`; 409 while it has none.
+/// The bytes of a succeeded job's `result.json`, checked against its manifest; 409 while it
+/// has none. A damaged result sends the job back to the queue (409 too).
 async fn result_bytes(app: &AppState, id: Uuid) -> Result<Vec<u8>, ApiError> {
     let job = app.jobs.get(id).ok_or_else(|| unknown_job(id))?;
     let record = job.record();
@@ -407,6 +423,9 @@ async fn result_bytes(app: &AppState, id: Uuid) -> Result<Vec<u8>, ApiError> {
         (JobStatus::Failed, Some(error)) => {
             return Err(ApiError::conflict(format!("job failed: {error}")));
         }
+        (JobStatus::Damaged, Some(error)) => {
+            return Err(ApiError::conflict(format!("job is damaged: {error}")));
+        }
         (status, _) => {
             return Err(ApiError::conflict(format!(
                 "job is {}; only a succeeded job has a result",
@@ -414,12 +433,29 @@ async fn result_bytes(app: &AppState, id: Uuid) -> Result<Vec<u8>, ApiError> {
             )));
         }
     }
-    match tokio::fs::read(app.jobs.store().result_path(id)).await {
-        Ok(bytes) => Ok(bytes),
-        // Deleted between the status check and the read.
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(unknown_job(id)),
-        Err(e) => Err(ApiError::internal("reading a result", &e)),
-    }
+    let jobs = Arc::clone(&app.jobs);
+    tokio::task::spawn_blocking(move || {
+        jobs.store().read_result(id).map_err(|damage| {
+            if damage.is_read_failure() {
+                return ApiError::internal("reading a result", &damage);
+            }
+            match jobs.rerun(&job, &damage) {
+                // Deleted between the status check and the read.
+                None => unknown_job(id),
+                Some(record) => ApiError::conflict(match record.error {
+                    Some(error) if record.status == JobStatus::Damaged => {
+                        format!("job is damaged: {error}")
+                    }
+                    _ => format!(
+                        "the stored result was damaged ({damage}); the job runs again (now {})",
+                        record.status.name()
+                    ),
+                }),
+            }
+        })
+    })
+    .await
+    .map_err(|e| ApiError::internal("reading a result", &e))?
 }
 
 fn attachment(content_type: &'static str, filename: &str, body: impl IntoResponse) -> Response {

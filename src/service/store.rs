@@ -3,13 +3,17 @@
 //! - `scene.json`: the scene as parsed (every default filled in), written once;
 //! - `status.json`: the job record, rewritten at every transition;
 //! - `cycles.jsonl`: one cycle record per line, appended while the job runs;
-//! - `result.json`: the simulation result, written once when the job succeeds.
+//! - `result.json`: the simulation result, written once when the job succeeds;
+//! - `manifest.json`: the length and CRC-32 of `result.json` and `cycles.jsonl`, written
+//!   after them and before the final status. A succeeded job's files are checked against it
+//!   at startup and before they are served, so damage done to them on disk is found.
 //!
 //! Whole-file writes are atomic: temporary file, fsync, rename, fsync of the directory, so a
 //! crash leaves either the old or the new file, never a torn one. A job directory is built
 //! under `<uuid>.new` and renamed into place, so a job exists on disk completely or not at
 //! all; it is removed by renaming it to `<uuid>.deleted` first. Leftovers of both are swept at
-//! startup.
+//! startup; what cannot be swept, and files where a job directory should be, are moved to
+//! `<data-dir>/quarantine/` and logged, never deleted.
 //!
 //! `cycles.jsonl` is appended without an fsync per line: a job that was running when the
 //! process died is run again from scratch (truncating the file), so only the lines of finished
@@ -19,15 +23,19 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+use time::OffsetDateTime;
 use uuid::Uuid;
 
-use super::jobs::JobRecord;
+use super::job::JobRecord;
 use crate::scene::Scene;
 
 const SCENE: &str = "scene.json";
 const STATUS: &str = "status.json";
 const RESULT: &str = "result.json";
 const CYCLES: &str = "cycles.jsonl";
+const MANIFEST: &str = "manifest.json";
 const NEW_SUFFIX: &str = ".new";
 const DELETED_SUFFIX: &str = ".deleted";
 
@@ -35,14 +43,113 @@ const DELETED_SUFFIX: &str = ".deleted";
 #[derive(Debug)]
 pub struct Store {
     jobs_dir: PathBuf,
+    quarantine_dir: PathBuf,
 }
 
-/// A job as found on disk at startup.
+/// Why a stored file is not what was written to it.
+#[derive(Debug, Error)]
+pub enum Damage {
+    /// The file is gone.
+    #[error("{0} is missing")]
+    Missing(&'static str),
+    /// The file or its directory cannot be read.
+    #[error("{file} cannot be read: {source}")]
+    Unreadable {
+        /// The file.
+        file: &'static str,
+        /// What failed.
+        #[source]
+        source: io::Error,
+    },
+    /// The file is longer or shorter than when it was written.
+    #[error("{file} holds {found} bytes; {expected} were written")]
+    Length {
+        /// The file.
+        file: &'static str,
+        /// Its length now.
+        found: u64,
+        /// Its length when written.
+        expected: u64,
+    },
+    /// The file has its length but other bytes.
+    #[error("{0} does not match its checksum")]
+    Checksum(&'static str),
+    /// The file does not parse as what it should hold.
+    #[error("{file} is not valid: {message}")]
+    Invalid {
+        /// The file.
+        file: &'static str,
+        /// The parser's complaint.
+        message: String,
+    },
+}
+
+impl Damage {
+    /// Whether the file could not be read at all: possibly a fault of the machine (too
+    /// many open files, an I/O error) rather than of the file, so a request that meets it
+    /// fails and the next one tries again, instead of running the job again.
+    pub fn is_read_failure(&self) -> bool {
+        matches!(self, Self::Unreadable { .. })
+    }
+
+    fn reading(file: &'static str, source: io::Error) -> Self {
+        if source.kind() == io::ErrorKind::NotFound {
+            Self::Missing(file)
+        } else {
+            Self::Unreadable { file, source }
+        }
+    }
+}
+
+/// The length and CRC-32 of a file's bytes. CRC-32 finds every burst of damage up to 32 bits
+/// and all but one in 2^32 of the others; a truncation is caught by the length already.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Digest {
+    bytes: u64,
+    crc32: u32,
+}
+
+impl Digest {
+    fn of(bytes: &[u8]) -> Self {
+        Self {
+            bytes: bytes.len() as u64,
+            crc32: crc32fast::hash(bytes),
+        }
+    }
+
+    fn check(self, file: &'static str, bytes: &[u8]) -> Result<(), Damage> {
+        let found = Self::of(bytes);
+        if found.bytes != self.bytes {
+            return Err(Damage::Length {
+                file,
+                found: found.bytes,
+                expected: self.bytes,
+            });
+        }
+        if found.crc32 != self.crc32 {
+            return Err(Damage::Checksum(file));
+        }
+        Ok(())
+    }
+}
+
+/// What `manifest.json` holds.
+#[derive(Debug, Serialize, Deserialize)]
+struct Manifest {
+    result_json: Digest,
+    cycles_jsonl: Digest,
+}
+
+/// A job directory as found on disk at startup.
 pub struct StoredJob {
+    /// The job's id (its directory's name).
+    pub id: Uuid,
     /// Its last persisted record.
-    pub record: JobRecord,
-    /// Its scene, or why it could not be read back.
-    pub scene: Result<Scene, String>,
+    pub record: Result<JobRecord, Damage>,
+    /// Its scene.
+    pub scene: Result<Scene, Damage>,
+    /// When its directory last changed, for a record rebuilt from the scene.
+    pub modified: Option<OffsetDateTime>,
 }
 
 impl Store {
@@ -52,22 +159,60 @@ impl Store {
         let jobs_dir = data_dir.join("jobs");
         fs::create_dir_all(&jobs_dir)?;
         sync_dir(data_dir)?;
-        let store = Self { jobs_dir };
+        let store = Self {
+            jobs_dir,
+            quarantine_dir: data_dir.join("quarantine"),
+        };
         store.sweep()?;
         Ok(store)
     }
 
+    /// Removes the leftovers of interrupted creations and deletions, and moves aside files
+    /// that stand where a job directory should be.
     fn sweep(&self) -> io::Result<()> {
         for entry in fs::read_dir(&self.jobs_dir)? {
-            let entry = entry?;
-            let name = entry.file_name();
-            let name = name.to_string_lossy();
+            let path = match entry {
+                Ok(entry) => entry.path(),
+                Err(e) => {
+                    tracing::error!("cannot list {}: {e}", self.jobs_dir.display());
+                    continue;
+                }
+            };
+            let name = path
+                .file_name()
+                .map(|name| name.to_string_lossy().into_owned())
+                .unwrap_or_default();
             if name.ends_with(NEW_SUFFIX) || name.ends_with(DELETED_SUFFIX) {
-                tracing::info!(dir = %entry.path().display(), "removing incomplete job directory");
-                fs::remove_dir_all(entry.path())?;
+                tracing::info!(path = %path.display(), "removing an incomplete job directory");
+                if let Err(e) = remove_any(&path) {
+                    tracing::error!(path = %path.display(), "cannot remove: {e}");
+                    self.quarantine(&path);
+                }
+            } else if Uuid::parse_str(&name).is_ok() && !path.is_dir() {
+                tracing::error!(path = %path.display(), "not a job directory");
+                self.quarantine(&path);
+            } else if Uuid::parse_str(&name).is_err() {
+                tracing::warn!(path = %path.display(), "not a job; left alone");
             }
         }
         Ok(())
+    }
+
+    /// Moves `path` into the quarantine directory, logging where; logs if it cannot.
+    fn quarantine(&self, path: &Path) {
+        let name = path.file_name().unwrap_or_default().to_string_lossy();
+        let target = self
+            .quarantine_dir
+            .join(format!("{name}.{}", Uuid::new_v4().simple()));
+        let moved = fs::create_dir_all(&self.quarantine_dir)
+            .and_then(|()| fs::rename(path, &target))
+            .and_then(|()| sync_dir(&self.jobs_dir));
+        match moved {
+            Ok(()) => tracing::warn!(from = %path.display(), to = %target.display(), "quarantined"),
+            Err(e) => {
+                tracing::error!(path = %path.display(), "cannot quarantine: {e}; left in place");
+            }
+        }
     }
 
     fn dir(&self, id: Uuid) -> PathBuf {
@@ -75,15 +220,22 @@ impl Store {
     }
 
     /// Persists a new job: its scene and first record. When this returns, the job survives a
-    /// crash.
+    /// crash; when it fails, nothing of the job is left.
     pub fn create(&self, record: &JobRecord, scene: &Scene) -> io::Result<()> {
-        let dir = self.dir(record.id);
         let staging = self.jobs_dir.join(format!("{}{NEW_SUFFIX}", record.id));
-        fs::create_dir(&staging)?;
-        write_atomic(&staging, SCENE, &to_json(scene)?)?;
-        write_atomic(&staging, STATUS, &to_json(record)?)?;
-        fs::rename(&staging, &dir)?;
-        sync_dir(&self.jobs_dir)
+        let created = fs::create_dir(&staging)
+            .and_then(|()| write_atomic(&staging, SCENE, &to_json(scene)?))
+            .and_then(|()| write_atomic(&staging, STATUS, &to_json(record)?))
+            .and_then(|()| fs::rename(&staging, self.dir(record.id)))
+            .and_then(|()| sync_dir(&self.jobs_dir));
+        if created.is_err() {
+            if let Err(e) = remove_any(&staging) {
+                if e.kind() != io::ErrorKind::NotFound {
+                    tracing::error!(path = %staging.display(), "cannot clean up: {e}");
+                }
+            }
+        }
+        created
     }
 
     /// Replaces a job's persisted record.
@@ -91,19 +243,66 @@ impl Store {
         write_atomic(&self.dir(record.id), STATUS, &to_json(record)?)
     }
 
-    /// Persists a job's result.
-    pub fn write_result(&self, id: Uuid, result: &[u8]) -> io::Result<()> {
-        write_atomic(&self.dir(id), RESULT, result)
+    /// Persists a job's result with the digests of it and of its durable cycle log.
+    pub fn write_result(&self, id: Uuid, result: &[u8], cycles: Digest) -> io::Result<()> {
+        let dir = self.dir(id);
+        write_atomic(&dir, RESULT, result)?;
+        let manifest = Manifest {
+            result_json: Digest::of(result),
+            cycles_jsonl: cycles,
+        };
+        write_atomic(&dir, MANIFEST, &to_json(&manifest)?)
     }
 
-    /// Where a job's result is (present once the job succeeded).
-    pub fn result_path(&self, id: Uuid) -> PathBuf {
-        self.dir(id).join(RESULT)
+    fn manifest(&self, id: Uuid) -> Result<Manifest, Damage> {
+        let bytes =
+            fs::read(self.dir(id).join(MANIFEST)).map_err(|e| Damage::reading(MANIFEST, e))?;
+        serde_json::from_slice(&bytes).map_err(|e| Damage::Invalid {
+            file: MANIFEST,
+            message: e.to_string(),
+        })
     }
 
-    /// Where a job's cycle records are.
-    pub fn cycles_path(&self, id: Uuid) -> PathBuf {
-        self.dir(id).join(CYCLES)
+    fn read_checked(
+        &self,
+        id: Uuid,
+        file: &'static str,
+        digest: Digest,
+    ) -> Result<Vec<u8>, Damage> {
+        let bytes = fs::read(self.dir(id).join(file)).map_err(|e| Damage::reading(file, e))?;
+        digest.check(file, &bytes)?;
+        Ok(bytes)
+    }
+
+    /// A succeeded job's `result.json`, checked against its manifest. Blocking.
+    pub fn read_result(&self, id: Uuid) -> Result<Vec<u8>, Damage> {
+        let manifest = self.manifest(id)?;
+        self.read_checked(id, RESULT, manifest.result_json)
+    }
+
+    /// A succeeded job's `cycles.jsonl`, checked against its manifest. Blocking.
+    pub fn read_cycles(&self, id: Uuid) -> Result<Vec<u8>, Damage> {
+        let manifest = self.manifest(id)?;
+        self.read_checked(id, CYCLES, manifest.cycles_jsonl)
+    }
+
+    /// Checks both files of a succeeded job against its manifest. Blocking.
+    pub fn check_result(&self, id: Uuid) -> Result<(), Damage> {
+        let manifest = self.manifest(id)?;
+        self.read_checked(id, RESULT, manifest.result_json)?;
+        self.read_checked(id, CYCLES, manifest.cycles_jsonl)?;
+        Ok(())
+    }
+
+    /// The cycle log of a job that did not succeed, as far as it was written (nothing is
+    /// promised of it: the run stopped). Blocking.
+    pub fn read_partial_cycles(&self, id: Uuid) -> io::Result<Vec<u8>> {
+        fs::read(self.dir(id).join(CYCLES))
+    }
+
+    /// A job's scene, read back. Blocking.
+    pub fn read_scene(&self, id: Uuid) -> Result<Scene, Damage> {
+        read_json(&self.dir(id), SCENE)
     }
 
     /// Starts a job's cycle log afresh (a re-run replaces what an interrupted run wrote).
@@ -112,29 +311,35 @@ impl Store {
             .create(true)
             .write(true)
             .truncate(true)
-            .open(self.cycles_path(id))?;
+            .open(self.dir(id).join(CYCLES))?;
         Ok(CyclesWriter {
             file: BufWriter::new(file),
+            hasher: crc32fast::Hasher::new(),
+            bytes: 0,
         })
     }
 
     /// Deletes a job's directory: renamed aside first, so a crash midway leaves no
-    /// half-deleted job behind.
+    /// half-deleted job behind. Once renamed the job is gone; a directory that then cannot be
+    /// removed is logged and swept at the next start.
     pub fn remove(&self, id: Uuid) -> io::Result<()> {
         let doomed = self.jobs_dir.join(format!("{id}{DELETED_SUFFIX}"));
         fs::rename(self.dir(id), &doomed)?;
         sync_dir(&self.jobs_dir)?;
-        fs::remove_dir_all(doomed)
+        if let Err(e) = fs::remove_dir_all(&doomed) {
+            tracing::error!(path = %doomed.display(), "cannot remove: {e}; swept at the next start");
+        }
+        Ok(())
     }
 
-    /// Every job on disk, with interrupted writes' temporary files swept. Entries that are not
-    /// directories named by a UUID are not jobs and are skipped; a job whose record cannot be
-    /// read is logged and skipped (the record is written atomically, so this means outside
-    /// damage).
+    /// Every job directory on disk, with interrupted writes' temporary files swept. Entries
+    /// not named by a UUID are not jobs and are skipped. Nothing here fails the whole load:
+    /// what cannot be read is reported in the job's `record` or `scene`.
     pub fn load(&self) -> io::Result<Vec<StoredJob>> {
         let mut jobs = Vec::new();
         for entry in fs::read_dir(&self.jobs_dir)? {
-            let path = entry?.path();
+            let Ok(entry) = entry else { continue };
+            let path = entry.path();
             let Some(id) = path
                 .file_name()
                 .and_then(|name| name.to_str())
@@ -145,27 +350,48 @@ impl Store {
             if !path.is_dir() {
                 continue;
             }
-            sweep_temporaries(&path)?;
-            let record = fs::read(path.join(STATUS)).and_then(|bytes| {
-                serde_json::from_slice::<JobRecord>(&bytes).map_err(io::Error::other)
+            if let Err(e) = sweep_temporaries(&path) {
+                tracing::warn!(%id, "cannot sweep temporary files: {e}");
+            }
+            let modified = fs::metadata(&path)
+                .and_then(|metadata| metadata.modified())
+                .ok()
+                .map(OffsetDateTime::from);
+            let record = read_json::<JobRecord>(&path, STATUS).and_then(|record| {
+                if record.id == id {
+                    Ok(record)
+                } else {
+                    Err(Damage::Invalid {
+                        file: STATUS,
+                        message: format!("it names job {}", record.id),
+                    })
+                }
             });
-            let record = match record {
-                Ok(record) if record.id == id => record,
-                Ok(_) => {
-                    tracing::error!(%id, "status.json names another job; skipped");
-                    continue;
-                }
-                Err(e) => {
-                    tracing::error!(%id, "unreadable status.json: {e}; skipped");
-                    continue;
-                }
-            };
-            let scene = fs::read(path.join(SCENE))
-                .map_err(|e| e.to_string())
-                .and_then(|bytes| serde_json::from_slice(&bytes).map_err(|e| e.to_string()));
-            jobs.push(StoredJob { record, scene });
+            jobs.push(StoredJob {
+                id,
+                record,
+                scene: read_json(&path, SCENE),
+                modified,
+            });
         }
         Ok(jobs)
+    }
+}
+
+fn read_json<T: serde::de::DeserializeOwned>(dir: &Path, file: &'static str) -> Result<T, Damage> {
+    let bytes = fs::read(dir.join(file)).map_err(|e| Damage::reading(file, e))?;
+    serde_json::from_slice(&bytes).map_err(|e| Damage::Invalid {
+        file,
+        message: e.to_string(),
+    })
+}
+
+/// Removes a file or a directory tree.
+fn remove_any(path: &Path) -> io::Result<()> {
+    if fs::symlink_metadata(path)?.is_dir() {
+        fs::remove_dir_all(path)
+    } else {
+        fs::remove_file(path)
     }
 }
 
@@ -182,9 +408,11 @@ fn sweep_temporaries(job_dir: &Path) -> io::Result<()> {
     Ok(())
 }
 
-/// Appends cycle records to a job's `cycles.jsonl`.
+/// Appends cycle records to a job's `cycles.jsonl`, keeping the digest of what it wrote.
 pub struct CyclesWriter {
     file: BufWriter<File>,
+    hasher: crc32fast::Hasher,
+    bytes: u64,
 }
 
 impl CyclesWriter {
@@ -193,17 +421,33 @@ impl CyclesWriter {
     pub fn append(&mut self, line: &str) -> io::Result<()> {
         self.file.write_all(line.as_bytes())?;
         self.file.write_all(b"\n")?;
-        self.file.flush()
+        self.file.flush()?;
+        self.hasher.update(line.as_bytes());
+        self.hasher.update(b"\n");
+        self.bytes += line.len() as u64 + 1;
+        Ok(())
     }
 
-    /// Makes every line durable.
-    pub fn finish(self) -> io::Result<()> {
+    /// Makes every line durable; the digest of the whole log.
+    pub fn finish(self) -> io::Result<Digest> {
         let file = self
             .file
             .into_inner()
             .map_err(io::IntoInnerError::into_error)?;
-        file.sync_all()
+        file.sync_all()?;
+        Ok(Digest {
+            bytes: self.bytes,
+            crc32: self.hasher.finalize(),
+        })
     }
+}
+
+/// Whether an error means the disk (or the user's quota) is full.
+pub fn is_disk_full(error: &io::Error) -> bool {
+    matches!(
+        error.kind(),
+        io::ErrorKind::StorageFull | io::ErrorKind::QuotaExceeded
+    )
 }
 
 fn to_json(value: &impl serde::Serialize) -> io::Result<Vec<u8>> {

@@ -1,6 +1,11 @@
 //! Helpers for the service tests: temporary data directories, an in-process server on a
 //! loopback port, and a server-sent-event reader.
 
+// Each test crate compiles this module on its own and uses a part of it.
+#![allow(dead_code)]
+
+pub mod process;
+
 use std::num::NonZeroUsize;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -233,7 +238,7 @@ pub async fn wait_for_job(
 pub fn is_final(job: &Value) -> bool {
     matches!(
         job["status"].as_str(),
-        Some("succeeded" | "failed" | "cancelled")
+        Some("succeeded" | "failed" | "cancelled" | "damaged")
     )
 }
 

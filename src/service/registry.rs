@@ -1,0 +1,358 @@
+//! The registry of every job by id: loading it from the store at startup, accepting new
+//! jobs, sending a job whose stored result is damaged back to the queue, and DELETE.
+//!
+//! Handlers touch the registry only through short, non-blocking critical sections; anything
+//! that writes files runs on tokio's blocking pool. Lock order: a job's disk lock, the queue,
+//! the registry map, a job's state; only the disk lock is held across a file write.
+
+use std::collections::HashMap;
+use std::io;
+use std::sync::atomic::Ordering;
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+
+use time::OffsetDateTime;
+use uuid::Uuid;
+
+use super::job::{Job, JobRecord, JobStatus};
+use super::queue::Queue;
+use super::store::{Damage, Store, StoredJob, is_disk_full};
+use crate::scene::Scene;
+
+/// Why a job was not accepted.
+#[derive(Debug)]
+pub enum SubmitError {
+    /// The queue holds its capacity; retry after about this many seconds.
+    QueueFull {
+        /// The queue's capacity.
+        capacity: usize,
+        /// A hint for Retry-After.
+        retry_after_s: u64,
+    },
+    /// The disk is full: the job could not be made durable, and nothing of it is left.
+    DiskFull,
+    /// The job could not be made durable.
+    Storage(io::Error),
+}
+
+/// What DELETE did.
+pub enum Deletion {
+    /// The job was queued and is now cancelled.
+    Cancelled(JobRecord),
+    /// The job is running; it stops within a cycle, and is already cancelled on disk.
+    Cancelling(JobRecord),
+    /// The job had finished; it and its files are gone.
+    Removed,
+}
+
+/// The registry, the queue and the store, shared by handlers and workers.
+pub struct Jobs {
+    pub(super) store: Store,
+    jobs: Mutex<HashMap<Uuid, Arc<Job>>>,
+    pub(super) queue: Queue,
+}
+
+impl Jobs {
+    /// Loads every job from `store`: finished ones are served as they are, queued ones are
+    /// queued again, and ones that were running are queued to run again from scratch (in
+    /// the order they were accepted). A succeeded job whose result is damaged runs again; a
+    /// job whose scene is damaged is listed as `damaged`. One job's damage never stops the
+    /// others from loading.
+    pub fn open(store: Store, capacity: usize) -> io::Result<Arc<Self>> {
+        let mut stored = store.load()?;
+        stored.sort_by_key(|job| {
+            job.record
+                .as_ref()
+                .map(|record| record.created_at)
+                .ok()
+                .or(job.modified)
+        });
+        let jobs = Arc::new(Self {
+            store,
+            jobs: Mutex::new(HashMap::new()),
+            queue: Queue::new(capacity),
+        });
+        for job in stored {
+            jobs.restore(job);
+        }
+        Ok(jobs)
+    }
+
+    fn restore(&self, stored: StoredJob) {
+        let StoredJob {
+            id,
+            record,
+            scene,
+            modified,
+        } = stored;
+        let created_at = modified.unwrap_or_else(OffsetDateTime::now_utc);
+        let scene = match scene {
+            Ok(scene) => scene,
+            Err(damage) => {
+                let mut record = record.unwrap_or_else(|_| placeholder(id, created_at));
+                tracing::error!(%id, "stored scene damaged: {damage}; the job is listed as damaged");
+                record.status = JobStatus::Damaged;
+                record.eta_s = None;
+                record.error = Some(format!("stored scene damaged: {damage}"));
+                self.insert(Arc::new(Job::new(record, None, None)));
+                return;
+            }
+        };
+        let mut record = match record {
+            Ok(record) => record,
+            Err(damage) => {
+                tracing::error!(%id, "{damage}; the record is rebuilt from the scene");
+                let record = rebuilt(id, &scene, created_at, &damage, &self.store);
+                if record.status == JobStatus::Succeeded {
+                    if let Err(e) = self.store.write_status(&record) {
+                        tracing::error!(%id, "cannot rewrite status.json: {e}");
+                    }
+                }
+                record
+            }
+        };
+        match record.status {
+            JobStatus::Succeeded => match self.store.check_result(id) {
+                Ok(()) => self.insert(Arc::new(Job::new(record, None, None))),
+                Err(damage) => {
+                    record.rerun_reason = Some(format!("stored result damaged: {damage}"));
+                    self.requeue_at_start(record, scene);
+                }
+            },
+            JobStatus::Failed | JobStatus::Cancelled | JobStatus::Damaged => {
+                self.insert(Arc::new(Job::new(record, None, None)));
+            }
+            JobStatus::Queued | JobStatus::Running => self.requeue_at_start(record, scene),
+        }
+    }
+
+    /// Queues a job found unfinished (or with a damaged result) at startup. The new status
+    /// is written if it can be; if not, the disk still says the job must run, which is what
+    /// it does.
+    fn requeue_at_start(&self, mut record: JobRecord, scene: Scene) {
+        let id = record.id;
+        let was = record.status;
+        record.status = JobStatus::Queued;
+        record.cycles_done = 0;
+        record.eta_s = None;
+        record.error = None;
+        record.started_at = None;
+        record.finished_at = None;
+        if was != JobStatus::Queued || record.rerun_reason.is_some() {
+            if let Err(e) = self.store.write_status(&record) {
+                tracing::error!(%id, "cannot rewrite status.json: {e}");
+            }
+        }
+        match &record.rerun_reason {
+            Some(reason) => tracing::warn!(%id, was = ?was, %reason, "job queued to run again"),
+            None => tracing::info!(%id, was = ?was, "job re-queued after restart"),
+        }
+        let job = Arc::new(Job::new(record, Some(scene), Some(Vec::new())));
+        self.insert(Arc::clone(&job));
+        self.queue.push(job);
+    }
+
+    fn insert(&self, job: Arc<Job>) {
+        self.lock_jobs().insert(job.id, job);
+    }
+
+    pub(super) fn lock_jobs(&self) -> MutexGuard<'_, HashMap<Uuid, Arc<Job>>> {
+        self.jobs.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// The job with this id.
+    pub fn get(&self, id: Uuid) -> Option<Arc<Job>> {
+        self.lock_jobs().get(&id).cloned()
+    }
+
+    /// Every job's record, newest first.
+    pub fn list(&self) -> Vec<JobRecord> {
+        let jobs: Vec<Arc<Job>> = self.lock_jobs().values().cloned().collect();
+        let mut records: Vec<JobRecord> = jobs.iter().map(|job| job.record()).collect();
+        records.sort_by(|a, b| b.created_at.cmp(&a.created_at).then(a.id.cmp(&b.id)));
+        records
+    }
+
+    /// The store the jobs live in.
+    pub fn store(&self) -> &Store {
+        &self.store
+    }
+
+    /// Accepts a validated scene: makes it durable, then queues it. Blocking (file writes).
+    pub fn submit(&self, scene: Scene) -> Result<JobRecord, SubmitError> {
+        if !self.queue.reserve() {
+            return Err(SubmitError::QueueFull {
+                capacity: self.queue.capacity(),
+                retry_after_s: self.retry_after_s(),
+            });
+        }
+        let record = JobRecord::queued(&scene);
+        if let Err(e) = self.store.create(&record, &scene) {
+            self.queue.release();
+            return Err(if is_disk_full(&e) {
+                tracing::error!("job refused: {e}");
+                SubmitError::DiskFull
+            } else {
+                SubmitError::Storage(e)
+            });
+        }
+        let job = Arc::new(Job::new(record.clone(), Some(scene), Some(Vec::new())));
+        self.insert(Arc::clone(&job));
+        self.queue.admit(job);
+        tracing::info!(id = %record.id, cycles = record.cycles_total, "job queued");
+        Ok(record)
+    }
+
+    /// Seconds until a place in the queue is likely to free up: the soonest running job's
+    /// ETA, within [1, 300] s; 5 s when no running job has an estimate yet.
+    fn retry_after_s(&self) -> u64 {
+        let soonest = self
+            .list()
+            .iter()
+            .filter_map(|record| record.eta_s)
+            .fold(f64::INFINITY, f64::min);
+        if soonest.is_finite() {
+            // Clamped first, so the cast cannot truncate.
+            soonest.ceil().clamp(1.0, 300.0) as u64
+        } else {
+            5
+        }
+    }
+
+    /// Sends a succeeded job whose stored result was found damaged back to the queue: the
+    /// simulation is deterministic, so the run gives the same numbers again. A job whose
+    /// scene is damaged too becomes `damaged`. The job's record afterwards, or `None` when
+    /// it has been deleted meanwhile. Blocking (files).
+    pub fn rerun(&self, job: &Arc<Job>, damage: &Damage) -> Option<JobRecord> {
+        let id = job.id;
+        let _disk = job.disk();
+        if !self.get(id).is_some_and(|known| Arc::ptr_eq(&known, job)) {
+            return None;
+        }
+        if job.state().record.status != JobStatus::Succeeded {
+            // Another request found the damage first.
+            return Some(job.record());
+        }
+        let reason = format!("stored result damaged: {damage}");
+        let scene = match self.store.read_scene(id) {
+            Ok(scene) => scene,
+            Err(scene_damage) => {
+                tracing::error!(%id, "{reason}; stored scene damaged: {scene_damage}");
+                return Some(job.update(|state| {
+                    state.record.status = JobStatus::Damaged;
+                    state.record.error =
+                        Some(format!("{reason}; stored scene damaged: {scene_damage}"));
+                }));
+            }
+        };
+        tracing::warn!(%id, %reason, "job queued to run again");
+        let record = job.update(|state| {
+            let record = &mut state.record;
+            record.status = JobStatus::Queued;
+            record.cycles_done = 0;
+            record.error = None;
+            record.started_at = None;
+            record.finished_at = None;
+            record.rerun_reason = Some(reason);
+            state.scene = Some(Arc::new(scene));
+            state.cycles = Some(Vec::new());
+        });
+        if let Err(e) = self.store.write_status(&record) {
+            // The disk still says succeeded; the damage is found again at the next start.
+            tracing::error!(%id, "cannot rewrite status.json: {e}");
+        }
+        self.queue.push(Arc::clone(job));
+        Some(record)
+    }
+
+    /// DELETE: cancels a queued job at once, asks a running one to stop within a cycle, and
+    /// removes a finished one with its files. A cancel is on disk before it is answered, so a
+    /// crash cannot bring the job back. `None` for an unknown id, including one a concurrent
+    /// DELETE removed. Blocking (files).
+    pub fn delete(&self, id: Uuid) -> Option<io::Result<Deletion>> {
+        let job = self.get(id)?;
+        let _disk = job.disk();
+        let mut record = job.record();
+        let deletion = match record.status {
+            JobStatus::Queued | JobStatus::Running => {
+                let was = record.status;
+                record.status = JobStatus::Cancelled;
+                record.eta_s = None;
+                record.finished_at = Some(OffsetDateTime::now_utc());
+                if let Err(e) = self.store.write_status(&record) {
+                    return Some(Err(e));
+                }
+                if was == JobStatus::Queued {
+                    self.queue.remove(id);
+                    tracing::info!(%id, "queued job cancelled");
+                    Deletion::Cancelled(job.update(|state| state.record = record))
+                } else {
+                    // On disk the job is cancelled already; in memory it runs until the
+                    // worker sees the flag, within a cycle.
+                    job.state().cancel_requested = true;
+                    job.cancel.store(true, Ordering::Relaxed);
+                    tracing::info!(%id, "running job asked to cancel");
+                    Deletion::Cancelling(job.record())
+                }
+            }
+            JobStatus::Succeeded
+            | JobStatus::Failed
+            | JobStatus::Cancelled
+            | JobStatus::Damaged => {
+                // `None` when a concurrent DELETE removed it first.
+                self.lock_jobs().remove(&id)?;
+                if let Err(e) = self.store.remove(id) {
+                    self.insert(Arc::clone(&job));
+                    return Some(Err(e));
+                }
+                tracing::info!(%id, "finished job removed");
+                Deletion::Removed
+            }
+        };
+        Some(Ok(deletion))
+    }
+}
+
+/// The record of a job whose scene and record are both unreadable: only its id is known.
+fn placeholder(id: Uuid, created_at: OffsetDateTime) -> JobRecord {
+    JobRecord {
+        id,
+        name: String::new(),
+        status: JobStatus::Damaged,
+        cycles_done: 0,
+        cycles_total: 0,
+        eta_s: None,
+        error: None,
+        rerun_reason: None,
+        created_at,
+        started_at: None,
+        finished_at: None,
+    }
+}
+
+/// The record of a job whose `status.json` is damaged, rebuilt from its scene: succeeded if
+/// its stored result checks out, and otherwise queued to run again, as its status is unknown.
+fn rebuilt(
+    id: Uuid,
+    scene: &Scene,
+    created_at: OffsetDateTime,
+    damage: &Damage,
+    store: &Store,
+) -> JobRecord {
+    let record = JobRecord {
+        id,
+        created_at,
+        ..JobRecord::queued(scene)
+    };
+    match store.check_result(id) {
+        Ok(()) => JobRecord {
+            status: JobStatus::Succeeded,
+            cycles_done: record.cycles_total,
+            finished_at: Some(created_at),
+            ..record
+        },
+        Err(_) => JobRecord {
+            rerun_reason: Some(format!("stored record damaged: {damage}")),
+            ..record
+        },
+    }
+}

@@ -1,0 +1,113 @@
+//! `tribosim serve` as a separate process (the real binary), for tests that kill the server
+//! with SIGKILL or damage its data directory between two runs.
+
+use std::io::{BufRead, BufReader};
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc;
+use std::sync::{Arc, Mutex};
+
+use super::PATIENCE;
+
+/// The line the server logs once it is listening; the address follows it.
+const SERVING_ON: &str = "serving on http://";
+
+/// A server process, killed when dropped so a failing test leaves none behind.
+pub struct ServerProcess {
+    child: Child,
+    /// `http://127.0.0.1:<port>`.
+    pub base: String,
+    log: Arc<Mutex<Vec<String>>>,
+}
+
+/// The command that runs the binary as `serve` on a port of its choice, with one worker.
+pub fn serve_command(data_dir: &Path) -> Command {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_tribosim"));
+    command
+        .args([
+            "serve",
+            "--addr",
+            "127.0.0.1:0",
+            "--workers",
+            "1",
+            "--data-dir",
+        ])
+        .arg(data_dir);
+    command
+}
+
+impl ServerProcess {
+    /// Starts `tribosim serve` on `data_dir` and waits until it listens.
+    pub fn start(data_dir: &Path) -> Self {
+        Self::spawn(serve_command(data_dir))
+    }
+
+    /// Runs `command` (which must end up running the server) and waits until it listens;
+    /// panics with the server's log if it exits first.
+    pub fn spawn(mut command: Command) -> Self {
+        let mut child = command
+            .env("RUST_LOG", "info")
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("spawn the server");
+        let stderr = child.stderr.take().expect("piped stderr");
+        let log = Arc::new(Mutex::new(Vec::new()));
+        let (address, announced) = mpsc::channel();
+        let lines = Arc::clone(&log);
+        // Reads the log to its end, so the server never blocks on a full pipe.
+        std::thread::spawn(move || {
+            for line in BufReader::new(stderr).lines() {
+                let Ok(line) = line else { break };
+                if let Some(start) = line.find(SERVING_ON) {
+                    let rest = &line[start + SERVING_ON.len()..];
+                    let end = rest.find(char::is_whitespace).unwrap_or(rest.len());
+                    let _ = address.send(format!("http://{}", &rest[..end]));
+                }
+                lines.lock().expect("log lock").push(line);
+            }
+        });
+        let mut server = Self {
+            child,
+            base: String::new(),
+            log,
+        };
+        match announced.recv_timeout(PATIENCE) {
+            Ok(base) => server.base = base,
+            Err(_) => {
+                let status = server.child.wait().expect("wait");
+                panic!("the server did not start ({status}):\n{}", server.log());
+            }
+        }
+        server
+    }
+
+    /// The process id (the server's own, as the commands used here exec it).
+    pub fn pid(&self) -> u32 {
+        self.child.id()
+    }
+
+    /// `base` + `path`.
+    pub fn url(&self, path: &str) -> String {
+        format!("{}{path}", self.base)
+    }
+
+    /// Everything the server has logged so far.
+    pub fn log(&self) -> String {
+        self.log.lock().expect("log lock").join("\n")
+    }
+
+    /// SIGKILL: no shutdown code runs.
+    pub fn kill_9(&mut self) {
+        self.child.kill().expect("kill");
+        self.child.wait().expect("reap");
+    }
+}
+
+impl Drop for ServerProcess {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}

@@ -1,0 +1,431 @@
+//! The service's store against a real `tribosim serve` process: a data directory with every
+//! kind of damage still comes up serving each intact job byte for byte, re-runs the jobs
+//! whose results are damaged and lists those whose scenes are; a result damaged while the
+//! server runs is never served; concurrent DELETEs each get a correct answer; a cancel
+//! survives kill -9; a full disk answers 507 and leaves nothing behind.
+
+mod common;
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Duration;
+
+use futures_util::future::join_all;
+use serde_json::{Value, json};
+
+use common::process::{ServerProcess, serve_command};
+use common::{
+    TempDir, follow, get_job, get_json, is_final, long_scene, small_scene, submit, wait_for_job,
+    without_wall_time,
+};
+
+/// Keeps the first half of a file, as a write cut short would.
+fn truncate(path: &Path) {
+    let bytes = fs::read(path).expect("read");
+    fs::write(path, &bytes[..bytes.len() / 2]).expect("truncate");
+}
+
+/// Overwrites eight bytes in the middle of a file with NULs: the length is unchanged, and a
+/// NUL is invalid anywhere in JSON.
+fn corrupt(path: &Path) {
+    let mut bytes = fs::read(path).expect("read");
+    let middle = bytes.len() / 2;
+    bytes[middle..middle + 8].fill(0);
+    fs::write(path, bytes).expect("corrupt");
+}
+
+/// A kind of damage: its label, the file it hits (none for the intact job), and how.
+type Damage = (&'static str, &'static str, fn(&Path));
+
+/// Replaces a file by an empty directory of the same name.
+fn into_directory(path: &Path) {
+    fs::remove_file(path).expect("remove");
+    fs::create_dir(path).expect("directory");
+}
+
+fn job_file(dir: &Path, id: &str, file: &str) -> PathBuf {
+    dir.join("jobs").join(id).join(file)
+}
+
+/// GET a job's result: the status and the body.
+async fn result(client: &reqwest::Client, url: &str) -> (u16, Vec<u8>) {
+    let response = client.get(url).send().await.expect("result");
+    let status = response.status().as_u16();
+    (status, response.bytes().await.expect("body").to_vec())
+}
+
+fn result_url(base: &str, id: &str) -> String {
+    format!("{base}/api/v1/jobs/{id}/result")
+}
+
+fn parsed(bytes: &[u8]) -> Value {
+    serde_json::from_slice(bytes).expect("result JSON")
+}
+
+/// The cycles a job's event stream sends, and its final status.
+async fn streamed(client: &reqwest::Client, base: &str, id: &str) -> (Vec<Value>, Value) {
+    let url = format!("{base}/api/v1/jobs/{id}/events");
+    let events = follow(client, &url, None, async |_| {}).await;
+    let (last, cycles) = events.split_last().expect("events");
+    assert_eq!(last.event, "status");
+    (
+        cycles.iter().map(common::Event::json).collect(),
+        last.json(),
+    )
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_damaged_store_comes_up_serving_every_intact_job() {
+    let dir = TempDir::new("damaged-store");
+    let client = reqwest::Client::new();
+    let mut first = ServerProcess::start(dir.path());
+    // Each job gets one kind of damage: (label, file, how), the file's damage applied after
+    // the job has succeeded and the server is dead.
+    let damage: [Damage; 13] = [
+        ("intact", "", |_| {}),
+        ("status truncated", "status.json", truncate),
+        ("status corrupt", "status.json", corrupt),
+        // A directory cannot be read as a file nor replaced by a rename: this status can
+        // neither be read nor rewritten at startup.
+        ("status unreadable", "status.json", into_directory),
+        ("scene truncated", "scene.json", truncate),
+        ("scene unreadable", "scene.json", into_directory),
+        ("scene corrupt", "scene.json", corrupt),
+        ("result truncated", "result.json", truncate),
+        ("result corrupt", "result.json", corrupt),
+        ("result missing", "result.json", |path| {
+            fs::remove_file(path).expect("remove");
+        }),
+        ("cycles truncated", "cycles.jsonl", truncate),
+        ("cycles corrupt", "cycles.jsonl", corrupt),
+        ("manifest corrupt", "manifest.json", corrupt),
+    ];
+    let mut ids = Vec::new();
+    for _ in &damage {
+        let job = submit(&client, &first.base, &small_scene(5)).await;
+        ids.push(job["id"].as_str().expect("id").to_owned());
+    }
+    let mut before = BTreeMap::new();
+    for id in &ids {
+        let job = wait_for_job(&client, &first.base, id, is_final).await;
+        assert_eq!(job["status"], "succeeded", "{job}");
+        let (status, bytes) = result(&client, &result_url(&first.base, id)).await;
+        assert_eq!(status, 200);
+        before.insert(id.clone(), bytes);
+    }
+    first.kill_9();
+
+    for (id, (_, file, how)) in ids.iter().zip(&damage) {
+        if !file.is_empty() {
+            how(&job_file(dir.path(), id, file));
+        }
+    }
+    let jobs = dir.path().join("jobs");
+    fs::write(
+        jobs.join("x.new"),
+        "a file where a staging directory is expected",
+    )
+    .expect("x");
+    fs::create_dir_all(jobs.join("y.deleted").join("inside")).expect("y");
+    let file_job = uuid::Uuid::new_v4().to_string();
+    fs::write(jobs.join(&file_job), "a file in place of a job directory").expect("file");
+    let staged = format!("{}.new", uuid::Uuid::new_v4());
+    fs::create_dir(jobs.join(&staged)).expect("staged");
+    fs::write(jobs.join(&staged).join("scene.json"), "{").expect("staged scene");
+
+    let second = ServerProcess::start(dir.path());
+    let base = &second.base;
+    let listed: Value = get_json(&client, &format!("{base}/api/v1/jobs")).await;
+    assert_eq!(
+        listed.as_array().map(Vec::len),
+        Some(ids.len()),
+        "no job vanished: {listed}"
+    );
+    for (id, (label, file, _)) in ids.iter().zip(&damage) {
+        let job = wait_for_job(&client, base, id, is_final).await;
+        let (status, bytes) = result(&client, &result_url(base, id)).await;
+        match *file {
+            "" | "status.json" => {
+                assert_eq!(job["status"], "succeeded", "{label}: {job}");
+                assert_eq!(status, 200, "{label}");
+                assert!(
+                    bytes == before[id],
+                    "{label}: the result is served byte for byte"
+                );
+            }
+            "scene.json" => {
+                assert_eq!(job["status"], "damaged", "{label}: {job}");
+                let error = job["error"].as_str().unwrap_or_default();
+                assert!(error.contains("scene.json"), "{label}: {job}");
+                assert_eq!(status, 409, "{label}");
+                let response = client
+                    .delete(format!("{base}/api/v1/jobs/{id}"))
+                    .send()
+                    .await
+                    .expect("delete");
+                assert_eq!(
+                    response.status(),
+                    204,
+                    "{label}: a damaged job can be deleted"
+                );
+            }
+            _ => {
+                assert_eq!(job["status"], "succeeded", "{label}: {job}");
+                let reason = job["rerun_reason"].as_str().unwrap_or_default();
+                assert!(
+                    reason.contains(file),
+                    "{label}: the reason names {file}: {job}"
+                );
+                assert_eq!(status, 200, "{label}");
+                // The run is deterministic: only the wall-clock time differs.
+                assert_eq!(
+                    without_wall_time(parsed(&bytes)),
+                    without_wall_time(parsed(&before[id])),
+                    "{label}: the re-run gives the same numbers"
+                );
+                let (cycles, last) = streamed(&client, base, id).await;
+                assert_eq!(Value::Array(cycles), parsed(&bytes)["cycles"], "{label}");
+                assert_eq!(last["status"], "succeeded", "{label}");
+            }
+        }
+    }
+    for gone in ["x.new", "y.deleted", staged.as_str(), file_job.as_str()] {
+        assert!(!jobs.join(gone).exists(), "{gone} is swept or set aside");
+    }
+    let quarantined: Vec<String> = fs::read_dir(dir.path().join("quarantine"))
+        .expect("a quarantine directory")
+        .map(|entry| {
+            entry
+                .expect("entry")
+                .file_name()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    assert!(
+        quarantined.iter().any(|name| name.starts_with(&file_job)),
+        "the file in place of a job is kept aside: {quarantined:?}"
+    );
+    assert!(second.log().contains("quarantined"), "{}", second.log());
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_result_damaged_while_the_server_runs_is_never_served() {
+    let dir = TempDir::new("damaged-live");
+    let client = reqwest::Client::new();
+    let server = ServerProcess::start(dir.path());
+    let base = &server.base;
+    let mut jobs = Vec::new();
+    for _ in 0..3 {
+        let job = submit(&client, base, &small_scene(5)).await;
+        let id = job["id"].as_str().expect("id").to_owned();
+        wait_for_job(&client, base, &id, is_final).await;
+        let (status, bytes) = result(&client, &result_url(base, &id)).await;
+        assert_eq!(status, 200);
+        jobs.push((id, bytes));
+    }
+
+    // A truncated result.json: 409 naming the damage, then the job runs again.
+    let (id, original) = &jobs[0];
+    truncate(&job_file(dir.path(), id, "result.json"));
+    let response = client.get(result_url(base, id)).send().await.expect("get");
+    assert_eq!(response.status(), 409);
+    let body: Value = response.json().await.expect("error JSON");
+    assert!(
+        body["error"]
+            .as_str()
+            .is_some_and(|e| e.contains("damaged")),
+        "{body}"
+    );
+    let job = wait_for_job(&client, base, id, is_final).await;
+    assert_eq!(job["status"], "succeeded", "{job}");
+    assert!(job["rerun_reason"].is_string(), "{job}");
+    let (status, bytes) = result(&client, &result_url(base, id)).await;
+    assert_eq!(status, 200);
+    assert_eq!(
+        without_wall_time(parsed(&bytes)),
+        without_wall_time(parsed(original))
+    );
+
+    // The CSV of a damaged result: 409, not a 500.
+    let (id, original) = &jobs[1];
+    corrupt(&job_file(dir.path(), id, "result.json"));
+    let response = client
+        .get(format!("{base}/api/v1/jobs/{id}/result.csv"))
+        .send()
+        .await
+        .expect("csv");
+    assert_eq!(response.status(), 409);
+    let job = wait_for_job(&client, base, id, is_final).await;
+    assert_eq!(job["status"], "succeeded", "{job}");
+    let (_, bytes) = result(&client, &result_url(base, id)).await;
+    assert_eq!(
+        without_wall_time(parsed(&bytes)),
+        without_wall_time(parsed(original))
+    );
+
+    // A truncated cycle log: the stream does not end early, it follows the re-run to the
+    // last cycle.
+    let (id, original) = &jobs[2];
+    truncate(&job_file(dir.path(), id, "cycles.jsonl"));
+    let (cycles, last) = streamed(&client, base, id).await;
+    assert_eq!(last["status"], "succeeded", "{last}");
+    assert_eq!(Value::Array(cycles), parsed(original)["cycles"]);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn concurrent_deletes_each_get_a_correct_answer() {
+    let dir = TempDir::new("deletes");
+    let client = reqwest::Client::new();
+    let server = ServerProcess::start(dir.path());
+    let base = &server.base;
+    let delete_all = async |id: &str, n: usize| -> Vec<u16> {
+        let url = format!("{base}/api/v1/jobs/{id}");
+        let responses = join_all((0..n).map(|_| client.delete(&url).send())).await;
+        responses
+            .into_iter()
+            .map(|response| response.expect("delete").status().as_u16())
+            .collect()
+    };
+
+    // Finished jobs: one DELETE removes each, the others find nothing.
+    for _ in 0..5 {
+        let job = submit(&client, base, &small_scene(5)).await;
+        let id = job["id"].as_str().expect("id").to_owned();
+        wait_for_job(&client, base, &id, is_final).await;
+        let mut answers = delete_all(&id, 4).await;
+        answers.sort_unstable();
+        assert_eq!(answers, [204, 404, 404, 404], "finished job {id}");
+    }
+
+    // One worker, kept busy: the others wait in the queue.
+    let busy = submit(&client, base, &long_scene(3000)).await;
+    let busy = busy["id"].as_str().expect("id").to_owned();
+    wait_for_job(&client, base, &busy, |job| job["status"] == "running").await;
+    let mut queued = Vec::new();
+    for _ in 0..20 {
+        let job = submit(&client, base, &small_scene(5)).await;
+        queued.push(job["id"].as_str().expect("id").to_owned());
+    }
+    for answers in join_all(queued.iter().map(|id| delete_all(id, 4))).await {
+        // The first cancels (200), the next removes the cancelled job (204), the rest find
+        // nothing (404).
+        let mut answers = answers;
+        answers.sort_unstable();
+        assert_eq!(answers, [200, 204, 404, 404], "queued job");
+    }
+    let answers = delete_all(&busy, 4).await;
+    assert!(
+        answers
+            .iter()
+            .all(|status| [202, 204, 404].contains(status)),
+        "running job: {answers:?}"
+    );
+    let job = wait_for_job(&client, base, &busy, is_final).await;
+    assert_eq!(job["status"], "cancelled", "{job}");
+}
+
+/// A scene whose cycles take long enough (a 256-cell grid) that a kill right after the
+/// cancel's answer lands before the worker has stopped the run.
+fn slow_scene() -> Value {
+    json!({
+        "preset": "dalmau2018-316l",
+        "overrides": {
+            "name": "slow",
+            "numerics": {"grid": 256, "domain_um": 256, "cycle_step": 1},
+            "test": {"cycles": 3000}
+        }
+    })
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_cancelled_job_stays_cancelled_after_kill_9() {
+    let dir = TempDir::new("cancel-kill");
+    let client = reqwest::Client::new();
+    let mut first = ServerProcess::start(dir.path());
+    let job = submit(&client, &first.base, &slow_scene()).await;
+    let id = job["id"].as_str().expect("id").to_owned();
+    wait_for_job(&client, &first.base, &id, |job| {
+        job["cycles_done"].as_u64() >= Some(1)
+    })
+    .await;
+    let response = client
+        .delete(first.url(&format!("/api/v1/jobs/{id}")))
+        .send()
+        .await
+        .expect("delete");
+    assert_eq!(response.status(), 202);
+    first.kill_9();
+
+    let second = ServerProcess::start(dir.path());
+    let job = get_job(&client, &second.base, &id).await;
+    assert_eq!(job["status"], "cancelled", "{job}");
+    // Long enough for a worker to have picked the job up again had it been queued.
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let job = get_job(&client, &second.base, &id).await;
+    assert_eq!(job["status"], "cancelled", "{job}");
+    assert!(job["started_at"].is_string(), "{job}");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_full_disk_answers_507_and_leaves_nothing_behind() {
+    // A 4 MiB tmpfs, filled, as the data directory: mounted in a user and mount namespace of
+    // the server's own, so no privilege is needed where unprivileged namespaces are allowed.
+    let namespaces = Command::new("unshare")
+        .args(["--user", "--map-root-user", "--mount", "true"])
+        .status()
+        .is_ok_and(|status| status.success());
+    if !namespaces {
+        eprintln!("skipped: `unshare --user --mount` is not available here");
+        return;
+    }
+    let dir = TempDir::new("full-disk");
+    let serve = serve_command(dir.path());
+    let mut command = Command::new("unshare");
+    command
+        .args(["--user", "--map-root-user", "--mount", "sh", "-c"])
+        .arg(
+            "mount -t tmpfs -o size=4m tribosim \"$0\" && \
+             { cat /dev/zero > \"$0/filler\" 2>/dev/null; exec \"$@\"; }",
+        )
+        .arg(dir.path())
+        .arg(serve.get_program())
+        .args(serve.get_args());
+    let server = ServerProcess::spawn(command);
+    // The tmpfs is visible only inside the server's namespace, through its /proc root.
+    let inside = PathBuf::from(format!("/proc/{}/root", server.pid())).join(
+        dir.path()
+            .strip_prefix("/")
+            .expect("an absolute temporary directory"),
+    );
+    let client = reqwest::Client::new();
+    let response = client
+        .post(server.url("/api/v1/jobs"))
+        .json(&small_scene(5))
+        .send()
+        .await
+        .expect("submit");
+    assert_eq!(response.status(), 507);
+    let body: Value = response.json().await.expect("error JSON");
+    assert!(
+        body["error"]
+            .as_str()
+            .is_some_and(|e| e.contains("disk is full")),
+        "{body}"
+    );
+    let left: Vec<_> = fs::read_dir(inside.join("jobs"))
+        .expect("jobs directory")
+        .collect();
+    assert!(left.is_empty(), "nothing left of the refused job: {left:?}");
+    let listed: Value = get_json(&client, &server.url("/api/v1/jobs")).await;
+    assert_eq!(listed, json!([]));
+
+    // Space freed: the same submission is accepted and runs.
+    fs::File::create(inside.join("filler")).expect("free the space");
+    let job = submit(&client, &server.base, &small_scene(5)).await;
+    let id = job["id"].as_str().expect("id");
+    let job = wait_for_job(&client, &server.base, id, is_final).await;
+    assert_eq!(job["status"], "succeeded", "{job}");
+}
