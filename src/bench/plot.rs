@@ -143,6 +143,25 @@ fn scientific(v: &f64) -> String {
     format!("{v:.0e}")
 }
 
+/// The drawable points of `series` placed on the axes: coordinates, whether the value is an
+/// exact 0 (drawn on the bottom edge), and the label to write, which then says `= 0`.
+fn placed(series: &Series, x_axis: LogAxis, y_axis: LogAxis) -> Vec<(f64, f64, bool, String)> {
+    series
+        .points
+        .iter()
+        .filter_map(|p| {
+            let (x, y) = (x_axis.place(p.x)?, y_axis.place(p.y)?);
+            let zero = p.y == 0.0;
+            let text = if zero {
+                format!("{} = 0", p.label)
+            } else {
+                p.label.clone()
+            };
+            Some((x, y, zero, text))
+        })
+        .collect()
+}
+
 impl LogLogPlot {
     /// Writes the plot to `path` as SVG; returns how many points were drawn.
     pub fn write_svg(&self, path: &Path) -> Result<usize, BenchError> {
@@ -187,14 +206,7 @@ impl LogLogPlot {
             // Labels above the markers, every other series below, so coinciding points stay
             // readable.
             let label_dy = if i % 2 == 0 { -14 } else { 6 };
-            let placed: Vec<(f64, f64, bool, &str)> = series
-                .points
-                .iter()
-                .filter_map(|p| {
-                    let (x, y) = (x_axis.place(p.x)?, y_axis.place(p.y)?);
-                    Some((x, y, p.y == 0.0, p.label.as_str()))
-                })
-                .collect();
+            let placed = placed(series, x_axis, y_axis);
             drawn += placed.len();
             chart
                 .draw_series(LineSeries::new(
@@ -207,20 +219,15 @@ impl LogLogPlot {
                     Rectangle::new([(x, y - 4), (x + 14, y + 4)], colour.filled())
                 });
             chart
-                .draw_series(placed.iter().map(|&(x, y, zero, label)| {
-                    let marker = if zero {
+                .draw_series(placed.iter().map(|(x, y, zero, text)| {
+                    let marker = if *zero {
                         colour.stroke_width(2)
                     } else {
                         colour.filled()
                     };
-                    let text = if zero {
-                        format!("{label} = 0")
-                    } else {
-                        label.to_owned()
-                    };
-                    EmptyElement::at((x, y))
+                    EmptyElement::at((*x, *y))
                         + Circle::new((0, 0), 4, marker)
-                        + Text::new(text, (6, label_dy), ("sans-serif", 12).into_font())
+                        + Text::new(text.clone(), (6, label_dy), ("sans-serif", 12).into_font())
                 }))
                 .map_err(fail)?;
         }

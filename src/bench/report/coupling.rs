@@ -67,13 +67,25 @@ pub(super) fn section(report: &mut Report, auto: &AutoStudies) -> Result<(), Ben
     ));
     let cells: Vec<Vec<String>> = auto.coupling.iter().map(coupling_cells).collect();
     report.push(&table(&COUPLING_HEADERS, &cells));
+    report.plot(
+        "coupling",
+        &LogLogPlot {
+            title: "Coupling term: pressure change against |mu delta-nu|".into(),
+            x_label: "|mu delta-nu|".into(),
+            y_label: "max |pressure change| / p0".into(),
+            series: coupling_series(&auto.coupling, &sizes),
+        },
+    )
+}
+
+/// The threshold line, then one series per grid size in `sizes`.
+fn coupling_series(rows: &[CouplingRow], sizes: &[usize]) -> Vec<Series> {
     let mut series: Vec<Series> = sizes
         .iter()
         .enumerate()
         .map(|(i, &n)| Series {
             name: format!("N = {n}"),
-            points: auto
-                .coupling
+            points: rows
                 .iter()
                 .filter(|r| r.n == n)
                 .map(|r| Point {
@@ -89,7 +101,7 @@ pub(super) fn section(report: &mut Report, auto: &AutoStudies) -> Result<(), Ben
                 .collect(),
         })
         .collect();
-    let mut strengths: Vec<f64> = auto.coupling.iter().map(|r| r.strength).collect();
+    let mut strengths: Vec<f64> = rows.iter().map(|r| r.strength).collect();
     strengths.sort_by(f64::total_cmp);
     strengths.dedup();
     let threshold = Series {
@@ -105,13 +117,5 @@ pub(super) fn section(report: &mut Report, auto: &AutoStudies) -> Result<(), Ben
     };
     // Drawn first so the measured lines lie on top of it.
     series.insert(0, threshold);
-    report.plot(
-        "coupling",
-        &LogLogPlot {
-            title: "Coupling term: pressure change against |mu delta-nu|".into(),
-            x_label: "|mu delta-nu|".into(),
-            y_label: "max |pressure change| / p0".into(),
-            series,
-        },
-    )
+    series
 }
