@@ -426,4 +426,17 @@ mod tests {
         assert_eq!(built, parsed(json));
         assert_eq!(paper_scene().expect("preset"), parsed("{}"));
     }
+
+    /// The grid study names each grid by its cell size, taken from the simulation's own
+    /// setup; the committed report shows the same sizes.
+    #[test]
+    fn grid_settings_name_the_cells_of_the_committed_report() {
+        let committed = include_str!("../../docs/accuracy.md");
+        for n in GRID_STUDY_CELLS {
+            let scene = paper_scene_with(|s| s.numerics.grid = GridSize::Cells(n)).expect("preset");
+            let cell_um = first_grid(&scene).expect("sets up").dx * 1e6;
+            let setting = format!("| {n} cells, {cell_um:.2} um");
+            assert!(committed.contains(&setting), "{setting}");
+        }
+    }
 }

@@ -538,4 +538,15 @@ mod tests {
         let factor = scene.disc.yield_factor;
         assert_eq!(factor.to_bits(), CAPPED_YIELD_FACTOR.to_bits());
     }
+
+    #[test]
+    fn study_and_case_names_are_their_json() {
+        let study = |s: ContactStudy| serde_json::to_value(s).expect("serialises");
+        assert_eq!(study(ContactStudy::Grid), "contact_grid");
+        assert_eq!(study(ContactStudy::Tolerance), "contact_tolerance");
+        for case in ContactCase::ALL {
+            let json = serde_json::to_value(case).expect("serialises");
+            assert_eq!(json, case.name());
+        }
+    }
 }
