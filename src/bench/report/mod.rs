@@ -264,13 +264,8 @@ mod tests {
             auto::step_intro(),
             auto::plasticity_intro([scene.test.load_n, ELASTIC_LOAD_N]),
         ];
-        for study in [
-            WearStudy::Grid,
-            WearStudy::Tolerance,
-            WearStudy::CycleStep,
-            WearStudy::PaperNumerics,
-        ] {
-            blocks.push(wear::heading(study, cycles));
+        for (_, heading) in wear::WEAR_STUDIES {
+            blocks.push(heading(cycles));
         }
         for block in blocks {
             let block = block.trim_end();

@@ -91,12 +91,15 @@ pub(super) fn wear_series(rows: &[&WearRow], measure: fn(&WearRow) -> f64) -> Ve
         .collect()
 }
 
-/// The wear studies in report order.
-const WEAR_STUDIES: [WearStudy; 4] = [
-    WearStudy::Grid,
-    WearStudy::Tolerance,
-    WearStudy::CycleStep,
-    WearStudy::PaperNumerics,
+/// A study's heading and what its errors are against, for runs of the given cycles.
+type Heading = fn(u64) -> String;
+
+/// The wear studies in report order, with their headings.
+pub(super) const WEAR_STUDIES: [(WearStudy, Heading); 4] = [
+    (WearStudy::Grid, grid_heading),
+    (WearStudy::Tolerance, tolerance_heading),
+    (WearStudy::CycleStep, step_heading),
+    (WearStudy::PaperNumerics, paper_heading),
 ];
 
 /// The section's opening.
@@ -109,26 +112,29 @@ pub(super) fn intro() -> String {
     )
 }
 
-/// A study's heading and what its errors are against, for runs of `cycles` cycles (the
-/// cycle-step study says its own).
-pub(super) fn heading(study: WearStudy, cycles: u64) -> String {
-    match study {
-        WearStudy::Grid => format!(
-            "### Grid\n\nCells across the first domain ({DOMAIN_PER_CONTACT_RADIUS} contact radii, \
-             grown with the track), {cycles} cycles; errors against the finest grid."
-        ),
-        WearStudy::Tolerance => format!(
-            "### Solver tolerance\n\nGrid {QUICK_GRID}, {cycles} cycles; errors against the \
-             tightest tolerance."
-        ),
-        WearStudy::CycleStep => "### Cycle step\n\nThe auto grid; errors against solving every \
-             cycle, at the same cycle count."
-            .to_owned(),
-        WearStudy::PaperNumerics => {
-            format!("### The paper's numerics against all auto\n\n{cycles} cycles.")
-        }
-        _ => format!("### {}", study.name()),
-    }
+fn grid_heading(cycles: u64) -> String {
+    format!(
+        "### Grid\n\nCells across the first domain ({DOMAIN_PER_CONTACT_RADIUS} contact radii, \
+         grown with the track), {cycles} cycles; errors against the finest grid."
+    )
+}
+
+fn tolerance_heading(cycles: u64) -> String {
+    format!(
+        "### Solver tolerance\n\nGrid {QUICK_GRID}, {cycles} cycles; errors against the \
+         tightest tolerance."
+    )
+}
+
+/// The cycle-step study runs its own cycle counts and says so in its table.
+fn step_heading(_: u64) -> String {
+    "### Cycle step\n\nThe auto grid; errors against solving every cycle, at the same cycle \
+     count."
+        .to_owned()
+}
+
+fn paper_heading(cycles: u64) -> String {
+    format!("### The paper's numerics against all auto\n\n{cycles} cycles.")
 }
 
 /// The Table 3 heading: what k is calibrated on and what the errors are against.
@@ -145,12 +151,12 @@ pub(super) fn table3_intro() -> String {
 pub(super) fn section(report: &mut Report, rows: &[WearRow]) -> Result<(), BenchError> {
     report.push(&intro());
     let mut plotted = Vec::new();
-    for study in WEAR_STUDIES {
+    for (study, heading) in WEAR_STUDIES {
         let of: Vec<&WearRow> = rows.iter().filter(|r| r.study == study).collect();
         let Some(first) = of.first() else {
             continue;
         };
-        report.push(&heading(study, first.cycles));
+        report.push(&heading(first.cycles));
         report.push(&wear_table(&of, study == WearStudy::CycleStep));
         plotted.extend(of);
     }
