@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Our contact solver beside two public peers, Tamaas and ContactMechanics, in one run.
 
-Both peers solve the cases of `tribosim bench contact` (src/bench/contact.rs) on the same
+Both peers solve the cases of `tribosim bench contact` (src/bench/contact/mod.rs) on the same
 grids: the paper's Hertz contact (R 3 mm, F 5 N, E* from alumina on 316L, square domain
 0.256 mm, sphere apex on a cell corner, free (non-periodic) boundary, tolerance 1e-8) and
 the same contact with the pressure cap Y = 2551 MPa / 2.8. Errors are against the
@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-# The paper's case, as in src/bench/contact.rs.
+# The paper's case, as in src/bench/contact/mod.rs.
 RADIUS_M = 3e-3
 LOAD_N = 5.0
 BALL = (300e9, 0.21)  # alumina: E, nu
@@ -109,7 +109,7 @@ def measures(outcome, h, dx, cap):
 
 
 def errors(values, reference):
-    """Relative errors as in src/bench/contact.rs (plastic area only where the reference has one)."""
+    """Relative errors as in src/bench/contact/mod.rs (plastic area only where the reference has one)."""
     out = {
         "err_pmax": values["pmax_pa"] / reference["pmax_pa"] - 1,
         "err_area": values["area_m2"] / reference["area_m2"] - 1,

@@ -122,7 +122,7 @@ fn main() -> ExitCode {
             target,
             json,
             markdown,
-        } => bench::print(target, json, markdown.as_deref()),
+        } => bench::print(target, json, markdown.as_deref()).map_err(|e| e.to_string()),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

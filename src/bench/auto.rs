@@ -2,8 +2,8 @@
 //! that the contact and wear benchmarks do not already make: how far the friction coupling
 //! term moves the Hertz pressures against `|mu delta-nu|`, the paper scene's answer against
 //! its domain at fixed cells, and what leaving out the coupling or the plasticity changes. The
-//! wear runs use grid 64 (cells of 2.07 um, 300 cycles) to stay quick; the grid and cycle-step
-//! thresholds are read from the wear benchmark's own studies.
+//! wear runs use the quick grid ([`QUICK_GRID`]) and the preset's cycles to stay quick; the
+//! grid and cycle-step thresholds are read from the wear benchmark's own studies.
 
 use serde::Serialize;
 
@@ -11,23 +11,33 @@ use crate::contact::{
     ContactError, ContactProblem, ContactSolver, CoupledSolver, DcFft, Grid, Kernel, SolverOptions,
     solve,
 };
-use crate::scene::parse_scene_str;
+use crate::scene::{DomainSize, GridSize, Switch};
 use crate::simulation::{
-    COUPLING_SENSITIVITY, DOMAIN_PER_CONTACT_RADIUS, Model, Setup, SimulationError,
-    SimulationResult,
+    COUPLING_SENSITIVITY, DOMAIN_PER_CONTACT_RADIUS, Model, SimulationError, SimulationResult,
 };
 
-use super::contact::paper_hertz;
-use super::median_time;
-use super::wear::{WearRow, row, simulate};
+use super::contact::{DOMAIN_M, paper_hertz};
+use super::wear::{
+    QUICK_GRID, WearRow, WearStudy, first_grid, paper_scene_with, row, simulate_with,
+};
+use super::{BenchError, median_time};
 
-/// Side of the contact benchmark's domain (`contact::contact_rows`), m.
-pub(super) use super::contact::DOMAIN_M as HERTZ_DOMAIN_M;
+/// Cells per side of the coupling study on the contact benchmark's domain: the ratio of
+/// pressure change to `|mu delta-nu|` grows with the grid, so the coarsest sets the bound.
+pub const COUPLING_STUDY_SIZES: [usize; 3] = [64, 128, 256];
+
+/// Cells per side of the fixed domains at the quick grid's cells: 1.5 and 2 times the auto
+/// domain, the larger the reference.
+pub const FIXED_DOMAIN_CELLS: [usize; 2] = [96, 128];
+
+/// A load whose Hertz peak pressure stays below the lowest yield pressure of the paper
+/// scene (818 MPa against 877 MPa), N: where `auto` leaves plasticity out.
+pub const ELASTIC_LOAD_N: f64 = 1.5;
 
 /// The coupling term's effect on one Hertz contact.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CouplingRow {
-    /// Cells per side over the contact benchmark's 0.256 mm.
+    /// Cells per side over the contact benchmark's domain.
     pub n: usize,
     /// Friction coefficient mu.
     pub friction_coefficient: f64,
@@ -73,88 +83,37 @@ pub struct AutoStudies {
     pub domain_growth: Vec<String>,
     /// The plasticity decision for each load studied, as the run reported it.
     pub plasticity: Vec<String>,
-}
-
-/// Why an auto study failed.
-#[derive(Debug, thiserror::Error)]
-pub enum AutoError {
-    /// A contact solve.
-    #[error(transparent)]
-    Contact(#[from] ContactError),
-    /// A wear run.
-    #[error(transparent)]
-    Simulation(#[from] SimulationError),
+    /// The loads of the plasticity decisions, N: the paper's and [`ELASTIC_LOAD_N`].
+    pub loads_n: [f64; 2],
 }
 
 /// Friction coefficients of the coupling study: around the threshold at tolerance 1e-8
 /// (`|mu delta-nu| = 1e-8 / 1.2` is mu = 2.1e-7) up to mu = 1; 0.45 is the paper's.
-const FRICTION: [f64; 6] = [1e-7, 1e-6, 1e-4, 1e-2, 0.45, 1.0];
+pub const FRICTION: [f64; 6] = [1e-7, 1e-6, 1e-4, 1e-2, 0.45, 1.0];
 
 /// Runs every study (about half a minute).
-pub fn auto_studies() -> Result<AutoStudies, AutoError> {
+pub fn auto_studies() -> Result<AutoStudies, BenchError> {
     let tolerance = SolverOptions::default().tolerance;
-    let coupling = [64, 128, 256]
+    let coupling = COUPLING_STUDY_SIZES
         .into_iter()
         .flat_map(|n| FRICTION.map(|mu| coupling_row(n, mu)))
         .collect::<Result<_, _>>()?;
-
-    let mut wear = Vec::new();
-    let base = simulate(r#"{"numerics": {"grid": 64}}"#)?;
-
-    // Domain at the cells of grid 64: auto (3 radii, grown near the edge) against fixed sides.
-    let cell_um = setup(r#"{"numerics": {"grid": 64}}"#)?.grid.dx * 1e6;
-    let fixed = |n: usize| {
-        simulate(&format!(
-            r#"{{"numerics": {{"grid": {n}, "domain_um": {:.6}}}}}"#,
-            n as f64 * cell_um
-        ))
-    };
-    let (wide, widest) = (fixed(96)?, fixed(128)?);
-    let radii = |n: usize| n as f64 / 64.0 * DOMAIN_PER_CONTACT_RADIUS;
-    for (setting, result) in [
-        (
-            format!("auto: {DOMAIN_PER_CONTACT_RADIUS} radii, grown near the edge"),
-            &base,
-        ),
-        (format!("fixed {:.1} radii (96 cells)", radii(96)), &wide),
-        (
-            format!("fixed {:.1} radii (128 cells, reference)", radii(128)),
-            &widest,
-        ),
-    ] {
-        wear.push(row("domain", setting, result, &widest));
-    }
+    let quick = |s: &mut crate::scene::Scene| s.numerics.grid = GridSize::Cells(QUICK_GRID);
+    let base = simulate_with(quick)?;
+    let mut wear = domain_rows(&base)?;
     let domain_growth = reasons(&base, Model::DomainGrowth);
 
     // Coupling: the paper's mu delta-nu, modelled (auto) or left out.
-    let uncoupled = simulate(r#"{"numerics": {"grid": 64, "coupling": "off"}}"#)?;
-    wear.push(row("coupling", "auto (on), reference".into(), &base, &base));
-    wear.push(row("coupling", "off".into(), &uncoupled, &base));
+    let uncoupled = simulate_with(|s| {
+        quick(s);
+        s.numerics.coupling = Switch::Off;
+    })?;
+    let study = WearStudy::Coupling;
+    wear.push(row(study, "auto (on), reference".into(), &base, &base));
+    wear.push(row(study, "off".into(), &uncoupled, &base));
 
-    // Plasticity at the paper's load (p0 above Y) and at a load where p0 stays below Y.
-    let elastic = simulate(r#"{"numerics": {"grid": 64}, "wear": {"plasticity": "off"}}"#)?;
-    wear.push(row(
-        "plasticity",
-        "auto (on) at 5 N, reference".into(),
-        &base,
-        &base,
-    ));
-    wear.push(row("plasticity", "off at 5 N".into(), &elastic, &base));
-    let light = r#""test": {"load_n": 1.5}, "numerics": {"grid": 64}"#;
-    let light_auto = simulate(&format!("{{{light}}}"))?;
-    let light_on = simulate(&format!(r#"{{{light}, "wear": {{"plasticity": "on"}}}}"#))?;
-    wear.push(row(
-        "elastic_load",
-        "auto (off) at 1.5 N, reference".into(),
-        &light_auto,
-        &light_auto,
-    ));
-    wear.push(row(
-        "elastic_load",
-        "on at 1.5 N".into(),
-        &light_on,
-        &light_auto,
-    ));
+    let (rows, light_auto) = plasticity_rows(&base)?;
+    wear.extend(rows);
     let plasticity = [&base, &light_auto]
         .into_iter()
         .flat_map(|r| reasons(r, Model::Plasticity))
@@ -167,20 +126,98 @@ pub fn auto_studies() -> Result<AutoStudies, AutoError> {
         grid: auto_grid()?,
         domain_growth,
         plasticity,
+        loads_n: [base.scene.test.load_n, ELASTIC_LOAD_N],
     })
 }
 
-fn setup(overrides: &str) -> Result<Setup, SimulationError> {
-    let json = format!(r#"{{"preset": "dalmau2018-316l", "overrides": {overrides}}}"#);
-    Setup::new(&parse_scene_str(&json)?)
+/// The auto domain (`base`) against fixed ones at the quick grid's cells.
+fn domain_rows(base: &SimulationResult) -> Result<Vec<WearRow>, SimulationError> {
+    let quick = paper_scene_with(|s| s.numerics.grid = GridSize::Cells(QUICK_GRID))?;
+    let cell_um = first_grid(&quick)?.dx * 1e6;
+    let fixed = FIXED_DOMAIN_CELLS
+        .into_iter()
+        .map(|n| {
+            simulate_with(|s| {
+                s.numerics.grid = GridSize::Cells(n);
+                s.numerics.domain_um = DomainSize::Micrometres(n as f64 * cell_um);
+            })
+            .map(|r| (n, r))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let reference = &fixed[fixed.len() - 1].1;
+    let radii = |n: usize| n as f64 / QUICK_GRID as f64 * DOMAIN_PER_CONTACT_RADIUS;
+    let study = WearStudy::Domain;
+    let auto = format!("auto: {DOMAIN_PER_CONTACT_RADIUS} radii, grown near the edge");
+    let mut rows = vec![row(study, auto, base, reference)];
+    for (i, (n, result)) in fixed.iter().enumerate() {
+        let tag = if i + 1 == fixed.len() {
+            ", reference"
+        } else {
+            ""
+        };
+        let setting = format!("fixed {:.1} radii ({n} cells{tag})", radii(*n));
+        rows.push(row(study, setting, result, reference));
+    }
+    Ok(rows)
+}
+
+/// Plasticity at the paper's load (p0 above Y, `base`) and at [`ELASTIC_LOAD_N`], each
+/// against the other choice; also returns the run at the light load with `auto`.
+fn plasticity_rows(
+    base: &SimulationResult,
+) -> Result<(Vec<WearRow>, SimulationResult), SimulationError> {
+    let quick = |s: &mut crate::scene::Scene| s.numerics.grid = GridSize::Cells(QUICK_GRID);
+    let elastic = simulate_with(|s| {
+        quick(s);
+        s.wear.plasticity = Switch::Off;
+    })?;
+    let light = |s: &mut crate::scene::Scene| {
+        quick(s);
+        s.test.load_n = ELASTIC_LOAD_N;
+    };
+    let light_auto = simulate_with(light)?;
+    let light_on = simulate_with(|s| {
+        light(s);
+        s.wear.plasticity = Switch::On;
+    })?;
+    let load_n = base.scene.test.load_n;
+    let rows = vec![
+        row(
+            WearStudy::Plasticity,
+            format!("auto (on) at {load_n} N, reference"),
+            base,
+            base,
+        ),
+        row(
+            WearStudy::Plasticity,
+            format!("off at {load_n} N"),
+            &elastic,
+            base,
+        ),
+        row(
+            WearStudy::ElasticLoad,
+            format!("auto (off) at {ELASTIC_LOAD_N} N, reference"),
+            &light_auto,
+            &light_auto,
+        ),
+        row(
+            WearStudy::ElasticLoad,
+            format!("on at {ELASTIC_LOAD_N} N"),
+            &light_on,
+            &light_auto,
+        ),
+    ];
+    Ok((rows, light_auto))
 }
 
 /// The preset's grid, and the contact radius it is sized to: a requested cell count with an
 /// auto domain spans exactly `DOMAIN_PER_CONTACT_RADIUS` radii, so that grid gives the radius.
 fn auto_grid() -> Result<AutoGrid, SimulationError> {
-    let sized = setup(r#"{"numerics": {"grid": 64}}"#)?.grid;
+    let sized = first_grid(&paper_scene_with(|s| {
+        s.numerics.grid = GridSize::Cells(QUICK_GRID);
+    })?)?;
     let radius = sized.nx as f64 * sized.dx / DOMAIN_PER_CONTACT_RADIUS;
-    let grid = setup("{}")?.grid;
+    let grid = first_grid(&paper_scene_with(|_| {})?)?;
     Ok(AutoGrid {
         cells: grid.nx,
         cell_um: grid.dx * 1e6,
@@ -202,7 +239,7 @@ fn reasons(result: &SimulationResult, name: Model) -> Vec<String> {
 fn coupling_row(n: usize, mu: f64) -> Result<CouplingRow, ContactError> {
     let (pair, hertz) = paper_hertz();
     let options = SolverOptions::default();
-    let grid = Grid::square(n, HERTZ_DOMAIN_M)?;
+    let grid = Grid::square(n, DOMAIN_M)?;
     let separation = grid.sample(|x, y| hertz.separation_m(x, y));
     let problem = ContactProblem {
         grid,
@@ -272,7 +309,7 @@ pub fn facts(studies: &AutoStudies) -> String {
         g.cells, g.cell_um, g.cells_per_radius, g.contact_radius_um
     );
     for reason in &studies.domain_growth {
-        out += &format!("Domain growth (grid 64, auto domain): {reason}\n");
+        out += &format!("Domain growth (grid {QUICK_GRID}, auto domain): {reason}\n");
     }
     for reason in &studies.plasticity {
         out += &format!("Plasticity: {reason}\n");

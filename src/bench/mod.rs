@@ -4,6 +4,7 @@
 
 mod auto;
 mod contact;
+mod error;
 mod fft_pair;
 mod plot;
 mod report;
@@ -12,15 +13,10 @@ mod wear;
 use std::path::Path;
 use std::time::Instant;
 
-pub use auto::{AutoGrid, AutoStudies, CouplingRow, auto_studies};
-pub use contact::{
-    CAPPED_REFERENCE_N, CAPPED_YIELD_PRESSURE_PA, ContactCase, ContactRow, Measures, Reference,
-    ToleranceRow, contact_rows, contact_rows_against, tolerance_rows,
-};
-pub use fft_pair::FftPair;
-pub use plot::{LogAxis, LogLogPlot, Point, Series};
-pub use report::{Machine, Measurements};
-pub use wear::{WearRow, wear_rows};
+pub use error::BenchError;
+
+use contact::{CAPPED_REFERENCE_N, GRID_STUDY_SIZES, Reference, TOLERANCE_STUDY};
+use report::{Machine, Measurements};
 
 /// Which tables to print.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -36,7 +32,7 @@ pub enum BenchTarget {
 }
 
 /// Median wall time of `reps` calls of `f`, s.
-pub fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
+fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
     let mut times: Vec<f64> = (0..reps.max(1))
         .map(|_| {
             let start = Instant::now();
@@ -50,24 +46,22 @@ pub fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
 
 /// Runs the chosen benchmark and prints it as a table or as JSON lines; with `markdown`, also
 /// writes the report there and its plots beside it.
-pub fn print(target: BenchTarget, json: bool, markdown: Option<&Path>) -> Result<(), String> {
+pub fn print(target: BenchTarget, json: bool, markdown: Option<&Path>) -> Result<(), BenchError> {
     let wanted = |t: BenchTarget| target == t || target == BenchTarget::All;
     let mut measured = Measurements::default();
     if wanted(BenchTarget::Contact) {
-        let capped = Reference::capped(CAPPED_REFERENCE_N).map_err(|e| e.to_string())?;
-        measured.contact =
-            contact_rows_against(&[64, 128, 256, 512, 1024], &capped).map_err(|e| e.to_string())?;
+        let capped = Reference::capped(CAPPED_REFERENCE_N)?;
+        measured.contact = contact::grid_rows(&GRID_STUDY_SIZES, &capped)?;
         emit(&measured.contact, json, contact::table)?;
-        measured.contact_tolerance =
-            tolerance_rows(256, &[1e-4, 1e-6, 1e-8, 1e-10], &capped).map_err(|e| e.to_string())?;
+        measured.contact_tolerance = contact::tolerance_rows(&TOLERANCE_STUDY, &capped)?;
         emit(&measured.contact_tolerance, json, contact::tolerance_table)?;
     }
     if wanted(BenchTarget::Wear) {
-        measured.wear = wear_rows().map_err(|e| e.to_string())?;
+        measured.wear = wear::wear_rows()?;
         emit(&measured.wear, json, wear::table)?;
     }
     if wanted(BenchTarget::Auto) {
-        let studies = auto_studies().map_err(|e| e.to_string())?;
+        let studies = auto::auto_studies()?;
         emit(&studies.coupling, json, auto::coupling_table)?;
         emit(&studies.wear, json, wear::table)?;
         if json {
@@ -99,10 +93,10 @@ fn emit<R: serde::Serialize>(
     rows: &[R],
     json: bool,
     table: fn(&[R]) -> String,
-) -> Result<(), String> {
+) -> Result<(), BenchError> {
     if json {
         for row in rows {
-            println!("{}", serde_json::to_string(row).map_err(|e| e.to_string())?);
+            println!("{}", serde_json::to_string(row)?);
         }
     } else {
         print!("{}", table(rows));

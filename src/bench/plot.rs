@@ -9,6 +9,8 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
+use super::BenchError;
+
 /// One point: its coordinates and the setting it stands for.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Point {
@@ -141,13 +143,35 @@ fn scientific(v: &f64) -> String {
     format!("{v:.0e}")
 }
 
+/// The drawable points of `series` placed on the axes: coordinates, whether the value is an
+/// exact 0 (drawn on the bottom edge), and the label to write, which then says `= 0`.
+fn placed(series: &Series, x_axis: LogAxis, y_axis: LogAxis) -> Vec<(f64, f64, bool, String)> {
+    series
+        .points
+        .iter()
+        .filter_map(|p| {
+            let (x, y) = (x_axis.place(p.x)?, y_axis.place(p.y)?);
+            let zero = p.y == 0.0;
+            let text = if zero {
+                format!("{} = 0", p.label)
+            } else {
+                p.label.clone()
+            };
+            Some((x, y, zero, text))
+        })
+        .collect()
+}
+
 impl LogLogPlot {
     /// Writes the plot to `path` as SVG; returns how many points were drawn.
-    pub fn write_svg(&self, path: &Path) -> Result<usize, String> {
+    pub fn write_svg(&self, path: &Path) -> Result<usize, BenchError> {
         let all = || self.series.iter().flat_map(|s| s.points.iter());
         let x_axis = LogAxis::covering(all().map(|p| p.x));
         let y_axis = LogAxis::covering(all().map(|p| p.y));
-        let fail = |e: &dyn std::fmt::Display| format!("plot {}: {e}", path.display());
+        let fail = |source| BenchError::Plot {
+            path: path.to_owned(),
+            source,
+        };
 
         let drawable: Vec<(f64, f64)> = all()
             .filter_map(|p| Some((x_axis.place(p.x)?, y_axis.place(p.y)?)))
@@ -157,7 +181,7 @@ impl LogLogPlot {
         let (x_range, y_range) = (x_axis.widened(), y_axis.widened());
 
         let root = SVGBackend::new(path, (760, 500)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| fail(&e))?;
+        root.fill(&WHITE).map_err(fail)?;
         let mut chart = ChartBuilder::on(&root)
             .caption(&self.title, ("sans-serif", 18))
             .margin(12)
@@ -166,7 +190,7 @@ impl LogLogPlot {
             .x_label_area_size(42)
             .y_label_area_size(64)
             .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())
-            .map_err(|e| fail(&e))?;
+            .map_err(fail)?;
         chart
             .configure_mesh()
             .x_desc(&self.x_label)
@@ -174,7 +198,7 @@ impl LogLogPlot {
             .x_label_formatter(&scientific)
             .y_label_formatter(&scientific)
             .draw()
-            .map_err(|e| fail(&e))?;
+            .map_err(fail)?;
 
         let mut drawn = 0;
         for (i, series) in self.series.iter().enumerate() {
@@ -182,42 +206,30 @@ impl LogLogPlot {
             // Labels above the markers, every other series below, so coinciding points stay
             // readable.
             let label_dy = if i % 2 == 0 { -14 } else { 6 };
-            let placed: Vec<(f64, f64, bool, &str)> = series
-                .points
-                .iter()
-                .filter_map(|p| {
-                    let (x, y) = (x_axis.place(p.x)?, y_axis.place(p.y)?);
-                    Some((x, y, p.y == 0.0, p.label.as_str()))
-                })
-                .collect();
+            let placed = placed(series, x_axis, y_axis);
             drawn += placed.len();
             chart
                 .draw_series(LineSeries::new(
                     placed.iter().map(|&(x, y, ..)| (x, y)),
                     colour.stroke_width(2),
                 ))
-                .map_err(|e| fail(&e))?
+                .map_err(fail)?
                 .label(&series.name)
                 .legend(move |(x, y)| {
                     Rectangle::new([(x, y - 4), (x + 14, y + 4)], colour.filled())
                 });
             chart
-                .draw_series(placed.iter().map(|&(x, y, zero, label)| {
-                    let marker = if zero {
+                .draw_series(placed.iter().map(|(x, y, zero, text)| {
+                    let marker = if *zero {
                         colour.stroke_width(2)
                     } else {
                         colour.filled()
                     };
-                    let text = if zero {
-                        format!("{label} = 0")
-                    } else {
-                        label.to_owned()
-                    };
-                    EmptyElement::at((x, y))
+                    EmptyElement::at((*x, *y))
                         + Circle::new((0, 0), 4, marker)
-                        + Text::new(text, (6, label_dy), ("sans-serif", 12).into_font())
+                        + Text::new(text.clone(), (6, label_dy), ("sans-serif", 12).into_font())
                 }))
-                .map_err(|e| fail(&e))?;
+                .map_err(fail)?;
         }
         chart
             .configure_series_labels()
@@ -225,8 +237,8 @@ impl LogLogPlot {
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .draw()
-            .map_err(|e| fail(&e))?;
-        root.present().map_err(|e| fail(&e))?;
+            .map_err(fail)?;
+        root.present().map_err(fail)?;
         Ok(drawn)
     }
 }

@@ -1,21 +1,98 @@
-//! The wear benchmark of issue 3 on the paper scene: cycle stepping against every-cycle
-//! solving, grid refinement, solver tolerance, the paper's own numerics, and the volumes
-//! against Table 3 with k calibrated on its 3600 s point.
+//! The wear benchmark on the paper scene: cycle stepping against every-cycle solving, grid
+//! refinement, solver tolerance, the paper's own numerics, and the volumes against Table 3
+//! with k calibrated on its last point. Each study's settings are the constants below, which
+//! the report also reads for its words.
 
 use std::sync::atomic::AtomicBool;
 
 use serde::Serialize;
 
-use crate::scene::parse_scene_str;
+use crate::contact::Grid;
+use crate::scene::{
+    ArchardCalibration, CycleStep, DALMAU2018_316L, DomainSize, FieldError, GridSize, Scene,
+    SceneErrors, presets,
+};
 use crate::simulation::{
     MAX_STEP, STEP_CHANGE_BOUND, Setup, SimulationError, SimulationResult, run,
 };
 
+/// Cycle counts of the cycle-step study: the preset's test and the paper's longest, where
+/// steps have had time to grow.
+pub const STEP_STUDY_CYCLES: [u64; 2] = [300, 3600];
+
+/// Step bounds of the cycle-step study: the default and a factor of about 3 either side.
+pub const STEP_BOUNDS: [f64; 3] = [0.003, STEP_CHANGE_BOUND, 0.03];
+
+/// Cells across the first domain in the grid study, the finest (the reference) first.
+pub const GRID_STUDY_CELLS: [usize; 3] = [256, 128, 64];
+
+/// Solver tolerances of the tolerance study, the tightest (the reference) first.
+pub const TOLERANCE_STUDY: [f64; 4] = [1e-10, 1e-8, 1e-6, 1e-4];
+
+/// Cells per side where the grid is not the question: cells of about 2 um, whose volume
+/// differs from the finest grid's by about 1e-4 (the grid study) in a fraction of its time.
+pub const QUICK_GRID: usize = 64;
+
+/// The paper's numerics: cells per side, domain side (um), every cycle solved.
+pub const PAPER_NUMERICS: (usize, f64) = (256, 256.0);
+
+/// The paper's Table 3: test time (s; one cycle per second at 60 rpm) and measured wear
+/// volume (mm^3). The last point calibrates Archard's k.
+pub const TABLE3: [(u64, f64); 5] = [
+    (10, 0.97e-3),
+    (60, 1.09e-3),
+    (300, 1.18e-3),
+    (1800, 5.33e-3),
+    (3600, 11.72e-3),
+];
+
+/// Which study a wear row belongs to; serialised as the JSON `study` field.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WearStudy {
+    /// [`STEP_BOUNDS`] against solving every cycle.
+    CycleStep,
+    /// [`GRID_STUDY_CELLS`].
+    Grid,
+    /// [`TOLERANCE_STUDY`].
+    Tolerance,
+    /// [`PAPER_NUMERICS`] against all auto.
+    PaperNumerics,
+    /// Volumes against [`TABLE3`].
+    Table3,
+    /// The auto domain against fixed ones.
+    Domain,
+    /// The friction coupling term modelled or left out.
+    Coupling,
+    /// Plasticity at the paper's load, modelled or left out.
+    Plasticity,
+    /// Plasticity at a load whose Hertz peak stays below the yield pressure.
+    ElasticLoad,
+}
+
+impl WearStudy {
+    /// The JSON name: `cycle_step`, `grid`, `tolerance`, `paper_numerics`, `table3`,
+    /// `domain`, `coupling`, `plasticity`, `elastic_load`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::CycleStep => "cycle_step",
+            Self::Grid => "grid",
+            Self::Tolerance => "tolerance",
+            Self::PaperNumerics => "paper_numerics",
+            Self::Table3 => "table3",
+            Self::Domain => "domain",
+            Self::Coupling => "coupling",
+            Self::Plasticity => "plasticity",
+            Self::ElasticLoad => "elastic_load",
+        }
+    }
+}
+
 /// One run of the wear benchmark, with its errors against the reference of its table.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct WearRow {
-    /// Which table: `cycle_step`, `grid`, `tolerance`, `paper_numerics`, `table3`.
-    pub study: &'static str,
+    /// Which study.
+    pub study: WearStudy,
     /// The setting varied, in words.
     pub setting: String,
     /// Cycles simulated.
@@ -46,17 +123,49 @@ pub struct WearRow {
     pub steps_at_max: usize,
 }
 
-/// Runs the paper scene (`dalmau2018-316l`) with `overrides` (a JSON object).
-pub(super) fn simulate(overrides: &str) -> Result<SimulationResult, SimulationError> {
-    let json = format!(r#"{{"preset": "dalmau2018-316l", "overrides": {overrides}}}"#);
-    let scene = parse_scene_str(&json)?;
-    run(&scene, &mut |_| {}, &AtomicBool::new(false))
+/// The scene every study starts from: the `dalmau2018-316l` preset.
+pub fn paper_scene() -> Result<Scene, SceneErrors> {
+    presets()
+        .into_iter()
+        .find(|p| p.name == DALMAU2018_316L)
+        .map(|p| p.scene)
+        .ok_or_else(|| {
+            SceneErrors(vec![FieldError::new(
+                "preset",
+                format!("no preset `{DALMAU2018_316L}`"),
+            )])
+        })
+}
+
+/// The paper scene with `change` applied.
+pub(super) fn paper_scene_with(change: impl FnOnce(&mut Scene)) -> Result<Scene, SceneErrors> {
+    let mut scene = paper_scene()?;
+    change(&mut scene);
+    Ok(scene)
+}
+
+/// Checks `scene` as a parsed scene would be checked, and runs it.
+pub(super) fn simulate(scene: &Scene) -> Result<SimulationResult, SimulationError> {
+    scene.validate()?;
+    run(scene, &mut |_| {}, &AtomicBool::new(false))
+}
+
+/// The paper scene with `change` applied, run.
+pub(super) fn simulate_with(
+    change: impl FnOnce(&mut Scene),
+) -> Result<SimulationResult, SimulationError> {
+    simulate(&paper_scene_with(change)?)
+}
+
+/// The first grid the simulation sets up for `scene`.
+pub(super) fn first_grid(scene: &Scene) -> Result<Grid, SimulationError> {
+    Ok(Setup::new(scene)?.grid)
 }
 
 /// The row of `result` in `study`, with its errors against `reference` (the same run for the
 /// reference row itself).
 pub(super) fn row(
-    study: &'static str,
+    study: WearStudy,
     setting: String,
     result: &SimulationResult,
     reference: &SimulationResult,
@@ -92,108 +201,135 @@ pub(super) fn row(
 /// Runs every study. Takes a few minutes: the every-cycle reference of 3600 cycles solves
 /// 3600 contacts.
 pub fn wear_rows() -> Result<Vec<WearRow>, SimulationError> {
-    let mut rows = Vec::new();
+    let mut rows = cycle_step_rows()?;
+    rows.extend(grid_rows()?);
+    rows.extend(tolerance_rows()?);
+    rows.extend(paper_numerics_rows()?);
+    rows.extend(table3_rows()?);
+    Ok(rows)
+}
 
-    // Cycle stepping with the scene's own (auto) grid and domain.
-    for cycles in [300, 3600] {
-        let every = simulate(&format!(
-            r#"{{"test": {{"cycles": {cycles}}}, "numerics": {{"cycle_step": 1}}}}"#
-        ))?;
-        rows.push(row(
-            "cycle_step",
-            "every cycle (reference)".into(),
-            &every,
-            &every,
-        ));
-        // The step bound (`numerics.cycle_step_bound`) around its default.
-        for bound in [0.003, STEP_CHANGE_BOUND, 0.03] {
-            let auto = simulate(&format!(
-                r#"{{"test": {{"cycles": {cycles}}}, "numerics": {{"cycle_step_bound": {bound}}}}}"#
-            ))?;
+/// Each step bound against solving every cycle, with the scene's own (auto) grid and domain.
+fn cycle_step_rows() -> Result<Vec<WearRow>, SimulationError> {
+    let mut rows = Vec::new();
+    for cycles in STEP_STUDY_CYCLES {
+        let every = simulate_with(|s| {
+            s.test.cycles = cycles;
+            s.numerics.cycle_step = CycleStep::EveryCycle;
+        })?;
+        let study = WearStudy::CycleStep;
+        rows.push(row(study, "every cycle (reference)".into(), &every, &every));
+        for bound in STEP_BOUNDS {
+            let auto = simulate_with(|s| {
+                s.test.cycles = cycles;
+                s.numerics.cycle_step_bound = bound;
+            })?;
             let default = if bound == STEP_CHANGE_BOUND {
                 " (default)"
             } else {
                 ""
             };
-            rows.push(row(
-                "cycle_step",
-                format!("bound {bound}{default}, auto"),
-                &auto,
-                &every,
-            ));
+            let setting = format!("bound {bound}{default}, auto");
+            rows.push(row(study, setting, &auto, &every));
         }
     }
+    Ok(rows)
+}
 
-    // Grid: cells across the first domain (3 contact radii, growing with the track).
-    let grids: Vec<(usize, SimulationResult)> = [256, 128, 64]
-        .into_iter()
-        .map(|n| simulate(&format!(r#"{{"numerics": {{"grid": {n}}}}}"#)).map(|r| (n, r)))
-        .collect::<Result<_, _>>()?;
-    for (n, result) in &grids {
-        let setting = format!(
-            "{n} cells, {:.2} um{}",
-            132.6 / *n as f64,
-            if *n == 256 { " (reference)" } else { "" }
-        );
-        rows.push(row("grid", setting, result, &grids[0].1));
+/// Cells across the first domain (auto: it spans a fixed number of contact radii and grows
+/// with the track), the finest grid the reference.
+fn grid_rows() -> Result<Vec<WearRow>, SimulationError> {
+    let mut runs = Vec::new();
+    for n in GRID_STUDY_CELLS {
+        let scene = paper_scene_with(|s| s.numerics.grid = GridSize::Cells(n))?;
+        let cell_um = first_grid(&scene)?.dx * 1e6;
+        runs.push((n, cell_um, simulate(&scene)?));
     }
+    let reference = &runs[0].2;
+    Ok(runs
+        .iter()
+        .enumerate()
+        .map(|(i, (n, cell_um, result))| {
+            let tag = if i == 0 { " (reference)" } else { "" };
+            let setting = format!("{n} cells, {cell_um:.2} um{tag}");
+            row(WearStudy::Grid, setting, result, reference)
+        })
+        .collect())
+}
 
-    // Solver tolerance.
-    let tolerances: Vec<(f64, SimulationResult)> = [1e-10, 1e-8, 1e-6, 1e-4]
+/// Each solver tolerance on the quick grid, the tightest the reference.
+fn tolerance_rows() -> Result<Vec<WearRow>, SimulationError> {
+    let runs: Vec<(f64, SimulationResult)> = TOLERANCE_STUDY
         .into_iter()
         .map(|t| {
-            simulate(&format!(
-                r#"{{"numerics": {{"grid": 64, "tolerance": {t:e}}}}}"#
-            ))
+            simulate_with(|s| {
+                s.numerics.grid = GridSize::Cells(QUICK_GRID);
+                s.numerics.tolerance = t;
+            })
             .map(|r| (t, r))
         })
         .collect::<Result<_, _>>()?;
-    for (i, (t, result)) in tolerances.iter().enumerate() {
-        let reference = if i == 0 { " (reference)" } else { "" };
-        rows.push(row(
-            "tolerance",
-            format!("{t:.0e}, grid 64{reference}"),
-            result,
-            &tolerances[0].1,
-        ));
-    }
+    let reference = &runs[0].1;
+    Ok(runs
+        .iter()
+        .enumerate()
+        .map(|(i, (t, result))| {
+            let tag = if i == 0 { " (reference)" } else { "" };
+            let setting = format!("{t:.0e}, grid {QUICK_GRID}{tag}");
+            row(WearStudy::Tolerance, setting, result, reference)
+        })
+        .collect())
+}
 
-    // The paper's numerics: 256 x 256 cells over 0.256 mm, every cycle solved.
-    let paper = simulate(r#"{"numerics": {"grid": 256, "domain_um": 256, "cycle_step": 1}}"#)?;
-    let auto = simulate("{}")?;
-    rows.push(row(
-        "paper_numerics",
-        "256 x 256 over 256 um, every cycle (reference)".into(),
-        &paper,
-        &paper,
-    ));
-    rows.push(row(
-        "paper_numerics",
-        "all auto (grid, domain, cycle step)".into(),
-        &auto,
-        &paper,
-    ));
+/// The paper's own numerics, every cycle solved, against all auto.
+fn paper_numerics_rows() -> Result<Vec<WearRow>, SimulationError> {
+    let (cells, domain_um) = PAPER_NUMERICS;
+    let paper = simulate_with(|s| {
+        s.numerics.grid = GridSize::Cells(cells);
+        s.numerics.domain_um = DomainSize::Micrometres(domain_um);
+        s.numerics.cycle_step = CycleStep::EveryCycle;
+    })?;
+    let auto = simulate_with(|_| {})?;
+    let study = WearStudy::PaperNumerics;
+    Ok(vec![
+        row(
+            study,
+            format!("{cells} x {cells} over {domain_um} um, every cycle (reference)"),
+            &paper,
+            &paper,
+        ),
+        row(
+            study,
+            "all auto (grid, domain, cycle step)".into(),
+            &auto,
+            &paper,
+        ),
+    ])
+}
 
-    // Table 3 with k from its 3600 s point: the errors are against the measurements.
-    let calibrated = simulate(
-        r#"{"test": {"cycles": 3600}, "numerics": {"grid": 64},
-            "wear": {"archard_k": null, "archard_calibration": {"time_s": 3600, "wear_volume_mm3": 11.72e-3}}}"#,
-    )?;
-    for (cycle, measured) in [
-        (10, 0.97e-3),
-        (60, 1.09e-3),
-        (300, 1.18e-3),
-        (1800, 5.33e-3),
-        (3600, 11.72e-3),
-    ] {
+/// Table 3 with k from its last point, on the quick grid: the errors are against the
+/// measurements.
+fn table3_rows() -> Result<Vec<WearRow>, SimulationError> {
+    let (last_s, last_mm3) = TABLE3[TABLE3.len() - 1];
+    let calibrated = simulate_with(|s| {
+        s.test.cycles = last_s;
+        s.numerics.grid = GridSize::Cells(QUICK_GRID);
+        s.wear.archard_k = None;
+        s.wear.archard_calibration = Some(ArchardCalibration {
+            time_s: last_s as f64,
+            wear_volume_mm3: last_mm3,
+        });
+    })?;
+    let whole_run = row(WearStudy::Table3, String::new(), &calibrated, &calibrated);
+    let mut rows = Vec::new();
+    for (cycle, measured) in TABLE3 {
         // The last solved cycle at or before the measurement (cycle 1 is always solved).
         let Some(record) = calibrated.cycles.iter().rev().find(|r| r.cycle <= cycle) else {
             continue;
         };
-        let whole_run = row("table3", String::new(), &calibrated, &calibrated);
         rows.push(WearRow {
             setting: format!(
-                "{cycle} s: measured {measured:.2e} mm3, k from the 3600 s point, grid 64"
+                "{cycle} s: measured {measured:.2e} mm3, k from the {last_s} s point, grid {QUICK_GRID}"
             ),
             cycles: record.cycle,
             wear_volume_mm3: record.wear_volume_mm3,
@@ -202,7 +338,7 @@ pub fn wear_rows() -> Result<Vec<WearRow>, SimulationError> {
             err_depth: f64::NAN,
             speedup: f64::NAN,
             reference: false,
-            ..whole_run
+            ..whole_run.clone()
         });
     }
     Ok(rows)
@@ -210,14 +346,14 @@ pub fn wear_rows() -> Result<Vec<WearRow>, SimulationError> {
 
 /// The rows as a fixed-width table.
 pub fn table(rows: &[WearRow]) -> String {
-    let mut out = String::from(
-        "Wear, paper scene (dalmau2018-316l); errors relative to each study's reference\n\
+    let mut out = format!(
+        "Wear, paper scene ({DALMAU2018_316L}); errors relative to each study's reference\n\
          study           cycles   wall s  solves  step   iters   V mm3       depth um  err V      err depth  speed-up  setting\n",
     );
     for r in rows {
         out += &format!(
             "{:<15} {:>6} {:>8.2} {:>7} {:>5} {:>7}   {:<10.4e}  {:<8.4}  {:>+9.2e}  {:>+9.2e}  {:>7.1}  {}\n",
-            r.study,
+            r.study.name(),
             r.cycles,
             r.wall_s,
             r.solves,
@@ -232,4 +368,75 @@ pub fn table(rows: &[WearRow]) -> String {
         );
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn study_names_are_their_json() {
+        let all = [
+            WearStudy::CycleStep,
+            WearStudy::Grid,
+            WearStudy::Tolerance,
+            WearStudy::PaperNumerics,
+            WearStudy::Table3,
+            WearStudy::Domain,
+            WearStudy::Coupling,
+            WearStudy::Plasticity,
+            WearStudy::ElasticLoad,
+        ];
+        for study in all {
+            let json = serde_json::to_value(study).expect("serialises");
+            assert_eq!(json, study.name());
+        }
+    }
+
+    /// The overrides the studies once wrote as JSON text give the same scenes as the
+    /// changes made to the preset's values.
+    #[test]
+    fn scene_values_match_the_json_overrides() {
+        let parsed = |overrides: &str| {
+            crate::scene::parse_scene_str(&format!(
+                r#"{{"preset": "{DALMAU2018_316L}", "overrides": {overrides}}}"#
+            ))
+            .expect("parses")
+        };
+        let built = paper_scene_with(|s| {
+            s.test.cycles = 3600;
+            s.numerics.grid = GridSize::Cells(64);
+            s.wear.archard_k = None;
+            s.wear.archard_calibration = Some(ArchardCalibration {
+                time_s: 3600.0,
+                wear_volume_mm3: 11.72e-3,
+            });
+        })
+        .expect("preset");
+        let json = r#"{"test": {"cycles": 3600}, "numerics": {"grid": 64},
+            "wear": {"archard_k": null, "archard_calibration": {"time_s": 3600, "wear_volume_mm3": 11.72e-3}}}"#;
+        assert_eq!(built, parsed(json));
+        let built = paper_scene_with(|s| {
+            s.numerics.grid = GridSize::Cells(256);
+            s.numerics.domain_um = DomainSize::Micrometres(256.0);
+            s.numerics.cycle_step = CycleStep::EveryCycle;
+        })
+        .expect("preset");
+        let json = r#"{"numerics": {"grid": 256, "domain_um": 256, "cycle_step": 1}}"#;
+        assert_eq!(built, parsed(json));
+        assert_eq!(paper_scene().expect("preset"), parsed("{}"));
+    }
+
+    /// The grid study names each grid by its cell size, taken from the simulation's own
+    /// setup; the committed report shows the same sizes.
+    #[test]
+    fn grid_settings_name_the_cells_of_the_committed_report() {
+        let committed = include_str!("../../docs/accuracy.md");
+        for n in GRID_STUDY_CELLS {
+            let scene = paper_scene_with(|s| s.numerics.grid = GridSize::Cells(n)).expect("preset");
+            let cell_um = first_grid(&scene).expect("sets up").dx * 1e6;
+            let setting = format!("| {n} cells, {cell_um:.2} um");
+            assert!(committed.contains(&setting), "{setting}");
+        }
+    }
 }

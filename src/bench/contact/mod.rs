@@ -1,5 +1,5 @@
-//! The contact benchmark of issues 2 and 6: the paper's case (R 3 mm, F 5 N, alumina on
-//! 316L, domain 0.256 mm, apex on a cell corner, tolerance 1e-8) in two cases:
+//! The contact benchmark: the paper's case (R 3 mm, F 5 N, alumina on 316L, domain
+//! 0.256 mm, apex on a cell corner, the default tolerance) in two cases:
 //!
 //! - `hertz`: elastic; errors against Hertz's analytic solution;
 //! - `capped`: the same contact with the pressure cap `Y = 2551 MPa / 2.8` (the paper's
@@ -9,9 +9,10 @@
 //!   as 1/N, so a row's error against that reference is about `1 - N / 2048` of its error
 //!   against the continuum: half of it at N = 1024.
 //!
-//! [`contact_rows`] varies the grid at the paper's tolerance; [`tolerance_rows`] varies the
-//! tolerance on one grid. `scripts/peers.py` reads both from `tribosim bench contact --json`
-//! and puts public solvers beside them, so the JSON field names are kept stable.
+//! [`grid_rows`] varies the grid at the default tolerance; [`tolerance_rows`] varies the
+//! tolerance on one grid. `scripts/peers.py` reads the grid rows (`study`, `case`, `n` and
+//! the fields of [`ContactRow`]) from `tribosim bench contact --json` and puts public
+//! solvers beside them, so the JSON field names are kept stable.
 
 use serde::Serialize;
 
@@ -20,14 +21,28 @@ use crate::contact::{
     Material, SolverOptions, solve,
 };
 
-use super::{FftPair, median_time};
+mod table;
+
+pub use table::{table, tolerance_table};
+
+use super::fft_pair::FftPair;
+use super::median_time;
 
 /// Side of the square domain, m.
 pub const DOMAIN_M: f64 = 0.256e-3;
 
-/// The cap of the `capped` case, Pa: the paper's hardness at the first cycle, 2551 MPa,
-/// over the factor 2.8.
-pub const CAPPED_YIELD_PRESSURE_PA: f64 = 2551e6 / 2.8;
+/// The cycle of the paper's first hardness measurement (Table 3: 10 s at 60 rpm).
+pub const CAPPED_HARDNESS_CYCLES: u64 = 10;
+
+/// The paper's hardness at [`CAPPED_HARDNESS_CYCLES`], Pa: the first the worn track shows,
+/// and the lowest of the run, so the lowest cap a contact of the paper scene meets.
+pub const CAPPED_HARDNESS_PA: f64 = 2551e6;
+
+/// Johnson's factor between hardness and the yield pressure of a fully plastic contact.
+pub const CAPPED_YIELD_FACTOR: f64 = 2.8;
+
+/// The cap of the `capped` case, Pa.
+pub const CAPPED_YIELD_PRESSURE_PA: f64 = CAPPED_HARDNESS_PA / CAPPED_YIELD_FACTOR;
 
 /// Cells per side of the grid whose solution is the `capped` case's reference: twice the
 /// largest benchmarked grid, and the largest [`Grid`] accepts.
@@ -36,6 +51,37 @@ pub const CAPPED_REFERENCE_N: usize = Grid::MAX_CELLS_PER_SIDE;
 /// The tolerance of the solve that [`ToleranceRow::err_solve`] compares against: far below
 /// every studied tolerance, so the difference is the error the studied tolerance leaves.
 pub const TIGHT_TOLERANCE: f64 = 1e-12;
+
+/// Cells per side of the grid study, up to half of [`CAPPED_REFERENCE_N`] so that the
+/// capped reference stays at least twice as fine as every row.
+pub const GRID_STUDY_SIZES: [usize; 5] = [64, 128, 256, 512, 1024];
+
+/// The tolerance study: one grid, tolerances two decades apart around the default.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ToleranceStudy {
+    /// Cells per side.
+    pub n: usize,
+    /// The solver tolerances, loosest first.
+    pub tolerances: &'static [f64],
+}
+
+/// The tolerance study as `bench contact` runs it.
+pub const TOLERANCE_STUDY: ToleranceStudy = ToleranceStudy {
+    n: 256,
+    tolerances: &[1e-4, 1e-6, 1e-8, 1e-10],
+};
+
+/// Which study a contact row belongs to; the JSON `study` field that tells these rows from
+/// the others of `bench --json`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum ContactStudy {
+    /// [`ContactRow`]s: the grid varied at the default tolerance.
+    #[serde(rename = "contact_grid")]
+    Grid,
+    /// [`ToleranceRow`]s: the tolerance varied on one grid.
+    #[serde(rename = "contact_tolerance")]
+    Tolerance,
+}
 
 /// Which contact is solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -161,7 +207,7 @@ impl Errors {
     }
 }
 
-/// One case and grid size of the contact benchmark at the paper's tolerance (1e-8).
+/// One case and grid size of the contact benchmark at the default tolerance.
 ///
 /// Errors are relative, `value / reference - 1`, against [`ContactRow::reference`]: Hertz's
 /// analytic solution for `hertz`, our [`CAPPED_REFERENCE_N`]-cell solution for `capped`.
@@ -170,8 +216,8 @@ impl Errors {
 /// in `err_area`, `err_delta` and `err_plastic_area`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ContactRow {
-    /// Always `contact_grid`: tells these rows from the others of `bench --json`.
-    pub study: &'static str,
+    /// Always [`ContactStudy::Grid`].
+    pub study: ContactStudy,
     /// `hertz` or `capped`.
     pub case: ContactCase,
     /// Cells per side.
@@ -212,8 +258,8 @@ pub struct ContactRow {
 /// One tolerance of the tolerance study, on one grid, cold-started.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ToleranceRow {
-    /// Always `contact_tolerance`.
-    pub study: &'static str,
+    /// Always [`ContactStudy::Tolerance`].
+    pub study: ContactStudy,
     /// `hertz` or `capped`.
     pub case: ContactCase,
     /// Cells per side.
@@ -317,17 +363,9 @@ fn repetitions(n: usize) -> usize {
     }
 }
 
-/// Measures both cases at each grid size in `sizes`, after solving the capped reference
-/// (about 30 s). Hertz rows come first.
-pub fn contact_rows(sizes: &[usize]) -> Result<Vec<ContactRow>, ContactError> {
-    contact_rows_against(sizes, &Reference::capped(CAPPED_REFERENCE_N)?)
-}
-
-/// [`contact_rows`] with the capped case's reference given.
-pub fn contact_rows_against(
-    sizes: &[usize],
-    capped: &Reference,
-) -> Result<Vec<ContactRow>, ContactError> {
+/// Measures both cases at each grid size in `sizes`, the capped case against `capped`.
+/// Hertz rows come first.
+pub fn grid_rows(sizes: &[usize], capped: &Reference) -> Result<Vec<ContactRow>, ContactError> {
     let mut rows = Vec::with_capacity(2 * sizes.len());
     for case in ContactCase::ALL {
         for &n in sizes {
@@ -355,7 +393,7 @@ fn grid_row(setup: &Setup, capped: &Reference) -> Result<ContactRow, ContactErro
     let reference = setup.reference(capped);
     let errors = Errors::of(&measures, &reference);
     Ok(ContactRow {
-        study: "contact_grid",
+        study: ContactStudy::Grid,
         case: setup.case,
         n,
         wall_s: build_s + solve_s,
@@ -376,13 +414,13 @@ fn grid_row(setup: &Setup, capped: &Reference) -> Result<ContactRow, ContactErro
     })
 }
 
-/// The tolerance study: both cases on an `n`-cell grid at each of `tolerances`.
+/// The tolerance study: both cases on the study's grid at each of its tolerances.
 pub fn tolerance_rows(
-    n: usize,
-    tolerances: &[f64],
+    study: &ToleranceStudy,
     capped: &Reference,
 ) -> Result<Vec<ToleranceRow>, ContactError> {
-    let mut rows = Vec::with_capacity(2 * tolerances.len());
+    let n = study.n;
+    let mut rows = Vec::with_capacity(2 * study.tolerances.len());
     for case in ContactCase::ALL {
         let setup = Setup::new(case, n)?;
         let problem = setup.problem();
@@ -394,7 +432,7 @@ pub fn tolerance_rows(
         };
         let exact = solve(&mut operator, &problem, &tight, None)?;
         let exact_max = exact.max_pressure_pa();
-        for &tolerance in tolerances {
+        for &tolerance in study.tolerances {
             let options = SolverOptions {
                 tolerance,
                 ..SolverOptions::default()
@@ -411,7 +449,7 @@ pub fn tolerance_rows(
                 .zip(&exact.pressure)
                 .fold(0.0f64, |m, (p, q)| m.max((p - q).abs()));
             rows.push(ToleranceRow {
-                study: "contact_tolerance",
+                study: ContactStudy::Tolerance,
                 case,
                 n,
                 tolerance,
@@ -430,81 +468,17 @@ pub fn tolerance_rows(
     Ok(rows)
 }
 
-fn header(case: ContactCase, reference: &Reference) -> String {
-    let against = match reference.n {
-        None => String::from("Hertz's analytic solution"),
-        Some(n) => format!("our own N = {n} solution of the same case"),
-    };
-    match case {
-        ContactCase::Hertz => format!(
-            "Hertz, paper case (R 3 mm, F 5 N, E* 130.17 GPa, domain 0.256 mm, apex on a cell corner, tolerance 1e-8); errors against {against}\n"
-        ),
-        ContactCase::Capped => format!(
-            "Capped Hertz, the same case with p <= Y = 2551 MPa / 2.8 = {:.2} MPa; no analytic answer: errors against {against} (err p_max = p_max / Y - 1)\n",
-            CAPPED_YIELD_PRESSURE_PA / 1e6
-        ),
-    }
-}
-
-fn optional(value: Option<f64>) -> String {
-    value.map_or_else(|| String::from("-"), |v| format!("{v:+.3e}"))
-}
-
-/// The grid rows as fixed-width tables, one per case.
-pub fn table(rows: &[ContactRow]) -> String {
-    let mut out = String::new();
-    for case in ContactCase::ALL {
-        let Some(first) = rows.iter().find(|r| r.case == case) else {
-            continue;
-        };
-        out += &header(case, &first.reference);
-        out += "     N   wall s  build s  solve s  iters  applies  FFT pair ms  iter/pair   err p_max    err area   err delta  err plastic\n";
-        for r in rows.iter().filter(|r| r.case == case) {
-            out += &format!(
-                "{:>6} {:>8.4} {:>8.4} {:>8.4} {:>6} {:>8} {:>12.3} {:>10.2} {:>+11.3e} {:>+11.3e} {:>+11.3e} {:>12}\n",
-                r.n,
-                r.wall_s,
-                r.build_s,
-                r.solve_s,
-                r.iterations,
-                r.applies,
-                r.fft_pair_s * 1e3,
-                r.iteration_per_fft_pair,
-                r.err_pmax,
-                r.err_area,
-                r.err_delta,
-                optional(r.err_plastic_area),
-            );
-        }
-        out += "\n";
-    }
-    out
-}
-
-/// The tolerance rows as a fixed-width table.
-pub fn tolerance_table(rows: &[ToleranceRow]) -> String {
-    let mut out = format!(
-        "Tolerance study (errors against each case's reference as above; err solve = max |p - p*| / max p*, p* solved to {TIGHT_TOLERANCE:.0e} on the same grid)\n\
-         \x20  case      N  tolerance  solve s  iters  applies    residual   err p_max    err area   err delta  err plastic   err solve\n",
-    );
-    for r in rows {
-        out += &format!(
-            "{:>7} {:>6} {:>10.0e} {:>8.4} {:>6} {:>8} {:>11.3e} {:>+11.3e} {:>+11.3e} {:>+11.3e} {:>12} {:>11.3e}\n",
-            r.case.name(),
-            r.n,
-            r.tolerance,
-            r.solve_s,
-            r.iterations,
-            r.applies,
-            r.residual,
-            r.err_pmax,
-            r.err_area,
-            r.err_delta,
-            optional(r.err_plastic_area),
-            r.err_solve,
-        );
-    }
-    out
+/// The paper's case in words, from the values the rows are solved with.
+pub fn paper_case() -> String {
+    let (_, hertz) = paper_hertz();
+    format!(
+        "(R {} mm, F {} N, E* {:.2} GPa, domain {} mm, apex on a cell corner, tolerance {:.0e})",
+        hertz.radius_m * 1e3,
+        hertz.load_n,
+        hertz.reduced_modulus_pa / 1e9,
+        DOMAIN_M * 1e3,
+        SolverOptions::default().tolerance
+    )
 }
 
 #[cfg(test)]
@@ -515,7 +489,7 @@ mod tests {
     fn capped_errors_are_against_the_fine_grid_and_the_cap() {
         let reference = Reference::capped(128).expect("reference solves");
         assert_eq!(reference.n, Some(128));
-        let rows = contact_rows_against(&[64], &reference).expect("rows solve");
+        let rows = grid_rows(&[64], &reference).expect("rows solve");
         let (hertz, capped) = (&rows[0], &rows[1]);
         assert_eq!(
             (hertz.case, capped.case),
@@ -537,12 +511,42 @@ mod tests {
     #[test]
     fn a_looser_tolerance_leaves_a_larger_solve_error() {
         let reference = Reference::capped(128).expect("reference solves");
-        let rows = tolerance_rows(64, &[1e-4, 1e-10], &reference).expect("rows solve");
+        let study = ToleranceStudy {
+            n: 64,
+            tolerances: &[1e-4, 1e-10],
+        };
+        let rows = tolerance_rows(&study, &reference).expect("rows solve");
         assert_eq!(rows.len(), 4);
         for pair in rows.chunks(2) {
             assert!(pair[0].iterations <= pair[1].iterations);
             assert!(pair[1].err_solve < 1e-6, "{pair:?}");
             assert!(pair[0].residual <= 1e-4 && pair[1].residual <= 1e-10);
+        }
+    }
+
+    /// The capped case's constants are the paper scene's first hardness and yield factor.
+    #[test]
+    fn the_cap_is_the_paper_scenes_first_yield_pressure() {
+        let scene = super::super::wear::paper_scene().expect("preset");
+        let table = scene
+            .disc
+            .hardness_table
+            .expect("the preset has Table 3's hardness");
+        let (cycles, hardness_mpa) = table[0];
+        assert_eq!(cycles.to_bits(), (CAPPED_HARDNESS_CYCLES as f64).to_bits());
+        assert_eq!((hardness_mpa * 1e6).to_bits(), CAPPED_HARDNESS_PA.to_bits());
+        let factor = scene.disc.yield_factor;
+        assert_eq!(factor.to_bits(), CAPPED_YIELD_FACTOR.to_bits());
+    }
+
+    #[test]
+    fn study_and_case_names_are_their_json() {
+        let study = |s: ContactStudy| serde_json::to_value(s).expect("serialises");
+        assert_eq!(study(ContactStudy::Grid), "contact_grid");
+        assert_eq!(study(ContactStudy::Tolerance), "contact_tolerance");
+        for case in ContactCase::ALL {
+            let json = serde_json::to_value(case).expect("serialises");
+            assert_eq!(json, case.name());
         }
     }
 }

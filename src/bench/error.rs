@@ -1,0 +1,41 @@
+//! Why a benchmark or its report failed.
+
+use std::path::PathBuf;
+
+use plotters::drawing::DrawingAreaErrorKind;
+
+use crate::contact::ContactError;
+use crate::simulation::SimulationError;
+
+/// Why `tribosim bench` failed.
+#[derive(Debug, thiserror::Error)]
+pub enum BenchError {
+    /// A contact solve of the contact or coupling studies.
+    #[error(transparent)]
+    Contact(#[from] ContactError),
+    /// A wear run of the paper-scene studies.
+    #[error(transparent)]
+    Simulation(#[from] SimulationError),
+    /// A row could not be written as JSON.
+    #[error("JSON: {0}")]
+    Json(#[from] serde_json::Error),
+    /// The report's path has no file name to name its plot folder after.
+    #[error("{}: not a file name", .0.display())]
+    NotAFile(PathBuf),
+    /// The report or its plot folder could not be written.
+    #[error("cannot write {}: {source}", path.display())]
+    Write {
+        /// The file or folder.
+        path: PathBuf,
+        /// What the file system said.
+        source: std::io::Error,
+    },
+    /// A plot could not be drawn.
+    #[error("plot {}: {source}", path.display())]
+    Plot {
+        /// The SVG file.
+        path: PathBuf,
+        /// What the plotting library said.
+        source: DrawingAreaErrorKind<std::io::Error>,
+    },
+}
