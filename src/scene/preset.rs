@@ -29,7 +29,7 @@ pub fn presets() -> Vec<Preset> {
     }]
 }
 
-/// The contract's example scene: the defaults plus the measured hardness table and the
+/// The paper's test: the defaults plus the measured hardness table and the
 /// electrochemistry, which a bare scene leaves out.
 fn dalmau2018_316l() -> Scene {
     let mut scene = Scene {

@@ -1,5 +1,5 @@
-//! The result of a run: the contract's "Result" JSON. Names carry units; values are in
-//! those units (the core works in SI and converts here).
+//! The result of a run, as JSON: `docs/result.md` describes every field. Names carry units;
+//! values are in those units (the core works in SI and converts here).
 
 use serde::{Deserialize, Serialize};
 
@@ -83,7 +83,9 @@ pub struct CycleRecord {
     pub approach_um: f64,
     /// Solver iterations for this cycle.
     pub iterations: usize,
-    /// Potential during rubbing (eq. 18), V; absent without `corrosion`.
+    /// Potential during rubbing (eq. 18), V against the reference electrode of
+    /// `corrosion.corrosion_potential_v` (the paper's: Ag/AgCl in 3 M KCl); absent without
+    /// `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub potential_v: Option<f64>,
     /// Anodic (depassivated) area, mm^2; absent without `corrosion`.
