@@ -11,8 +11,8 @@ use super::parse_scene;
 
 /// The line before the generated table in `docs/scene.md`.
 pub const FIELDS_BEGIN: &str = "<!-- The tables below are generated from src/scene/fields.rs: \
-                                edit there, then run TRIBOSIM_WRITE_DOCS=1 cargo test --test \
-                                docs -->";
+                                edit there, then run TRIBOSIM_WRITE_DOCS=1 cargo test \
+                                --release --test docs -->";
 /// The line after the generated table in `docs/scene.md`.
 pub const FIELDS_END: &str = "<!-- End of the generated tables. -->";
 
