@@ -19,8 +19,12 @@ pub enum HardnessError {
         /// The offending hardness, Pa.
         hardness_pa: f64,
     },
-    /// Every point sits at n = 1, so the slope B of H = A + B ln n is undetermined.
-    #[error("the hardness table needs an entry at a cycle count above 1 to fit H = A + B ln n")]
+    /// The points sit at fewer than two cycle counts, so the slope B of H = A + B ln n is
+    /// undetermined.
+    #[error(
+        "fitting H = A + B ln n needs points at two cycle counts or more (the table, with the \
+         bulk value at n = 1 when it takes part)"
+    )]
     Degenerate,
     /// The linear-algebra back end refused the system (it cannot for a well-formed table).
     #[error("least-squares solve failed: {0}")]
@@ -52,13 +56,18 @@ impl HardnessLaw {
 
     /// Least-squares fit of H(n) = A + B ln n through the bulk hardness at n = 1 and the
     /// measured `(cycle, hardness_pa)` pairs.
-    ///
-    /// Solved with nalgebra's SVD rather than QR: nalgebra's QR only solves square systems,
-    /// and the singular values give the rank, so a table that cannot fix B is refused.
     pub fn fit(bulk_pa: f64, table: &[(f64, f64)]) -> Result<Self, HardnessError> {
         let points: Vec<(f64, f64)> = std::iter::once((1.0, bulk_pa))
             .chain(table.iter().copied())
             .collect();
+        Self::fit_points(&points)
+    }
+
+    /// Least-squares fit of H(n) = A + B ln n through `(cycle, hardness_pa)` points.
+    ///
+    /// Solved with nalgebra's SVD rather than QR: nalgebra's QR only solves square systems,
+    /// and the singular values give the rank, so points that cannot fix B are refused.
+    pub fn fit_points(points: &[(f64, f64)]) -> Result<Self, HardnessError> {
         if let Some(&(cycle, hardness_pa)) = points
             .iter()
             .find(|(n, h)| !(n.is_finite() && h.is_finite() && *n >= 1.0))
@@ -66,11 +75,14 @@ impl HardnessLaw {
             return Err(HardnessError::InvalidPoint { cycle, hardness_pa });
         }
         let rows = points.len();
+        if rows < 2 {
+            return Err(HardnessError::Degenerate);
+        }
         let design = DMatrix::from_fn(rows, 2, |i, j| if j == 0 { 1.0 } else { points[i].0.ln() });
         let rhs = DVector::from_iterator(rows, points.iter().map(|p| p.1));
         let svd = design.svd(true, true);
         // The usual numerical-rank threshold: machine epsilon times size times the largest
-        // singular value. An all-n = 1 table has an exactly zero second singular value.
+        // singular value. Points all at one n give an exactly zero second singular value.
         let threshold = f64::EPSILON * rows as f64 * svd.singular_values.max();
         if svd.rank(threshold) < 2 {
             return Err(HardnessError::Degenerate);

@@ -33,7 +33,8 @@ enum Command {
     Serve(tribosim::service::ServeArgs),
     /// Run one scene offline and write the result JSON.
     Run {
-        /// The scene (JSON; may be {"preset": ..., "overrides": ...}).
+        /// The scene (JSON; may be {"preset": ..., "overrides": ...}); `-` reads standard
+        /// input.
         scene: PathBuf,
         /// Where to write the result; standard output if absent.
         #[arg(short, long)]
@@ -62,8 +63,12 @@ enum Command {
 }
 
 fn read_scene(path: &Path) -> Result<Scene, String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let text = if path == Path::new("-") {
+        std::io::read_to_string(std::io::stdin())
+            .map_err(|e| format!("cannot read the scene from standard input: {e}"))?
+    } else {
+        std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?
+    };
     parse_scene_str(&text).map_err(|errors| {
         let lines: Vec<String> = errors.0.iter().map(|e| format!("  {e}")).collect();
         format!("invalid scene {}:\n{}", path.display(), lines.join("\n"))
@@ -81,10 +86,11 @@ fn write_json(value: &impl serde::Serialize, output: Option<&Path>) -> Result<()
 
 fn run_scene(path: &Path, output: Option<&Path>) -> Result<(), String> {
     let scene = read_scene(path)?;
+    // indicatif draws nothing when standard error is not a terminal, so logs stay clean.
     let bar = ProgressBar::new(scene.test.cycles);
     bar.set_style(
         ProgressStyle::with_template(
-            "{elapsed_precise} [{bar:40}] {pos}/{len} cycles, eta {eta} {msg}",
+            "{elapsed_precise} [{bar:40}] cycle {pos}/{len}, {per_sec}, {eta} left {msg}",
         )
         .map_err(|e| e.to_string())?,
     );
@@ -95,7 +101,12 @@ fn run_scene(path: &Path, output: Option<&Path>) -> Result<(), String> {
     let result = run(&scene, &mut on_cycle, &AtomicBool::new(false));
     bar.finish_and_clear();
     let result = result.map_err(|e| e.to_string())?;
-    write_json(&result, output)
+    write_json(&result, output)?;
+    for warning in &result.warnings {
+        eprintln!("warning: {warning}");
+    }
+    eprintln!("{}", result.summary);
+    Ok(())
 }
 
 fn main() -> ExitCode {

@@ -31,7 +31,7 @@ const ARCHARD_EXACT: f64 = 1e-9;
 fn elastic_wear_is_linear_and_equals_archard() {
     let s = scene(
         r#"{"preset": "dalmau2018-316l", "overrides": {
-            "disc": {"hardness_table": null},
+            "disc": {"hardness_table": null}, "test": {"cycles": 300},
             "wear": {"plasticity": "off"},
             "numerics": {"grid": 64, "cycle_step": 1}}}"#,
     );
@@ -46,7 +46,8 @@ fn elastic_wear_is_linear_and_equals_archard() {
     };
     // Archard's volume is linear in the sliding distance: V(300) / V(150) = 2, to round-off.
     assert!((volume(300) / volume(150) - 2.0).abs() < ARCHARD_EXACT);
-    let expected = 300.0 * archard_lap_mm3(&s, 1.19e-4, 2473e6);
+    let k = s.archard_k().expect("k from the paper's calibration point");
+    let expected = 300.0 * archard_lap_mm3(&s, k, 2473e6);
     assert!(relative_error(volume(300), expected) < ARCHARD_EXACT);
     assert!(result.cycles.iter().all(|r| r.plastic_area_mm2 == 0.0));
 }
@@ -78,10 +79,14 @@ fn extents(map: &tribosim::simulation::PressureMap) -> (f64, f64) {
 fn paper_scene_yields_first_then_wears_by_archard() {
     // The preset (plasticity and coupling on) on a coarse grid to keep the test short; the
     // grid refinement is in `tribosim bench wear`.
-    let s = scene(r#"{"preset": "dalmau2018-316l", "overrides": {"numerics": {"grid": 64}}}"#);
+    let s = scene(
+        r#"{"preset": "dalmau2018-316l", "overrides": {
+            "test": {"cycles": 300}, "numerics": {"grid": 64}}}"#,
+    );
     let result = simulate(&s);
     let records = &result.cycles;
     let law = s.hardness_law().expect("valid table");
+    let k = s.archard_k().expect("k from the paper's calibration point");
 
     // Yielding stops early (paper: about 10 cycles; measured 11 at grids 64 to 144).
     let plastic_until = last_plastic_cycle(records);
@@ -114,7 +119,7 @@ fn paper_scene_yields_first_then_wears_by_archard() {
     // Then linear: between solved cycles after the yielding, exactly Archard's increments.
     for pair in records.windows(2).filter(|p| p[0].cycle > plastic_until) {
         let expected: f64 = (pair[0].cycle + 1..=pair[1].cycle)
-            .map(|j| archard_lap_mm3(&s, 1.19e-4, law.hardness_pa(j as f64)))
+            .map(|j| archard_lap_mm3(&s, k, law.hardness_pa(j as f64)))
             .sum();
         let grown = pair[1].wear_volume_mm3 - pair[0].wear_volume_mm3;
         assert!(

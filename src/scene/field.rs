@@ -32,8 +32,12 @@ pub enum Range {
     AutoOrOne,
     /// One of these names.
     OneOf(&'static [&'static str]),
-    /// `[[cycles, MPa], ...]` pairs for the hardness fit.
+    /// `[[cycles, MPa], ...]` pairs for the hardness fit, or `null`.
     HardnessTable,
+    /// `true` or `false`.
+    Bool,
+    /// `"auto"` or a list of at most this many cycles of the run.
+    AutoOrCycles(u64),
 }
 
 impl Range {
@@ -52,7 +56,7 @@ impl Range {
             }
             Self::AutoOrOne => value.to_bits() == 1f64.to_bits(),
             Self::Text | Self::Object | Self::OptionalObject | Self::OneOf(_) => false,
-            Self::HardnessTable => false,
+            Self::HardnessTable | Self::Bool | Self::AutoOrCycles(_) => false,
         }
     }
 
@@ -108,10 +112,14 @@ impl Range {
                 let quoted: Vec<String> = names.iter().map(|n| format!("\"{n}\"")).collect();
                 format!("one of {}", quoted.join(", "))
             }
-            Self::HardnessTable => "a list of [cycles, MPa] pairs, cycles >= 1 and strictly \
-                                    increasing, MPa > 0; the fitted law must stay > 0 MPa \
-                                    over the run"
+            Self::HardnessTable => "null, or a list of [cycles, MPa] pairs, cycles >= 1 and \
+                                    strictly increasing, MPa > 0; the fitted law must stay \
+                                    > 0 MPa over the run"
                 .to_owned(),
+            Self::Bool => "true or false".to_owned(),
+            Self::AutoOrCycles(most) => {
+                format!("\"auto\" or a list of at most {most} cycles, each in 1..=`test.cycles`")
+            }
         }
     }
 }

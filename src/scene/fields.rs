@@ -3,6 +3,7 @@
 //! these, and `docs/scene.md`'s table is rendered from them (`reference.rs`); a test walks
 //! the parser's accepted keys and fails on any key without a descriptor here.
 
+use super::MAX_RECORD_CYCLES;
 use super::field::{Field, Range};
 use crate::contact::Grid;
 
@@ -94,10 +95,22 @@ pub(super) const HARDNESS_TABLE: Field = Field {
     range: Range::HardnessTable,
     why: "",
     meaning: "Measured hardness of the worn surface against the cycle count, `[[cycles, \
-              hardness_mpa], ...]`. H(n) is the least-squares fit H = A + B ln n through \
-              these points and the bulk value at n = 1. Absent: H stays at `hardness_mpa`. \
-              The preset holds Table 3's five points.",
+              hardness_mpa], ...]` (the default is Table 3's five points). H(n) is the \
+              least-squares fit H = A + B ln n through these points (and the bulk value at n = \
+              1, see `hardness_fit_includes_bulk`). null: H stays at `hardness_mpa`.",
     feeds: "H(n) of Fig. 9 and Section 4.5, hence Y (eq. 12) and H (eqs. 14-16) at each cycle",
+};
+
+/// `disc.hardness_fit_includes_bulk`.
+pub(super) const HARDNESS_FIT_INCLUDES_BULK: Field = Field {
+    path: "disc.hardness_fit_includes_bulk",
+    unit: "",
+    range: Range::Bool,
+    why: "",
+    meaning: "Whether the bulk `hardness_mpa`, as the point n = 1, takes part in the fit with \
+              the table. The result's `work_hardening` model gives A, B and each point's \
+              residual, and warns of a point far off the law.",
+    feeds: "H(n) of Fig. 9",
 };
 
 /// `disc.yield_factor`.
@@ -168,8 +181,9 @@ pub(super) const ARCHARD_K: Field = Field {
     unit: "",
     range: Range::Closed(0.0, 1.0),
     why: "0 is a run without wear",
-    meaning: "Archard's wear coefficient k (dimensionless). Give either this or \
-              `archard_calibration`; with neither, the default applies.",
+    meaning: "Archard's wear coefficient k (dimensionless). Given, it replaces \
+              `archard_calibration`; absent, k is derived from the calibration point. The k \
+              used is in the result's `summary.archard_k`.",
     feeds: "k in Archard's law (eqs. 14-16)",
 };
 
@@ -180,7 +194,8 @@ pub(super) const CALIBRATION: Field = Field {
     range: Range::OptionalObject,
     why: "",
     meaning: "A measured point `{\"time_s\": ..., \"wear_volume_mm3\": ...}` from which k is \
-              derived, in place of `archard_k` (over a preset, set `archard_k` to null).",
+              derived, in place of `archard_k`; by default Table 3's 3600 s point, as the \
+              paper's Section 4.5 does. Its test conditions default to the scene's.",
     feeds: "k = V H / (F_N s) (eq. 1), H from the hardness law at the point's cycle, s = \
             sliding speed x time_s",
 };
@@ -204,6 +219,45 @@ pub(super) const CALIBRATION_VOLUME: Field = Field {
     meaning: "Wear volume measured after `time_s` (Table 3: 11.72e-3 mm^3 at 3600 s).",
     feeds: "V in eq. 1",
 };
+
+const fn condition(path: &'static str, unit: &'static str, meaning: &'static str) -> Field {
+    Field {
+        path,
+        unit,
+        range: Range::Positive,
+        why: "",
+        meaning,
+        feeds: "eq. 1",
+    }
+}
+
+/// `wear.archard_calibration.hardness_mpa`.
+pub(super) const CALIBRATION_HARDNESS: Field = condition(
+    "wear.archard_calibration.hardness_mpa",
+    "MPa",
+    "Hardness measured at `time_s` (H in eq. 1); absent, the hardness law's value there.",
+);
+
+/// `wear.archard_calibration.load_n`.
+pub(super) const CALIBRATION_LOAD: Field = condition(
+    "wear.archard_calibration.load_n",
+    "N",
+    "Load of the measured test; absent, the scene's `test.load_n`.",
+);
+
+/// `wear.archard_calibration.speed_rpm`.
+pub(super) const CALIBRATION_SPEED: Field = condition(
+    "wear.archard_calibration.speed_rpm",
+    "rpm",
+    "Rotation speed of the measured test; absent, the scene's `test.speed_rpm`.",
+);
+
+/// `wear.archard_calibration.track_radius_mm`.
+pub(super) const CALIBRATION_TRACK_RADIUS: Field = condition(
+    "wear.archard_calibration.track_radius_mm",
+    "mm",
+    "Wear track radius of the measured test; absent, the scene's `test.track_radius_mm`.",
+);
 
 /// `wear.plasticity`.
 pub(super) const PLASTICITY: Field = Field {
@@ -384,6 +438,18 @@ pub(super) const CYCLE_STEP_BOUND: Field = Field {
     feeds: "the time step of eq. 15's s",
 };
 
+/// `numerics.record_cycles`.
+pub(super) const RECORD_CYCLES: Field = Field {
+    path: "numerics.record_cycles",
+    unit: "cycles",
+    range: Range::AutoOrCycles(MAX_RECORD_CYCLES as u64),
+    why: "each is a solve and a kept profile",
+    meaning: "Cycles at which the state is recorded exactly: solved there (a cycle step never \
+              passes one) and the profile kept. `auto`: Table 3's times at the scene's speed, \
+              within the run.",
+    feeds: "Table 3's times; the profiles of Fig. 12",
+};
+
 /// `numerics.coupling`.
 pub(super) const COUPLING: Field = Field {
     path: "numerics.coupling",
@@ -421,6 +487,7 @@ pub const FIELDS: &[Field] = &[
     DISC_POISSON,
     DISC_HARDNESS,
     HARDNESS_TABLE,
+    HARDNESS_FIT_INCLUDES_BULK,
     YIELD_FACTOR,
     section(
         "test",
@@ -437,11 +504,15 @@ pub const FIELDS: &[Field] = &[
     CALIBRATION,
     CALIBRATION_TIME,
     CALIBRATION_VOLUME,
+    CALIBRATION_HARDNESS,
+    CALIBRATION_LOAD,
+    CALIBRATION_SPEED,
+    CALIBRATION_TRACK_RADIUS,
     PLASTICITY,
     section(
         "corrosion",
-        "The electrochemical cell (Section 5.1); absent or null: no corrosion estimate. \
-         Its fields default to the paper's values when the section is given.",
+        "The electrochemical cell (Section 5.1), the paper's Table 2 by default; null: no \
+         corrosion estimate.",
         Range::OptionalObject,
     ),
     CORROSION_POTENTIAL,
@@ -464,6 +535,7 @@ pub const FIELDS: &[Field] = &[
     TOLERANCE,
     CYCLE_STEP,
     CYCLE_STEP_BOUND,
+    RECORD_CYCLES,
     COUPLING,
 ];
 

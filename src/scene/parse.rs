@@ -7,7 +7,7 @@ use serde_json::Value;
 
 use super::located::deserialize_located;
 use super::validate;
-use super::{DEFAULT_ARCHARD_K, FieldError, Scene, SceneErrors, preset};
+use super::{FieldError, PAPER_ARCHARD_CALIBRATION, Scene, SceneErrors, preset};
 
 /// Parses scene JSON text; malformed JSON is a single error with an empty path whose message
 /// carries serde_json's line and column. See [`parse_scene`].
@@ -44,7 +44,7 @@ pub fn parse_scene_with(
     let mut errors = Vec::new();
     if let Some(mut scene) = deserialize_located(&document, &mut errors) {
         if scene.wear.archard_k.is_none() && scene.wear.archard_calibration.is_none() {
-            scene.wear.archard_k = Some(DEFAULT_ARCHARD_K);
+            scene.wear.archard_calibration = Some(PAPER_ARCHARD_CALIBRATION);
         }
         let own = validate::check(&scene);
         let combined = if own.is_empty() { further(&scene) } else { own };
@@ -119,24 +119,61 @@ mod tests {
     }
 
     #[test]
-    fn contract_example_is_the_preset() {
+    fn contract_example_is_the_preset_stopped_at_300_cycles_with_its_k() {
         let parsed = parse_scene_str(CONTRACT_EXAMPLE).expect("the full example is valid");
-        let preset = presets()
+        let mut preset = presets()
             .into_iter()
             .find(|p| p.name == "dalmau2018-316l")
-            .expect("the paper's preset exists");
-        assert_eq!(parsed, preset.scene);
+            .expect("the paper's preset exists")
+            .scene;
+        preset.test.cycles = 300;
+        preset.wear.archard_k = Some(1.19e-4);
+        preset.wear.archard_calibration = None;
+        assert_eq!(parsed, preset);
     }
 
     #[test]
-    fn empty_scene_takes_the_paper_defaults() {
+    fn empty_scene_is_the_papers_whole_test() {
         let scene = parse_scene(&json!({})).expect("all fields are optional");
-        assert_eq!(scene.wear.archard_k, Some(DEFAULT_ARCHARD_K));
-        assert_eq!(scene.corrosion, None);
-        assert_eq!(scene.disc.hardness_table, None);
-        assert_eq!(scene.test.cycles, 300);
+        assert_eq!(scene.wear.archard_k, None);
+        assert_eq!(
+            scene.wear.archard_calibration,
+            Some(PAPER_ARCHARD_CALIBRATION)
+        );
+        assert!(scene.corrosion.is_some());
+        assert_eq!(
+            scene.disc.hardness_table.as_deref(),
+            Some(&super::super::PAPER_HARDNESS_TABLE[..])
+        );
+        assert_eq!(scene.test.cycles, 3600);
         // Same literals as the defaults, so equality is exact.
         assert_eq!(scene, Scene::default());
+        // Eq. 14 by hand: 11.72e-12 m^3 x 2953e6 Pa / (5 N x 3600 s x 2 pi 2.992 mm/s)
+        // = 1.02285e-4; the inputs carry 4 digits.
+        let k = scene.archard_k().expect("k from the calibration point");
+        assert!(((k - 1.02285e-4) / 1.02285e-4).abs() < 1e-4, "k = {k}");
+        // The point carries its test's conditions: another load keeps the paper's k.
+        let heavier = parse_scene(&json!({"test": {"load_n": 10}})).expect("valid");
+        assert_eq!(heavier.archard_k(), Ok(k));
+    }
+
+    #[test]
+    fn a_k_in_the_overrides_replaces_the_presets_calibration_and_back() {
+        let scene = parse_scene(&json!({
+            "preset": "dalmau2018-316l", "overrides": {"wear": {"archard_k": 1e-4}}
+        }))
+        .expect("a number replaces the calibration point");
+        assert_eq!(scene.wear.archard_k, Some(1e-4));
+        assert_eq!(scene.wear.archard_calibration, None);
+        let point = json!({"time_s": 300, "wear_volume_mm3": 1.18e-3, "hardness_mpa": 2854});
+        let scene = parse_scene(&json!({
+            "preset": "dalmau2018-316l",
+            "overrides": {"wear": {"archard_calibration": point}}
+        }))
+        .expect("a point replaces the point");
+        // Table 3's 300 s point: 1.18e-12 x 2854e6 / (5 x 300 x 18.80 mm/s) = 1.194e-4.
+        let k = scene.archard_k().expect("k");
+        assert!(((k - 1.1944e-4) / 1.1944e-4).abs() < 1e-3, "k = {k}");
     }
 
     #[test]
@@ -144,7 +181,7 @@ mod tests {
         let scene =
             parse_scene(&json!({"test": {"load_n": 10}, "corrosion": {}})).expect("valid scene");
         let echo = serde_json::to_value(&scene).expect("scenes serialise");
-        assert_eq!(echo["wear"]["archard_k"], json!(1.19e-4));
+        assert_eq!(echo["wear"]["archard_calibration"]["time_s"], json!(3600.0));
         assert_eq!(echo["numerics"]["grid"], json!("auto"));
         assert_eq!(echo["numerics"]["cycle_step"], json!("auto"));
         assert_eq!(echo["corrosion"]["anodic_area"], json!("wear_track"));
@@ -258,7 +295,11 @@ mod tests {
         let errors = errors_of(&json!({"disc": {"hardness_table": []}}));
         assert_eq!(paths(&errors), ["disc.hardness_table"]);
         let errors = errors_of(&json!({"disc": {"hardness_table": [[1, 2500]]}}));
-        assert!(message_at(&errors, "disc.hardness_table").contains("above 1"));
+        assert!(message_at(&errors, "disc.hardness_table").contains("two cycle counts"));
+        let errors = errors_of(&json!({"disc": {
+            "hardness_table": [[10, 2500]], "hardness_fit_includes_bulk": false
+        }}));
+        assert!(message_at(&errors, "disc.hardness_table").contains("two cycle counts"));
     }
 
     #[test]
@@ -299,7 +340,11 @@ mod tests {
             scene.wear.archard_calibration,
             Some(ArchardCalibration {
                 time_s: 3600.0,
-                wear_volume_mm3: 11.72e-3
+                wear_volume_mm3: 11.72e-3,
+                hardness_mpa: None,
+                load_n: None,
+                speed_rpm: None,
+                track_radius_mm: None,
             })
         );
         let k = scene.archard_k().expect("the paper table fits");

@@ -3,9 +3,9 @@
 use serde::Serialize;
 use serde_json::{Map, Value};
 
-use super::{Corrosion, FieldError, Scene, SceneErrors};
+use super::{FieldError, Scene, SceneErrors};
 
-/// Name of the paper's scene: AISI 316L against alumina, 5 N, 60 rpm, 300 cycles.
+/// Name of the paper's scene: AISI 316L against alumina, 5 N, 60 rpm, 3600 cycles.
 pub const DALMAU2018_316L: &str = "dalmau2018-316l";
 
 /// A named built-in scene.
@@ -29,22 +29,12 @@ pub fn presets() -> Vec<Preset> {
     }]
 }
 
-/// The paper's test: the defaults plus the measured hardness table and the
-/// electrochemistry, which a bare scene leaves out.
+/// The paper's test: the defaults under the paper's name.
 fn dalmau2018_316l() -> Scene {
-    let mut scene = Scene {
+    Scene {
         name: "316L vs alumina, 5 N, 60 rpm".to_owned(),
-        corrosion: Some(Corrosion::default()),
         ..Scene::default()
-    };
-    scene.disc.hardness_table = Some(vec![
-        (10.0, 2551.0),
-        (60.0, 2727.0),
-        (300.0, 2854.0),
-        (1800.0, 2933.0),
-        (3600.0, 2953.0),
-    ]);
-    scene
+    }
 }
 
 /// The document to parse: `json` itself, or a preset's scene with the overrides merged in.
@@ -109,10 +99,34 @@ pub(super) fn resolve(json: &Value) -> Result<(Value, &'static str), SceneErrors
                     format!("internal error serialising the preset: {e}"),
                 )])
             })?;
-            merge(&mut document, &Value::Object(overrides));
+            merge(&mut document, &Value::Object(overrides.clone()));
+            keep_one_archard_setting(&mut document, &overrides);
             Ok((document, "overrides"))
         }
         _ => Err(SceneErrors(errors)),
+    }
+}
+
+/// `wear.archard_k` and `wear.archard_calibration` are one setting given two ways: the one
+/// the overrides give replaces the preset's other. A calibration point is one measurement,
+/// so it replaces the preset's point whole rather than merging with it.
+fn keep_one_archard_setting(document: &mut Value, overrides: &Map<String, Value>) {
+    let Some(given) = overrides.get("wear").and_then(Value::as_object) else {
+        return;
+    };
+    let Some(Value::Object(wear)) = document.get_mut("wear") else {
+        return;
+    };
+    let set = |key: &str| given.get(key).filter(|value| !value.is_null());
+    match (set("archard_k"), set("archard_calibration")) {
+        (Some(_), None) => {
+            wear.remove("archard_calibration");
+        }
+        (None, Some(point)) => {
+            wear.remove("archard_k");
+            wear.insert("archard_calibration".to_owned(), point.clone());
+        }
+        _ => {}
     }
 }
 

@@ -4,14 +4,37 @@
 use serde::{Deserialize, Serialize};
 
 use super::auto_or::{CycleStep, DomainSize, GridSize};
+use super::record::RecordCycles;
 use crate::contact::SolverOptions;
 use crate::corrosion::CorrosionModel;
 use crate::hardness::{HardnessError, HardnessLaw};
 
-/// Archard coefficient when a scene gives neither `archard_k` nor `archard_calibration`:
-/// Table 3's 300 s point, k = V H / (F s) with V = 1.18e-3 mm^3, H = 2854 MPa, F = 5 N and
-/// s = 300 s x 18.8 mm/s.
-pub const DEFAULT_ARCHARD_K: f64 = 1.19e-4;
+/// The calibration point when a scene gives neither `archard_k` nor `archard_calibration`:
+/// the paper's own rule (Section 4.5), k by eq. 14 from the final measured time and wear
+/// volume of Table 3 and the hardness measured there, k = V H / (F s) = 11.72e-3 mm^3 x
+/// 2953 MPa / (5 N x 3600 s x 18.8 mm/s) = 1.02e-4. The test's conditions are part of the
+/// point, so a scene at another load or speed keeps the paper's k.
+pub const PAPER_ARCHARD_CALIBRATION: ArchardCalibration = ArchardCalibration {
+    time_s: 3600.0,
+    wear_volume_mm3: 11.72e-3,
+    hardness_mpa: Some(2953.0),
+    load_n: Some(5.0),
+    speed_rpm: Some(60.0),
+    track_radius_mm: Some(2.992),
+};
+
+/// The paper's Table 3: hardness measured inside the wear track, `(cycles, MPa)` at 60 rpm
+/// (cycles = seconds).
+pub const PAPER_HARDNESS_TABLE: [(f64, f64); 5] = [
+    (10.0, 2551.0),
+    (60.0, 2727.0),
+    (300.0, 2854.0),
+    (1800.0, 2933.0),
+    (3600.0, 2953.0),
+];
+
+/// The number of cycles of the paper's test: 3600 s at 60 rpm.
+pub const PAPER_CYCLES: u64 = 3600;
 
 /// The default largest relative (L1) change of the per-pass wear profile across one
 /// automatic cycle step (`numerics.cycle_step_bound`). Measured on the paper scene at grid
@@ -61,9 +84,11 @@ pub struct Disc {
     pub poisson_ratio: f64,
     /// Bulk hardness, MPa: H at n = 1, and H throughout when there is no table.
     pub hardness_mpa: f64,
-    /// Measured `(cycle, hardness_mpa)` pairs for the work-hardening fit H = A + B ln n.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// Measured `(cycle, hardness_mpa)` pairs for the work-hardening fit H = A + B ln n;
+    /// `null` for a constant hardness.
     pub hardness_table: Option<Vec<(f64, f64)>>,
+    /// Whether the bulk hardness, as the point n = 1, takes part in the fit with the table.
+    pub hardness_fit_includes_bulk: bool,
     /// Y = H / `yield_factor` (2.8 after Johnson).
     pub yield_factor: f64,
 }
@@ -74,7 +99,8 @@ impl Default for Disc {
             youngs_modulus_gpa: 205.0,
             poisson_ratio: 0.28,
             hardness_mpa: 2473.0,
-            hardness_table: None,
+            hardness_table: Some(PAPER_HARDNESS_TABLE.to_vec()),
+            hardness_fit_includes_bulk: true,
             yield_factor: 2.8,
         }
     }
@@ -88,13 +114,25 @@ impl Disc {
 
     /// The hardness law: the least-squares log fit when a table is given, else constant.
     pub fn hardness_law(&self) -> Result<HardnessLaw, HardnessError> {
-        match &self.hardness_table {
+        match self.hardness_fit_points() {
             None => Ok(HardnessLaw::constant(self.hardness_mpa * 1e6)),
-            Some(table) => {
-                let table_pa: Vec<(f64, f64)> = table.iter().map(|&(n, h)| (n, h * 1e6)).collect();
-                HardnessLaw::fit(self.hardness_mpa * 1e6, &table_pa)
-            }
+            Some(points) => HardnessLaw::fit_points(&points),
         }
+    }
+
+    /// The `(cycle, hardness_pa)` points the law is fitted to: the table, and the bulk value
+    /// at n = 1 when `hardness_fit_includes_bulk`; `None` without a table.
+    pub fn hardness_fit_points(&self) -> Option<Vec<(f64, f64)>> {
+        let table = self.hardness_table.as_ref()?;
+        let bulk = self
+            .hardness_fit_includes_bulk
+            .then_some((1.0, self.hardness_mpa));
+        Some(
+            bulk.into_iter()
+                .chain(table.iter().copied())
+                .map(|(n, h)| (n, h * 1e6))
+                .collect(),
+        )
     }
 }
 
@@ -121,7 +159,7 @@ impl Default for TestConditions {
             track_radius_mm: 2.992,
             speed_rpm: 60.0,
             friction_coefficient: 0.45,
-            cycles: 300,
+            cycles: PAPER_CYCLES,
         }
     }
 }
@@ -130,9 +168,9 @@ impl Default for TestConditions {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Wear {
-    /// Archard coefficient k. Missing on input means "not given" (so a calibration may be
-    /// used instead); [`super::parse_scene`] fills in [`DEFAULT_ARCHARD_K`] when neither is
-    /// given.
+    /// Archard coefficient k, dimensionless. Missing on input means "not given" (so a
+    /// calibration may be used instead); [`super::parse_scene`] fills in
+    /// [`PAPER_ARCHARD_CALIBRATION`] when neither is given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub archard_k: Option<f64>,
     /// A measured point from which k is derived, in place of `archard_k`.
@@ -145,8 +183,8 @@ pub struct Wear {
 impl Default for Wear {
     fn default() -> Self {
         Self {
-            archard_k: Some(DEFAULT_ARCHARD_K),
-            archard_calibration: None,
+            archard_k: None,
+            archard_calibration: Some(PAPER_ARCHARD_CALIBRATION),
             plasticity: Switch::Auto,
         }
     }
@@ -160,6 +198,18 @@ pub struct ArchardCalibration {
     pub time_s: f64,
     /// Wear volume measured after `time_s`, mm^3.
     pub wear_volume_mm3: f64,
+    /// Hardness measured at `time_s`, MPa; absent, the hardness law's value there.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hardness_mpa: Option<f64>,
+    /// Load of the measured test, N; absent, the scene's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub load_n: Option<f64>,
+    /// Rotation speed of the measured test, rpm; absent, the scene's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub speed_rpm: Option<f64>,
+    /// Wear track radius of the measured test, mm; absent, the scene's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub track_radius_mm: Option<f64>,
 }
 
 /// The electrochemical cell (paper Section 5.1); units in the names.
@@ -263,6 +313,8 @@ pub struct Numerics {
     pub cycle_step_bound: f64,
     /// The mu * delta-nu coupling of normal and tangential tractions (eq. 7).
     pub coupling: Switch,
+    /// The cycles at which the state is recorded exactly: solved there, profile kept.
+    pub record_cycles: RecordCycles,
 }
 
 impl Default for Numerics {
@@ -274,6 +326,7 @@ impl Default for Numerics {
             cycle_step: CycleStep::Auto,
             cycle_step_bound: STEP_CHANGE_BOUND,
             coupling: Switch::Auto,
+            record_cycles: RecordCycles::Auto,
         }
     }
 }

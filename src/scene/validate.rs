@@ -6,12 +6,13 @@
 use super::field::Field;
 use super::fields::{
     ANODIC_AREA_FACTOR, ANODIC_CURRENT, ARCHARD_K, BALL_MODULUS, BALL_POISSON, BALL_RADIUS,
-    CALIBRATION_TIME, CALIBRATION_VOLUME, CORROSION_POTENTIAL, CYCLE_STEP_BOUND, CYCLES, DENSITY,
-    DISC_HARDNESS, DISC_MODULUS, DISC_POISSON, DOMAIN, EXPOSED_AREA, FRICTION, GRID, LOAD,
+    CALIBRATION_HARDNESS, CALIBRATION_LOAD, CALIBRATION_SPEED, CALIBRATION_TIME,
+    CALIBRATION_TRACK_RADIUS, CALIBRATION_VOLUME, CORROSION_POTENTIAL, CYCLE_STEP_BOUND, CYCLES,
+    DENSITY, DISC_HARDNESS, DISC_MODULUS, DISC_POISSON, DOMAIN, EXPOSED_AREA, FRICTION, GRID, LOAD,
     MOLAR_MASS, SPEED, TAFEL_A, TAFEL_B, TOLERANCE, TRACK_RADIUS, VALENCE, YIELD_FACTOR,
 };
 use super::format::num;
-use super::{DomainSize, FieldError, GridSize, Scene};
+use super::{DomainSize, FieldError, GridSize, MAX_RECORD_CYCLES, RecordCycles, Scene};
 
 /// All problems with `scene`'s own fields, empty when each is valid.
 pub(super) fn check(scene: &Scene) -> Vec<FieldError> {
@@ -119,6 +120,17 @@ fn check_wear(c: &mut Checks, scene: &Scene) {
     }
     c.number(&CALIBRATION_TIME, calibration.time_s);
     c.number(&CALIBRATION_VOLUME, calibration.wear_volume_mm3);
+    let conditions = [
+        (&CALIBRATION_HARDNESS, calibration.hardness_mpa),
+        (&CALIBRATION_LOAD, calibration.load_n),
+        (&CALIBRATION_SPEED, calibration.speed_rpm),
+        (&CALIBRATION_TRACK_RADIUS, calibration.track_radius_mm),
+    ];
+    for (field, value) in conditions {
+        if let Some(value) = value {
+            c.number(field, value);
+        }
+    }
     // The derived k depends on the load, speed and hardness law; judge it only when all of
     // those passed, or a message about k would really be about them.
     if !c.errors.is_empty() {
@@ -150,6 +162,32 @@ fn check_numerics(c: &mut Checks, scene: &Scene) {
     }
     c.number(&TOLERANCE, numerics.tolerance);
     c.number(&CYCLE_STEP_BOUND, numerics.cycle_step_bound);
+    check_record_cycles(c, scene);
+}
+
+fn check_record_cycles(c: &mut Checks, scene: &Scene) {
+    let RecordCycles::Cycles(cycles) = &scene.numerics.record_cycles else {
+        return;
+    };
+    if cycles.len() > MAX_RECORD_CYCLES {
+        c.fail(
+            "numerics.record_cycles",
+            format!(
+                "names {} cycles; at most {MAX_RECORD_CYCLES} (each is a solve and a kept \
+                 profile)",
+                cycles.len()
+            ),
+        );
+    }
+    let total = scene.test.cycles;
+    for (i, &cycle) in cycles.iter().enumerate() {
+        if !(1..=total).contains(&cycle) {
+            c.fail(
+                &format!("numerics.record_cycles[{i}]"),
+                format!("must be a cycle of the run, in 1..={total}, got {cycle}"),
+            );
+        }
+    }
 }
 
 fn check_corrosion(c: &mut Checks, scene: &Scene) {

@@ -88,9 +88,14 @@ impl<'a> Cell<'a> {
 
     /// How the anodic area is chosen, for the `corrosion` model's reason.
     pub(super) fn describe(&self) -> String {
+        let area = match self.settings.anodic_area {
+            AnodicArea::WearTrack => "the wear track (worn width x track length)",
+            AnodicArea::RealContact => "the real contact area F / H",
+            AnodicArea::BemContact => "the contact area of the solution",
+        };
         format!(
-            "eq. 18 galvanic coupling, anodic area {:?} x {}",
-            self.settings.anodic_area, self.settings.anodic_area_factor
+            "eq. 18 galvanic coupling and Faraday's law; anodic area: {area}, times {}",
+            self.settings.anodic_area_factor
         )
     }
 }

@@ -6,6 +6,7 @@ mod electrochemistry;
 mod feasibility;
 mod first;
 mod growth;
+mod hardening;
 mod result;
 mod run;
 mod setup;
@@ -25,6 +26,7 @@ use crate::scene::SceneErrors;
 pub use crate::scene::STEP_CHANGE_BOUND;
 pub use feasibility::{check, parse_scene, parse_scene_str};
 pub use first::{FirstContact, first_contact};
+pub use hardening::FAR_OFF_FRACTION;
 pub use result::{
     CycleRecord, Model, ModelChoice, PressureMap, Profile, SimulationResult, Summary,
 };

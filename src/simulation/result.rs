@@ -14,6 +14,10 @@ pub struct SimulationResult {
     pub scene: Scene,
     /// Which physical and numerical models the run used, and why.
     pub models: Vec<ModelChoice>,
+    /// What in the scene looks wrong without being invalid (e.g. a hardness point far off
+    /// its fitted law); absent when there is nothing to say.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
     /// One record per solved cycle.
     pub cycles: Vec<CycleRecord>,
     /// Depth profiles across the track at chosen cycles.
@@ -83,9 +87,8 @@ pub struct CycleRecord {
     pub approach_um: f64,
     /// Solver iterations for this cycle.
     pub iterations: usize,
-    /// Potential during rubbing (eq. 18), V against the reference electrode of
-    /// `corrosion.corrosion_potential_v` (the paper's: Ag/AgCl in 3 M KCl); absent without
-    /// `corrosion`.
+    /// Potential during rubbing (eq. 18), V against Ag/AgCl (the paper's reference
+    /// electrode); absent without `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub potential_v: Option<f64>,
     /// Anodic (depassivated) area, mm^2; absent without `corrosion`.
@@ -170,6 +173,12 @@ pub struct Summary {
     /// Final wear-accelerated corrosion volume, mm^3; absent without `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wac_volume_mm3: Option<f64>,
+    /// Potential during rubbing at the last cycle, V against Ag/AgCl; absent without
+    /// `corrosion`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub potential_v: Option<f64>,
+    /// The Archard coefficient the run used (dimensionless), given or derived by eq. 14.
+    pub archard_k: f64,
     /// Wall-clock time of the run, s.
     pub wall_s: f64,
     /// Contact solves performed.
@@ -178,9 +187,57 @@ pub struct Summary {
     pub iterations: usize,
 }
 
+/// The end-of-run summary a person reads: one quantity per line, with units.
+impl std::fmt::Display for Summary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(
+            f,
+            "{} cycles in {:.1} s ({} solves, {} solver iterations)",
+            self.cycles, self.wall_s, self.solves, self.iterations
+        )?;
+        writeln!(f, "  wear volume      {:.4e} mm^3", self.wear_volume_mm3)?;
+        writeln!(f, "  maximum depth    {:.3} um", self.max_depth_um)?;
+        if let Some(wac) = self.wac_volume_mm3 {
+            writeln!(f, "  WAC volume       {wac:.4e} mm^3")?;
+        }
+        if let Some(potential) = self.potential_v {
+            writeln!(f, "  final potential  {potential:.4} V vs Ag/AgCl")?;
+        }
+        write!(f, "  Archard k        {:.4e}", self.archard_k)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_summary_reads_with_units_and_the_reference_electrode() {
+        let summary = Summary {
+            cycles: 3600,
+            wear_volume_mm3: 1.2e-2,
+            max_depth_um: 12.5,
+            wac_volume_mm3: Some(3.4e-4),
+            potential_v: Some(-0.5432),
+            archard_k: 1.0228e-4,
+            wall_s: 6.31,
+            solves: 326,
+            iterations: 3400,
+        };
+        let text = summary.to_string();
+        assert!(
+            text.starts_with("3600 cycles in 6.3 s (326 solves"),
+            "{text}"
+        );
+        assert!(text.contains("wear volume      1.2000e-2 mm^3"), "{text}");
+        assert!(text.contains("-0.5432 V vs Ag/AgCl"), "{text}");
+        let dry = Summary {
+            wac_volume_mm3: None,
+            potential_v: None,
+            ..summary
+        };
+        assert!(!dry.to_string().contains("Ag/AgCl"));
+    }
 
     #[test]
     fn models_are_named_in_the_json_as_before() {

@@ -33,8 +33,8 @@ use super::{
     SimulationResult, Summary,
 };
 
-/// Cycles at which the depth profile is kept (paper Figs. 12 and 15 use 10 and 300; Table 3
-/// times at 60 rpm are 10, 60, 300, 1800 and 3600), plus the last cycle.
+/// Cycles at which the depth profile is kept when solved (paper Figs. 12 and 15 use 10 and
+/// 300), besides the scene's record cycles and the last cycle.
 const PROFILE_CYCLES: [u64; 16] = [
     1, 2, 5, 10, 20, 50, 60, 100, 200, 300, 500, 1000, 1800, 2000, 3600, 5000,
 ];
@@ -73,6 +73,8 @@ struct Run<'a, F> {
     ball: Vec<f64>,
     groove: Groove,
     stepper: Stepper,
+    /// The cycles that must be solved and their profiles kept, ascending.
+    record_cycles: Vec<u64>,
     history: WarmStart,
     cell: Option<Cell<'a>>,
     /// Whether the domain may grow (it is left to the simulation).
@@ -100,6 +102,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             ball: setup.ball_separation(&grid),
             groove: Groove::new(&grid),
             stepper: Stepper::new(scene.numerics.cycle_step, scene.numerics.cycle_step_bound),
+            record_cycles: scene.record_cycles(),
             history: WarmStart::default(),
             cell: scene.corrosion.as_ref().map(Cell::new),
             grows: scene.numerics.domain_um == DomainSize::Auto,
@@ -131,10 +134,16 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         // (eqs. 15-16).
         let plastic = yield_depth(&self.grid, &solution, &separation, cap);
         let pass = pass_pressure_integral(&self.grid, &solution.pressure);
-        let total = setup.scene.test.cycles;
+        // A step never passes a record cycle, so that cycle is solved.
+        let stop = self
+            .record_cycles
+            .iter()
+            .copied()
+            .find(|&r| r > cycle)
+            .unwrap_or(setup.scene.test.cycles);
         let step = self
             .stepper
-            .next(cycle, total, plastic.iter().any(|&d| d > 0.0), &pass);
+            .next(cycle, stop, plastic.iter().any(|&d| d > 0.0), &pass);
         self.max_step = self.max_step.max(step);
         // The profile update (eq. 17): yielding, then the pass at this cycle's hardness.
         self.groove.deepen(&plastic, 1.0);
@@ -231,7 +240,10 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             self.maps
                 .push(PressureMap::of(cycle, grid, &solution.pressure));
         }
-        if PROFILE_CYCLES.contains(&cycle) || cycle == setup.scene.test.cycles {
+        if PROFILE_CYCLES.contains(&cycle)
+            || self.record_cycles.contains(&cycle)
+            || cycle == setup.scene.test.cycles
+        {
             self.profiles.push(Profile::of(cycle, grid, &self.groove));
         }
     }
@@ -304,6 +316,8 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             wear_volume_mm3: self.groove.area_m2() * track_length * 1e9,
             max_depth_um: self.groove.max_depth_m() * 1e6,
             wac_volume_mm3: self.cell.as_ref().map(|c| c.wac_m3() * 1e9),
+            potential_v: self.records.last().and_then(|r| r.potential_v),
+            archard_k: setup.archard_k,
             wall_s: started.elapsed().as_secs_f64(),
             solves: self.solves,
             iterations: self.iterations,
@@ -311,6 +325,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         SimulationResult {
             scene: scene.clone(),
             models,
+            warnings: setup.warnings.clone(),
             cycles: self.records,
             profiles: self.profiles,
             pressure_maps: self.maps,
@@ -349,7 +364,11 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         models.push(ModelChoice {
             name: Model::Archard,
             active: setup.archard_k > 0.0,
-            reason: format!("k = {:.4e}", setup.archard_k),
+            reason: format!(
+                "k = {:.4e}, {}",
+                setup.archard_k,
+                setup.scene.archard_k_origin()
+            ),
         });
         models.push(ModelChoice {
             name: Model::Corrosion,

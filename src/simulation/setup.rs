@@ -9,6 +9,7 @@ use crate::hardness::HardnessLaw;
 use crate::scene::{Scene, Switch};
 
 use super::feasibility::check;
+use super::hardening::work_hardening_report;
 use super::sizing::{
     GridPlan, LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m,
 };
@@ -42,6 +43,8 @@ pub struct Setup {
     pub options: SolverOptions,
     /// The decisions, for the result's `models`.
     pub models: Vec<ModelChoice>,
+    /// What in the scene looks wrong without being invalid, for the result's `warnings`.
+    pub warnings: Vec<String>,
 }
 
 fn choice(name: Model, active: bool, reason: String) -> ModelChoice {
@@ -90,7 +93,8 @@ impl Setup {
         let plan = plan_grid(&scene.numerics, radius);
         let grid = Grid::square(plan.cells, plan.domain_m).map_err(SimulationError::Setup)?;
         models.push(grid_choice(&grid, &plan, radius));
-        models.push(work_hardening_choice(&hardness));
+        let (hardening, warnings) = work_hardening_report(&scene.disc, &hardness);
+        models.push(hardening);
         Ok(Self {
             scene: scene.clone(),
             pair,
@@ -102,6 +106,7 @@ impl Setup {
             coupling,
             options,
             models,
+            warnings,
         })
     }
 
@@ -208,28 +213,6 @@ fn grid_choice(grid: &Grid, plan: &GridPlan, radius: f64) -> ModelChoice {
 }
 
 /// The hardness law in words.
-fn work_hardening_choice(hardness: &HardnessLaw) -> ModelChoice {
-    choice(
-        Model::WorkHardening,
-        matches!(hardness, HardnessLaw::Logarithmic { .. }),
-        match *hardness {
-            HardnessLaw::Logarithmic { a_pa, b_pa } => format!(
-                "H = {:.1} + {:.2} ln n MPa, fitted to the table and the bulk value{}",
-                a_pa / 1e6,
-                b_pa / 1e6,
-                if hardness.is_decreasing() {
-                    " (decreasing: softening)"
-                } else {
-                    ""
-                }
-            ),
-            HardnessLaw::Constant { hardness_pa } => {
-                format!("no table: H = {:.0} MPa throughout", hardness_pa / 1e6)
-            }
-        },
-    )
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
