@@ -196,8 +196,8 @@ pub(super) const CALIBRATION: Field = Field {
     meaning: "A measured point `{\"time_s\": ..., \"wear_volume_mm3\": ...}` from which k is \
               derived, in place of `archard_k`; by default Table 3's 3600 s point, as the \
               paper's Section 4.5 does. Its test conditions default to the scene's.",
-    feeds: "k = V H / (F_N s) (eq. 1), H from the hardness law at the point's cycle, s = \
-            sliding speed x time_s",
+    feeds: "k = V H / (F_N s) (eq. 1, which is eq. 14 solved for k), s = sliding speed x \
+            time_s",
 };
 
 /// `wear.archard_calibration.time_s`.
