@@ -5,9 +5,11 @@
 #
 # The server listens on 0.0.0.0 inside the container, which is not loopback, so it refuses
 # to start without a token: pass TRIBOSIM_TOKEN (or append `--token ...` to the command).
+# Or mount a file and pass `--token-file /run/secrets/tribosim-token` (docker secrets).
 # Clients then send `Authorization: Bearer <secret>` on every /api/v1 call; /, /healthz and
 # /api/v1/openapi.yaml stay open. Jobs and results live in the /data volume; on
-# `docker stop` (SIGTERM) running jobs are interrupted and run again at the next start.
+# `docker stop` (SIGTERM) running jobs are interrupted and run again at the next start, and
+# requests under way get 5 s (--shutdown-grace-s), within the 10 s docker waits.
 
 # Base images are pinned by digest, so a rebuild uses the same toolchain and libraries. The
 # digests are those published for the tags rust:1.95-slim-bookworm and debian:bookworm-slim;
@@ -23,7 +25,8 @@ RUN mkdir src && echo 'fn main() {}' > src/main.rs && touch src/lib.rs \
     && cargo build --release --locked --bin tribosim \
     && rm -rf src
 COPY src ./src
-# Compiled into the binary (served at /api/v1/openapi.yaml and /).
+# Compiled into the binary (served at /api/v1/openapi.yaml and /): the runtime image needs
+# no copy of either.
 COPY openapi.yaml ./
 COPY static ./static
 # The sources are older than the dummy build's outputs: touch them so cargo rebuilds.
@@ -34,7 +37,6 @@ RUN useradd --system --uid 10001 --home-dir /app --shell /usr/sbin/nologin tribo
     && mkdir -p /data /app \
     && chown tribosim:tribosim /data
 COPY --from=build /src/target/release/tribosim /usr/local/bin/tribosim
-COPY static /app/static
 WORKDIR /app
 USER tribosim
 VOLUME ["/data"]

@@ -11,6 +11,7 @@ pub mod bench;
 pub mod contact;
 pub mod corrosion;
 pub mod hardness;
+pub mod json;
 pub mod scene;
 pub mod service;
 pub mod simulation;

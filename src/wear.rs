@@ -4,6 +4,11 @@
 
 use crate::contact::{ContactSolution, Grid};
 
+/// The fraction of the deepest point at which the groove's edges are drawn. For the
+/// parabolic groove a ball wears, the width at 1% of the depth is sqrt(0.99) = 99.5% of the
+/// full width, and a row the contact has only just reached stays below it.
+pub const EDGE_DEPTH_FRACTION: f64 = 0.01;
+
 /// Depth below the original disc surface for each grid row (each `y`), m.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Groove {
@@ -52,34 +57,33 @@ impl Groove {
         self.depth_m.iter().fold(0.0, |m, &d| m.max(d))
     }
 
-    /// Width of the worn band, m, between its two edges found to sub-cell precision: each
-    /// edge is where the depth, extrapolated linearly from the two outermost worn rows, falls
-    /// to zero, and lies within one cell of the outermost worn row (the next row is unworn).
-    /// Counting whole rows instead makes the width, and the potential computed from it, move
-    /// in steps of one cell as the groove widens. Linear is the right order: one pass of a
-    /// Hertzian pressure removes a depth proportional to `a^2 - y^2`, which vanishes with a
-    /// finite slope at the contact's edge.
+    /// Width of the worn band, m: between the outermost points where the depth, linearly
+    /// interpolated between row centres, crosses [`EDGE_DEPTH_FRACTION`] of the deepest
+    /// point. Counting the rows with any depth makes the width jump by a whole row when the
+    /// contact reaches a new one, and the potential computed from it fall in stairs; a
+    /// crossing between rows moves continuously as the depths grow.
     pub fn worn_width_m(&self) -> f64 {
         let depth = &self.depth_m;
+        let threshold = EDGE_DEPTH_FRACTION * self.max_depth_m();
+        if threshold <= 0.0 {
+            return 0.0;
+        }
         let (Some(first), Some(last)) = (
-            depth.iter().position(|&d| d > 0.0),
-            depth.iter().rposition(|&d| d > 0.0),
+            depth.iter().position(|&d| d >= threshold),
+            depth.iter().rposition(|&d| d >= threshold),
         ) else {
             return 0.0;
         };
-        let beyond = |outer: usize, inner: Option<usize>| {
-            let fall = inner.map_or(0.0, |i| depth[i] - depth[outer]);
-            if fall > 0.0 {
-                (depth[outer] / fall).min(1.0) * self.dy
-            } else {
-                self.dy
-            }
+        // Distance beyond the row `inside` (at or above the threshold) towards its unworn
+        // neighbour `outside` where the depth crosses the threshold; half a cell at the
+        // domain's edge, where there is no neighbour.
+        let beyond = |inside: usize, outside: Option<usize>| match outside {
+            Some(o) => (depth[inside] - threshold) / (depth[inside] - depth[o]) * self.dy,
+            None => 0.5 * self.dy,
         };
-        let inner_of_first = (first < last).then_some(first + 1);
-        let inner_of_last = (first < last).then(|| last - 1);
-        (last - first) as f64 * self.dy
-            + beyond(first, inner_of_first)
-            + beyond(last, inner_of_last)
+        let left = beyond(first, first.checked_sub(1));
+        let right = beyond(last, (last + 1 < depth.len()).then_some(last + 1));
+        (last - first) as f64 * self.dy + left + right
     }
 
     /// The groove on a larger grid with the same cells, centred: the new outer rows are
@@ -141,23 +145,46 @@ mod tests {
 
     #[test]
     fn worn_width_finds_the_edges_of_a_tent_between_rows() {
-        // A tent d = c (w / 2 - |y - y0|) falls linearly to its edges, so the extrapolation is
-        // exact wherever the edges fall between row centres: only rounding of the row
-        // positions remains, about 1e-14 um, far below the 1e-9 relative allowed.
+        // A tent d = w / 2 - |y - y0|, continued below zero so that both rows around each
+        // crossing lie on its straight flanks: the interpolated crossing of 1% of the sampled
+        // peak is then exact wherever it falls between row centres, up to the rounding of the
+        // row positions (about 1e-14 um, far below the 1e-9 allowed).
         let grid = Grid::square(64, 64e-6).expect("valid");
         for (w_um, y0_um) in [(20.3, 32.0), (20.9, 32.0), (21.4, 31.7), (7.3, 30.2)] {
-            let mut groove = Groove::new(&grid);
             let tent: Vec<f64> = (0..grid.ny)
-                .map(|iy| (w_um / 2.0 - (grid.y(iy) * 1e6 + 32.0 - y0_um).abs()).max(0.0))
+                .map(|iy| w_um / 2.0 - (grid.y(iy) * 1e6 + 32.0 - y0_um).abs())
                 .collect();
+            let mut groove = Groove::new(&grid);
             groove.deepen(&tent, 1e-9);
+            let peak_um = tent.iter().fold(0.0f64, |m, &d| m.max(d));
+            // The sampled peak may sit below the tent's apex: the crossing is at 1% of it.
+            let expected_um = w_um - 2.0 * EDGE_DEPTH_FRACTION * peak_um;
             let width_um = groove.worn_width_m() * 1e6;
             assert!(
-                (width_um - w_um).abs() < 1e-9 * w_um,
-                "width {width_um} um for a {w_um} um tent"
+                (width_um - expected_um).abs() < 1e-9 * w_um,
+                "width {width_um} um for a {w_um} um tent, expected {expected_um}"
             );
         }
         assert_eq!(Groove::new(&grid).worn_width_m().to_bits(), 0f64.to_bits());
+    }
+
+    #[test]
+    fn a_row_just_reached_moves_the_width_by_a_fraction_of_a_cell() {
+        // A row entering the contact with a depth far below the threshold leaves the width as
+        // it was: only the crossing between rows moves, by the depth it adds.
+        let grid = Grid::square(16, 16e-6).expect("valid");
+        let mut groove = Groove::new(&grid);
+        let mut profile = vec![0.0; grid.ny];
+        profile[6..10].copy_from_slice(&[1.0, 2.0, 2.0, 1.0]);
+        groove.deepen(&profile, 1e-6);
+        let before = groove.worn_width_m();
+        let mut reached = vec![0.0; grid.ny];
+        reached[5] = 1e-4;
+        reached[10] = 1e-4;
+        groove.deepen(&reached, 1e-6);
+        let after = groove.worn_width_m();
+        assert!(after > before, "the new rows add width");
+        assert!(after - before < 1e-3 * grid.dy, "{before} -> {after}");
     }
 
     #[test]

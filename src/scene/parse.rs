@@ -5,12 +5,15 @@
 
 use serde_json::Value;
 
+use crate::json::JsonError;
+
 use super::located::deserialize_located;
 use super::validate;
 use super::{FieldError, PAPER_ARCHARD_CALIBRATION, Scene, SceneErrors, preset};
 
 /// Parses scene JSON text; malformed JSON is a single error with an empty path whose message
-/// carries serde_json's line and column. See [`parse_scene`].
+/// carries serde_json's line and column, and a key given twice is a single error at its path.
+/// See [`parse_scene`].
 pub fn parse_scene_str(text: &str) -> Result<Scene, SceneErrors> {
     parse_scene_str_with(text, |_| Vec::new())
 }
@@ -20,8 +23,15 @@ pub fn parse_scene_str_with(
     text: &str,
     further: impl FnOnce(&Scene) -> Vec<FieldError>,
 ) -> Result<Scene, SceneErrors> {
-    let json: Value = serde_json::from_str(text)
-        .map_err(|e| SceneErrors(vec![FieldError::new("", format!("not valid JSON: {e}"))]))?;
+    let json = crate::json::from_str(text).map_err(|e| {
+        let error = match e {
+            JsonError::Syntax(_) => FieldError::new("", e.to_string()),
+            JsonError::DuplicateKey { ref path, .. } => {
+                FieldError::new(path.clone(), e.to_string())
+            }
+        };
+        SceneErrors(vec![error])
+    })?;
     parse_scene_with(&json, further)
 }
 
@@ -410,6 +420,16 @@ mod tests {
             ["ball", "corrosion", "wear.archard_calibration", "name"]
         );
         assert!(parse_scene(&json!({"corrosion": null})).is_ok());
+    }
+
+    #[test]
+    fn a_key_given_twice_is_refused_at_its_path() {
+        let Err(SceneErrors(errors)) = parse_scene_str(r#"{"test": {"load_n": 5, "load_n": 50}}"#)
+        else {
+            panic!("a duplicate key parsed");
+        };
+        assert_eq!(paths(&errors), ["test.load_n"]);
+        assert!(errors[0].message.contains("more than once"), "{errors:?}");
     }
 
     #[test]

@@ -62,6 +62,14 @@ impl ApiError {
         )
     }
 
+    /// 408: the request's body did not arrive within `limit_s` seconds.
+    pub fn body_timeout(limit_s: u64) -> Self {
+        Self::new(
+            StatusCode::REQUEST_TIMEOUT,
+            format!("the request body did not arrive within {limit_s} s"),
+        )
+    }
+
     /// 409: the job exists but is not in a state that has what was asked for.
     pub fn conflict(message: impl Into<String>) -> Self {
         Self::new(StatusCode::CONFLICT, message)
@@ -72,6 +80,14 @@ impl ApiError {
         Self::new(
             StatusCode::UNSUPPORTED_MEDIA_TYPE,
             "the scene must be sent with `Content-Type: application/json`",
+        )
+    }
+
+    /// 414: the request's target is longer than `limit_bytes`.
+    pub fn uri_too_long(limit_bytes: usize) -> Self {
+        Self::new(
+            StatusCode::URI_TOO_LONG,
+            format!("the request target is longer than {limit_bytes} bytes"),
         )
     }
 
@@ -96,6 +112,12 @@ impl ApiError {
                 format!("the job queue is full ({capacity} jobs waiting); retry later"),
             )
         }
+    }
+
+    /// Any other status, with its standard reason as the message: for answers made by layers
+    /// below the handlers, which would otherwise leave with an empty body.
+    pub fn from_status(status: StatusCode) -> Self {
+        Self::new(status, status.canonical_reason().unwrap_or("error"))
     }
 
     /// 500: a fault of the server (its storage), never of the request. The cause goes to the

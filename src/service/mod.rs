@@ -7,15 +7,18 @@
 //!   and is served at `/api/v1/openapi.yaml`.
 //! - Jobs live in `<data-dir>/jobs/<uuid>/` (see `store`); after a restart finished jobs are
 //!   served as before, and queued or interrupted ones run (again, from scratch).
-//! - Shutdown (SIGINT, SIGTERM): the listener closes, event streams end, running jobs are
-//!   interrupted within a cycle and keep their persisted status, so they run again at the
-//!   next start. Waiting for them instead could take minutes, longer than a container
-//!   runtime waits before killing the process anyway.
+//! - Connections are served by `listen` within the [`Limits`] (header, idle and body
+//!   timeouts, a cap on open connections, a bounded shutdown).
+//! - Shutdown (SIGINT, SIGTERM): the listener closes, event streams end, requests under way
+//!   have a grace period, running jobs are interrupted within a cycle and keep their
+//!   persisted status, so they run again at the next start. Waiting for them instead could
+//!   take minutes, longer than a container runtime waits before killing the process anyway.
 
 mod error;
 mod events;
 mod export;
 mod jobs;
+mod listen;
 mod routes;
 mod store;
 
@@ -25,6 +28,7 @@ use std::net::SocketAddr;
 use std::num::NonZeroUsize;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::time::Duration;
 
 use axum::Router;
 use axum::extract::DefaultBodyLimit;
@@ -37,7 +41,7 @@ use tower_http::cors::CorsLayer;
 use tower_http::trace::{DefaultMakeSpan, DefaultOnResponse, TraceLayer};
 use tracing::Level;
 
-pub use routes::{OPENAPI_YAML, ROUTES, Route, Verb};
+pub use routes::{MAX_URI_BYTES, OPENAPI_YAML, ROUTES, Route, Verb};
 
 use jobs::Jobs;
 use store::Store;
@@ -60,15 +64,92 @@ pub struct ServeArgs {
     /// Jobs that may wait for a worker; further submissions get 429.
     #[arg(long, default_value_t = NonZeroUsize::new(64).unwrap_or(NonZeroUsize::MIN))]
     pub queue_capacity: NonZeroUsize,
-    /// Bearer token required on every API call (`Authorization: Bearer <token>`).
+    /// Bearer token required on every API call (`Authorization: Bearer <token>`). A token
+    /// on the command line shows in the process list: prefer TRIBOSIM_TOKEN or --token-file.
     #[arg(long, env = "TRIBOSIM_TOKEN", hide_env_values = true)]
     pub token: Option<String>,
+    /// File holding the bearer token (its first line; surrounding whitespace is ignored).
+    #[arg(long, value_name = "PATH")]
+    pub token_file: Option<PathBuf>,
     /// Origin allowed to call the API from a browser (repeatable); CORS is off without one.
     #[arg(long = "cors-origin", value_name = "ORIGIN")]
     pub cors_origins: Vec<String>,
-    /// Directory holding the web page (`index.html`).
-    #[arg(long, default_value = "static")]
-    pub static_dir: PathBuf,
+    /// Serve the web page from DIR/index.html instead of the copy built into the binary
+    /// (for working on the page without rebuilding).
+    #[arg(long, value_name = "DIR")]
+    pub static_dir: Option<PathBuf>,
+    /// Timeouts and the cap on connections.
+    #[command(flatten)]
+    pub limits: Limits,
+}
+
+/// Timeouts and the cap on connections of `tribosim serve`; `docs/operations.md` explains
+/// each. The defaults suit a lab's machine on its own network.
+#[derive(Debug, Clone, clap::Args)]
+pub struct Limits {
+    /// Seconds a client has to send a request's headers, from connecting or from the end of
+    /// its previous request; slower clients are disconnected.
+    #[arg(long, default_value_t = Limits::DEFAULT.header_timeout_s, value_parser = seconds())]
+    pub header_timeout_s: u64,
+    /// Seconds a connection may pass with no byte moving either way before it is closed.
+    #[arg(long, default_value_t = Limits::DEFAULT.idle_timeout_s, value_parser = seconds())]
+    pub idle_timeout_s: u64,
+    /// Seconds a client has to send a request's whole body (a scene); then 408.
+    #[arg(long, default_value_t = Limits::DEFAULT.body_timeout_s, value_parser = seconds())]
+    pub body_timeout_s: u64,
+    /// Connections served at once; more wait in the kernel's backlog until one closes.
+    /// Lowered at start to leave file handles for the server's own files if the process's
+    /// limit on open files (`ulimit -n`) is lower.
+    #[arg(long, default_value_t = Limits::DEFAULT.max_connections)]
+    pub max_connections: NonZeroUsize,
+    /// Seconds shutdown waits for requests under way before it closes their connections.
+    #[arg(long, default_value_t = Limits::DEFAULT.shutdown_grace_s, value_parser = seconds())]
+    pub shutdown_grace_s: u64,
+}
+
+impl Limits {
+    /// The defaults. Ten seconds for headers is ample on a lab network and frees a slow
+    /// client's connection quickly; the idle timeout is above the 15 s between an event
+    /// stream's keep-alive comments; 512 connections fit under the 1024 open files most Linux
+    /// systems allow a process by default; 5 s of grace is within the 10 s `docker stop`
+    /// waits before it kills.
+    pub const DEFAULT: Self = Self {
+        header_timeout_s: 10,
+        idle_timeout_s: 60,
+        body_timeout_s: 30,
+        max_connections: match NonZeroUsize::new(512) {
+            Some(n) => n,
+            None => NonZeroUsize::MIN,
+        },
+        shutdown_grace_s: 5,
+    };
+
+    /// File handles kept free for the server itself (its data files, logs, the runtime)
+    /// when the connection cap is lowered to fit the open-files limit.
+    const RESERVED_FILES: u64 = 64;
+
+    /// The cap on connections, lowered if needed so that the connections and
+    /// [`Self::RESERVED_FILES`] fit under `open_files` (the process's limit, when known).
+    fn connections_under(&self, open_files: Option<u64>) -> NonZeroUsize {
+        let Some(open_files) = open_files else {
+            return self.max_connections;
+        };
+        let room = open_files.saturating_sub(Self::RESERVED_FILES).max(1);
+        let room = NonZeroUsize::new(usize::try_from(room).unwrap_or(usize::MAX))
+            .unwrap_or(NonZeroUsize::MIN);
+        self.max_connections.min(room)
+    }
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// A whole number of seconds, at least one.
+fn seconds() -> clap::builder::RangedU64ValueParser<u64> {
+    clap::value_parser!(u64).range(1..)
 }
 
 fn default_workers() -> NonZeroUsize {
@@ -88,6 +169,18 @@ pub enum ServeError {
     /// A `--cors-origin` that is not a valid header value.
     #[error("invalid --cors-origin {0:?}")]
     CorsOrigin(String),
+    /// A token given both directly and in a file.
+    #[error("a token is given twice: pass --token-file, or --token or TRIBOSIM_TOKEN, not both")]
+    TokenTwice,
+    /// The token file cannot be read.
+    #[error("cannot read the token file {}: {source}", path.display())]
+    TokenFile {
+        /// The file.
+        path: PathBuf,
+        /// What failed.
+        #[source]
+        source: io::Error,
+    },
     /// The data directory cannot be used.
     #[error("data directory {}: {source}", path.display())]
     DataDir {
@@ -116,7 +209,12 @@ pub enum ServeError {
 struct AppState {
     jobs: Arc<Jobs>,
     token: Option<Arc<str>>,
-    static_dir: Arc<Path>,
+    /// Where the page is read from; the built-in copy when `None`.
+    static_dir: Option<Arc<Path>>,
+    /// Seconds a request's body may take to arrive.
+    body_timeout_s: u64,
+    /// Time between an event stream's keep-alive comments, under the idle timeout.
+    keep_alive: Duration,
     /// Turns true when the server shuts down, ending event streams.
     shutdown: watch::Receiver<bool>,
 }
@@ -124,7 +222,7 @@ struct AppState {
 /// Runs the service until SIGINT or SIGTERM: logs to stderr (filter with `RUST_LOG`, default
 /// `info`), builds a tokio runtime, listens on `args.addr`.
 pub fn serve(args: ServeArgs) -> Result<(), ServeError> {
-    check_exposure(args.addr, args.token.as_deref())?;
+    check_exposure(args.addr, args.token()?.as_deref())?;
     init_tracing();
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
@@ -148,7 +246,7 @@ pub async fn serve_on(
     shutdown: impl Future<Output = ()> + Send + 'static,
 ) -> Result<(), ServeError> {
     let addr = listener.local_addr()?;
-    let token = check_exposure(addr, args.token.as_deref())?;
+    let token = check_exposure(addr, args.token()?.as_deref())?;
     let cors = cors_layer(&args.cors_origins)?;
     let data_dir = args.data_dir.clone();
     let capacity = args.queue_capacity.get();
@@ -163,25 +261,38 @@ pub async fn serve_on(
     })?;
     let workers = jobs.start_workers(args.workers.get())?;
     let (stop, stopped) = watch::channel(false);
+    let mut limits = args.limits.clone();
+    limits.max_connections = limits.connections_under(listen::open_files_limit());
+    if limits.max_connections < args.limits.max_connections {
+        tracing::warn!(
+            "at most {} connections at once: the limit on open files leaves no room for {} \
+             (raise it with `ulimit -n`)",
+            limits.max_connections,
+            args.limits.max_connections
+        );
+    }
     let app = AppState {
         jobs: Arc::clone(&jobs),
         token: token.map(Arc::from),
-        static_dir: Arc::from(args.static_dir.as_path()),
-        shutdown: stopped,
+        static_dir: args.static_dir.as_deref().map(Arc::from),
+        body_timeout_s: limits.body_timeout_s,
+        keep_alive: keep_alive_interval(limits.idle_timeout_s),
+        shutdown: stopped.clone(),
     };
     tracing::info!(
         %addr,
         workers = args.workers.get(),
         data_dir = %args.data_dir.display(),
+        max_connections = limits.max_connections,
         "tribosim serving on http://{addr}"
     );
-    let served = axum::serve(listener, router(app, cors))
-        .with_graceful_shutdown(async move {
-            shutdown.await;
-            tracing::info!("shutting down");
-            stop.send_replace(true);
-        })
-        .await;
+    let signal = tokio::spawn(async move {
+        shutdown.await;
+        tracing::info!("shutting down");
+        stop.send_replace(true);
+    });
+    listen::run(listener, router(app, cors), &limits, stopped).await;
+    signal.abort();
     jobs.stop();
     tokio::task::spawn_blocking(move || {
         for worker in workers {
@@ -192,9 +303,31 @@ pub async fn serve_on(
     })
     .await
     .map_err(io::Error::other)?;
-    served?;
     tracing::info!("stopped");
     Ok(())
+}
+
+/// An event stream's keep-alive comments come at most every 15 s (the usual interval) and
+/// at least twice per idle timeout, so an idle connection's timer never closes a stream.
+fn keep_alive_interval(idle_timeout_s: u64) -> Duration {
+    Duration::from_secs(15).min(Duration::from_secs(idle_timeout_s) / 2)
+}
+
+impl ServeArgs {
+    /// The token from `--token`, `TRIBOSIM_TOKEN` or the first line of `--token-file`.
+    fn token(&self) -> Result<Option<String>, ServeError> {
+        let Some(path) = &self.token_file else {
+            return Ok(self.token.clone());
+        };
+        if self.token.is_some() {
+            return Err(ServeError::TokenTwice);
+        }
+        let text = std::fs::read_to_string(path).map_err(|source| ServeError::TokenFile {
+            path: path.clone(),
+            source,
+        })?;
+        Ok(text.lines().next().map(|line| line.trim().to_owned()))
+    }
 }
 
 /// The token to require, if any; an error for a non-loopback address without one. An empty
@@ -250,6 +383,8 @@ fn router(app: AppState, cors: Option<CorsLayer>) -> Router {
         .fallback(routes::no_route)
         .method_not_allowed_fallback(routes::wrong_method)
         .layer(DefaultBodyLimit::max(BODY_LIMIT_BYTES))
+        .layer(axum::middleware::from_fn(routes::limit_uri))
+        .layer(axum::middleware::from_fn(routes::json_error_bodies))
         // Results with pressure maps run to megabytes of JSON (gzip: about a fifth). The
         // default predicate leaves event streams alone, so progress is not buffered.
         .layer(CompressionLayer::new())

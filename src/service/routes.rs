@@ -3,11 +3,12 @@
 //! from which the router is built and against which `openapi.yaml` is checked.
 
 use std::sync::Arc;
+use std::time::Duration;
 
 use axum::Json;
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
-use axum::extract::{FromRequestParts, Path, Request, State};
+use axum::extract::{FromRequest, FromRequestParts, Path, Request, State};
 use axum::http::request::Parts;
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::middleware::Next;
@@ -22,11 +23,23 @@ use super::error::ApiError;
 use super::events;
 use super::export;
 use super::jobs::{Deletion, JobStatus, SubmitError};
-use crate::scene::presets;
+use crate::json::{self, JsonError};
+use crate::scene::{FieldError, SceneErrors, presets};
 use crate::simulation::parse_scene;
 
 /// The OpenAPI description, served as is.
 pub const OPENAPI_YAML: &str = include_str!("../../openapi.yaml");
+
+/// The web page, built into the binary so that `serve` works from any directory.
+const PAGE_HTML: &str = include_str!("../../static/index.html");
+
+/// Longest request target (path and query) accepted: the longest route with a job id is
+/// under 70 bytes, and 8 KiB is what common proxies accept. Longer targets get 414 with
+/// the JSON body (hyper itself refuses targets over 64 KiB, with an empty body).
+pub const MAX_URI_BYTES: usize = 8 * 1024;
+
+/// How much of a malformed job id is echoed in an error: a UUID and a little more.
+const ECHOED_ID_CHARS: usize = 40;
 
 /// An HTTP method used by the route table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -158,8 +171,46 @@ impl<S: Send + Sync> FromRequestParts<S> for JobId {
         let Path(raw) = Path::<String>::from_request_parts(parts, state).await?;
         Uuid::try_parse(&raw)
             .map(JobId)
-            .map_err(|_| ApiError::bad_request(format!("{raw:?} is not a job id (a UUID)")))
+            .map_err(|_| ApiError::bad_request(format!("{:?} is not a job id (a UUID)", cut(&raw))))
     }
+}
+
+/// The first [`ECHOED_ID_CHARS`] characters of `raw`, with an ellipsis if there were more.
+fn cut(raw: &str) -> String {
+    match raw.char_indices().nth(ECHOED_ID_CHARS) {
+        Some((end, _)) => format!("{}...", &raw[..end]),
+        None => raw.to_owned(),
+    }
+}
+
+/// 414 with the JSON body for a request target over [`MAX_URI_BYTES`].
+pub(super) async fn limit_uri(request: Request, next: Next) -> Response {
+    let target = request
+        .uri()
+        .path_and_query()
+        .map_or(0, |target| target.as_str().len());
+    if target > MAX_URI_BYTES {
+        return ApiError::uri_too_long(MAX_URI_BYTES).into_response();
+    }
+    next.run(request).await
+}
+
+/// Gives the JSON body to an error answer that has no body of its own (one made by a layer
+/// rather than a handler), so every error a client sees has the same shape.
+pub(super) async fn json_error_bodies(request: Request, next: Next) -> Response {
+    let response = next.run(request).await;
+    let status = response.status();
+    let bare = !response.headers().contains_key(header::CONTENT_TYPE);
+    if (status.is_client_error() || status.is_server_error()) && bare {
+        let mut json = ApiError::from_status(status).into_response();
+        for (name, value) in response.headers() {
+            if !json.headers().contains_key(name) && name != header::CONTENT_LENGTH {
+                json.headers_mut().insert(name.clone(), value.clone());
+            }
+        }
+        return json;
+    }
+    response
 }
 
 /// Rejects API calls without the configured bearer token.
@@ -173,7 +224,7 @@ pub(super) async fn require_token(
             .headers()
             .get(header::AUTHORIZATION)
             .and_then(|value| value.to_str().ok())
-            .and_then(|value| value.strip_prefix("Bearer "));
+            .and_then(bearer_credentials);
         if !given.is_some_and(|given| constant_time_eq(given.as_bytes(), token.as_bytes())) {
             let mut response = ApiError::unauthorized().into_response();
             response
@@ -185,10 +236,27 @@ pub(super) async fn require_token(
     next.run(request).await
 }
 
-/// Compares without an early exit, so the time taken does not reveal how much of a guessed
-/// token was right.
-fn constant_time_eq(a: &[u8], b: &[u8]) -> bool {
-    a.len() == b.len() && a.iter().zip(b).fold(0u8, |acc, (x, y)| acc | (x ^ y)) == 0
+/// The credentials of an `Authorization: Bearer <token>` header. The scheme's name is
+/// case-insensitive (RFC 7235, section 2.1); spaces around the token are not part of it.
+fn bearer_credentials(value: &str) -> Option<&str> {
+    let (scheme, credentials) = value.trim_start().split_once(' ')?;
+    scheme
+        .eq_ignore_ascii_case("bearer")
+        .then(|| credentials.trim())
+}
+
+/// Compares `given` with `secret` without an early exit: the time taken depends on the
+/// length of `given` alone, so it reveals neither how much of a guess was right nor the
+/// secret's length.
+fn constant_time_eq(given: &[u8], secret: &[u8]) -> bool {
+    if secret.is_empty() {
+        return given.is_empty();
+    }
+    let mut difference = given.len() ^ secret.len();
+    for (i, byte) in given.iter().enumerate() {
+        difference |= usize::from(byte ^ secret[i % secret.len()]);
+    }
+    std::hint::black_box(difference) == 0
 }
 
 /// 404 for paths no route matches.
@@ -202,7 +270,10 @@ pub(super) async fn wrong_method() -> ApiError {
 }
 
 async fn index(State(app): State<AppState>) -> Result<Html<Vec<u8>>, ApiError> {
-    let path = app.static_dir.join("index.html");
+    let Some(dir) = &app.static_dir else {
+        return Ok(Html(PAGE_HTML.as_bytes().to_vec()));
+    };
+    let path = dir.join("index.html");
     match tokio::fs::read(&path).await {
         Ok(page) => Ok(Html(page)),
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(ApiError::not_found(format!(
@@ -225,17 +296,20 @@ async fn list_presets() -> impl IntoResponse {
     Json(presets())
 }
 
-async fn submit(
-    State(app): State<AppState>,
-    headers: HeaderMap,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Response, ApiError> {
-    if !is_json(&headers) {
+async fn submit(State(app): State<AppState>, request: Request) -> Result<Response, ApiError> {
+    if !is_json(request.headers()) {
         return Err(ApiError::unsupported_media_type());
     }
-    let body = body?;
-    let document: Value = serde_json::from_slice(&body)
-        .map_err(|e| ApiError::bad_request(format!("malformed JSON: {e}")))?;
+    let body = read_body(&app, request).await?;
+    let document = json::from_slice(&body).map_err(|e| match e {
+        JsonError::Syntax(_) => ApiError::bad_request(format!("malformed JSON: {e}")),
+        JsonError::DuplicateKey { ref path, .. } => {
+            ApiError::invalid_scene(SceneErrors(vec![FieldError::new(
+                path.clone(),
+                e.to_string(),
+            )]))
+        }
+    })?;
     let scene = parse_scene(&document).map_err(ApiError::invalid_scene)?;
     let jobs = Arc::clone(&app.jobs);
     let record = tokio::task::spawn_blocking(move || jobs.submit(scene))
@@ -255,6 +329,17 @@ async fn submit(
         Json(record),
     )
         .into_response())
+}
+
+/// The whole body, within the body timeout: a client sending a byte now and then holds no
+/// handler for longer.
+async fn read_body(app: &AppState, request: Request) -> Result<Bytes, ApiError> {
+    let limit = Duration::from_secs(app.body_timeout_s);
+    let body: Result<Bytes, BytesRejection> =
+        tokio::time::timeout(limit, Bytes::from_request(request, app))
+            .await
+            .map_err(|_| ApiError::body_timeout(app.body_timeout_s))?;
+    Ok(body?)
 }
 
 /// `application/json`, any parameters, or a `+json` type.
@@ -309,7 +394,7 @@ async fn job_events(
         .unwrap_or(0);
     let stream = events::follow(Arc::clone(&app.jobs), job, after, app.shutdown.clone());
     Ok(Sse::new(stream)
-        .keep_alive(KeepAlive::default())
+        .keep_alive(KeepAlive::default().interval(app.keep_alive))
         .into_response())
 }
 

@@ -10,7 +10,7 @@ use serde_json::{Value, json};
 use tokio::net::TcpListener;
 use tokio::sync::oneshot;
 use tokio::task::JoinHandle;
-use tribosim::service::{ServeArgs, ServeError, serve_on};
+use tribosim::service::{Limits, ServeArgs, ServeError, serve_on};
 
 /// Generous bound on anything a test waits for: the machine may be loaded.
 pub const PATIENCE: Duration = Duration::from_secs(600);
@@ -68,8 +68,10 @@ pub fn args(data_dir: &Path) -> ServeArgs {
         workers: NonZeroUsize::new(2).expect("non-zero"),
         queue_capacity: NonZeroUsize::new(64).expect("non-zero"),
         token: None,
+        token_file: None,
         cors_origins: Vec::new(),
-        static_dir: PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("static"),
+        static_dir: None,
+        limits: Limits::default(),
     }
 }
 

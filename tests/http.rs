@@ -1,0 +1,421 @@
+//! The service as an operator runs it: the `tribosim serve` binary in its own process. Slow
+//! clients, the cap on connections, the idle timeout, the bounded shutdown on SIGTERM, the
+//! token's scheme and file, duplicate keys, long targets and the page built into the binary.
+
+use std::io::{BufRead, BufReader, ErrorKind, Read, Write};
+use std::net::TcpStream;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use serde_json::Value;
+
+/// Generous bound on anything a test waits for: the machine may be loaded.
+const PATIENCE: Duration = Duration::from_secs(120);
+
+/// A directory removed when dropped.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(label: &str) -> Self {
+        let path = std::env::temp_dir().join(format!("tribosim-{label}-{}", uuid::Uuid::new_v4()));
+        std::fs::create_dir_all(&path).expect("create temp dir");
+        Self(path)
+    }
+
+    fn path(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// A `tribosim serve` process on a loopback port, killed when dropped.
+struct Served {
+    child: Child,
+    base: String,
+    /// The address, as `host:port`.
+    addr: String,
+}
+
+impl Served {
+    /// Starts `tribosim serve` on a free port with `data_dir`, the extra `flags`, in `cwd`.
+    fn start(data_dir: &Path, flags: &[&str], cwd: &Path) -> Self {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_tribosim"))
+            .args(["serve", "--addr", "127.0.0.1:0", "--data-dir"])
+            .arg(data_dir)
+            .args(flags)
+            .current_dir(cwd)
+            .env_remove("TRIBOSIM_TOKEN")
+            .env("RUST_LOG", "warn,tribosim=info")
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("spawn tribosim serve");
+        let stderr = child.stderr.take().expect("stderr");
+        let (announce, announced) = mpsc::channel();
+        // Reads the log to its end, so the server never blocks on a full pipe.
+        std::thread::spawn(move || {
+            for line in BufReader::new(stderr).lines().map_while(Result::ok) {
+                eprintln!("server: {line}");
+                if let Some((_, rest)) = line.split_once("serving on http://") {
+                    let addr = rest.split_whitespace().next().unwrap_or_default();
+                    let _ = announce.send(addr.to_owned());
+                }
+            }
+        });
+        let addr = announced
+            .recv_timeout(PATIENCE)
+            .expect("the server logs `serving on http://...`");
+        Self {
+            child,
+            base: format!("http://{addr}"),
+            addr,
+        }
+    }
+
+    fn url(&self, path: &str) -> String {
+        format!("{}{path}", self.base)
+    }
+
+    /// Sends SIGTERM and returns the time until the process exited, and whether it exited
+    /// with success; `None` if it had not exited after [`PATIENCE`].
+    fn terminate(&mut self) -> Option<(Duration, bool)> {
+        let sent = Instant::now();
+        let status = Command::new("kill")
+            .args(["-TERM", &self.child.id().to_string()])
+            .status()
+            .expect("run kill");
+        assert!(status.success(), "kill -TERM failed");
+        while sent.elapsed() < PATIENCE {
+            if let Some(exit) = self.child.try_wait().expect("wait for the server") {
+                return Some((sent.elapsed(), exit.success()));
+            }
+            std::thread::sleep(Duration::from_millis(10));
+        }
+        None
+    }
+}
+
+impl Drop for Served {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn client() -> reqwest::Client {
+    reqwest::Client::builder()
+        .timeout(PATIENCE)
+        .build()
+        .expect("client")
+}
+
+/// A client that opens a connection, sends the start of a request and then one byte every
+/// 200 ms, never finishing its headers. Returns how long after connecting the server closed
+/// the connection (`None` if it stayed open for [`PATIENCE`]).
+fn slow_client(addr: &str) -> Option<Duration> {
+    // Timed from before the connection exists, so that the server's timer, which starts
+    // when it accepts, cannot have started earlier than this clock.
+    let connected = Instant::now();
+    let mut stream = TcpStream::connect(addr).expect("connect");
+    stream
+        .write_all(b"GET /healthz HTTP/1.1\r\nHost: x\r\nX-Slow: ")
+        .expect("first bytes");
+    stream
+        .set_read_timeout(Some(Duration::from_millis(200)))
+        .expect("read timeout");
+    let mut buf = [0u8; 256];
+    while connected.elapsed() < PATIENCE {
+        match stream.read(&mut buf) {
+            Ok(0) => return Some(connected.elapsed()),
+            Ok(_) => {}
+            Err(e) if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut) => {
+                if stream.write_all(b"a").is_err() {
+                    return Some(connected.elapsed());
+                }
+            }
+            Err(_) => return Some(connected.elapsed()),
+        }
+    }
+    None
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn slow_clients_do_not_stop_healthz_and_are_closed_after_the_header_timeout() {
+    const SLOW_CLIENTS: usize = 300;
+    const HEADER_TIMEOUT_S: u64 = 3;
+    let dir = TempDir::new("slow");
+    let timeout = HEADER_TIMEOUT_S.to_string();
+    let server = Served::start(dir.path(), &["--header-timeout-s", &timeout], dir.path());
+    let slow: Vec<_> = (0..SLOW_CLIENTS)
+        .map(|_| {
+            let addr = server.addr.clone();
+            std::thread::spawn(move || slow_client(&addr))
+        })
+        .collect();
+    // The slow clients are connected and trickling while /healthz is asked.
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let client = client();
+    let mut latencies = Vec::new();
+    for _ in 0..10 {
+        let asked = Instant::now();
+        let response = client
+            .get(server.url("/healthz"))
+            .send()
+            .await
+            .expect("/healthz answers with slow clients connected");
+        assert_eq!(response.status(), 200);
+        latencies.push(asked.elapsed());
+    }
+    eprintln!("/healthz with {SLOW_CLIENTS} slow clients: {latencies:?}");
+    let mut lifetimes = Vec::new();
+    for client in slow {
+        let lifetime = client
+            .join()
+            .expect("slow client thread")
+            .expect("the server closes a client that never finishes its headers");
+        lifetimes.push(lifetime);
+    }
+    lifetimes.sort();
+    eprintln!(
+        "slow clients closed after {:?} to {:?}",
+        lifetimes[0],
+        lifetimes[lifetimes.len() - 1]
+    );
+    // Closed by the header timeout, not earlier: each was trickling bytes, so neither the
+    // idle timeout (60 s by default) nor anything else applies.
+    assert!(lifetimes[0] >= Duration::from_secs(HEADER_TIMEOUT_S));
+    let response = client
+        .get(server.url("/healthz"))
+        .send()
+        .await
+        .expect("healthz");
+    assert_eq!(response.status(), 200);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn sigterm_stops_the_server_within_the_grace_despite_half_sent_requests() {
+    const GRACE_S: u64 = 1;
+    let dir = TempDir::new("sigterm");
+    let grace = GRACE_S.to_string();
+    // Timeouts far beyond the test's patience: only the shutdown's grace can end these.
+    let mut server = Served::start(
+        dir.path(),
+        &[
+            "--shutdown-grace-s",
+            &grace,
+            "--header-timeout-s",
+            "3600",
+            "--body-timeout-s",
+            "3600",
+            "--idle-timeout-s",
+            "3600",
+        ],
+        dir.path(),
+    );
+    let mut half_body = TcpStream::connect(&server.addr).expect("connect");
+    half_body
+        .write_all(
+            b"POST /api/v1/jobs HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\n\
+              Content-Length: 1000\r\n\r\n{\"name\": ",
+        )
+        .expect("half a body");
+    let mut half_head = TcpStream::connect(&server.addr).expect("connect");
+    half_head
+        .write_all(b"GET /healthz HTTP/1.1\r\nHo")
+        .expect("half a head");
+    // Both connections are being served once a later request has been answered.
+    let response = client()
+        .get(server.url("/healthz"))
+        .send()
+        .await
+        .expect("healthz");
+    assert_eq!(response.status(), 200);
+    let (took, success) = tokio::task::spawn_blocking(move || server.terminate())
+        .await
+        .expect("terminate")
+        .expect("the server exits after SIGTERM despite the half-sent requests");
+    eprintln!("exited {took:?} after SIGTERM with {GRACE_S} s of grace");
+    assert!(success, "the server exits with success after SIGTERM");
+    drop((half_body, half_head));
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_key_given_twice_is_refused_naming_it_by_the_service_and_the_cli() {
+    let dir = TempDir::new("duplicate");
+    let text = r#"{"test": {"load_n": 5, "cycles": 3, "load_n": 50}}"#;
+    let server = Served::start(dir.path(), &[], dir.path());
+    let response = client()
+        .post(server.url("/api/v1/jobs"))
+        .header("Content-Type", "application/json")
+        .body(text)
+        .send()
+        .await
+        .expect("submit");
+    assert_eq!(response.status(), 422);
+    let body: Value = response.json().await.expect("JSON error body");
+    assert_eq!(body["fields"][0]["path"], "test.load_n", "{body}");
+
+    let scene = dir.path().join("scene.json");
+    std::fs::write(&scene, text).expect("write scene");
+    let run = Command::new(env!("CARGO_BIN_EXE_tribosim"))
+        .arg("run")
+        .arg(&scene)
+        .output()
+        .expect("tribosim run");
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success(), "the run refuses the scene");
+    assert!(stderr.contains("test.load_n"), "{stderr}");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn long_targets_get_414_with_the_json_body_and_long_ids_are_cut() {
+    let dir = TempDir::new("long");
+    let server = Served::start(dir.path(), &[], dir.path());
+    let client = client();
+    let long = "a".repeat(tribosim::service::MAX_URI_BYTES);
+    let response = client
+        .get(server.url(&format!("/api/v1/jobs/{long}")))
+        .send()
+        .await
+        .expect("long target");
+    assert_eq!(response.status(), 414);
+    let body: Value = response.json().await.expect("414 has the JSON body");
+    assert!(body["error"].is_string(), "{body}");
+
+    let id = "b".repeat(1000);
+    let response = client
+        .get(server.url(&format!("/api/v1/jobs/{id}")))
+        .send()
+        .await
+        .expect("long id");
+    assert_eq!(response.status(), 400);
+    let body: Value = response.json().await.expect("JSON error body");
+    let message = body["error"].as_str().expect("message");
+    // 40 characters of the id, the ellipsis, the sentence around it.
+    assert!(message.len() < 100, "{message}");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_token_from_a_file_is_accepted_with_any_case_of_bearer() {
+    let dir = TempDir::new("token");
+    let token_file = dir.path().join("token");
+    std::fs::write(&token_file, "s3cret-token\n").expect("write token");
+    let token_flag = token_file.to_str().expect("UTF-8 path");
+    let server = Served::start(dir.path(), &["--token-file", token_flag], dir.path());
+    let client = client();
+    let cases = [
+        (Some("Bearer s3cret-token"), 200),
+        (Some("bearer s3cret-token"), 200),
+        (Some("BEARER  s3cret-token"), 200),
+        (Some("Bearer s3cret-toke"), 401),
+        (Some("Bearer s3cret-token2"), 401),
+        (Some("Basic s3cret-token"), 401),
+        (None, 401),
+    ];
+    for (authorization, status) in cases {
+        let mut request = client.get(server.url("/api/v1/jobs"));
+        if let Some(value) = authorization {
+            request = request.header("Authorization", value);
+        }
+        let response = request.send().await.expect("list jobs");
+        assert_eq!(response.status(), status, "{authorization:?}");
+        let _: Value = response.json().await.expect("JSON body");
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_page_is_served_from_any_directory_and_static_dir_overrides_it() {
+    let dir = TempDir::new("page");
+    let elsewhere = TempDir::new("cwd");
+    let built_in = Served::start(dir.path(), &[], elsewhere.path());
+    let client = client();
+    let page = client.get(built_in.url("/")).send().await.expect("page");
+    assert_eq!(page.status(), 200);
+    let page = page.text().await.expect("page text");
+    let source = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/static/index.html"))
+        .expect("static/index.html");
+    assert_eq!(page, source);
+    drop(built_in);
+
+    std::fs::write(elsewhere.path().join("index.html"), "<p>draft</p>").expect("write page");
+    let flag = elsewhere.path().to_str().expect("UTF-8 path");
+    let overridden = Served::start(dir.path(), &["--static-dir", flag], dir.path());
+    let page = client.get(overridden.url("/")).send().await.expect("page");
+    assert_eq!(page.text().await.expect("page text"), "<p>draft</p>");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn connections_beyond_the_cap_wait_until_one_closes() {
+    let dir = TempDir::new("cap");
+    // Only the cap can hold these connections: no timeout ends them during the test.
+    let server = Served::start(
+        dir.path(),
+        &[
+            "--max-connections",
+            "2",
+            "--header-timeout-s",
+            "3600",
+            "--idle-timeout-s",
+            "3600",
+        ],
+        dir.path(),
+    );
+    let held: Vec<_> = (0..2)
+        .map(|_| TcpStream::connect(&server.addr).expect("connect"))
+        .collect();
+    let impatient = reqwest::Client::builder()
+        .timeout(Duration::from_secs(1))
+        .build()
+        .expect("client");
+    let refused = impatient.get(server.url("/healthz")).send().await;
+    assert!(
+        refused.is_err(),
+        "a third connection is served while two are held"
+    );
+    drop(held);
+    let response = client()
+        .get(server.url("/healthz"))
+        .send()
+        .await
+        .expect("served once the held connections close");
+    assert_eq!(response.status(), 200);
+}
+
+#[test]
+fn a_connection_with_no_traffic_is_closed_after_the_idle_timeout() {
+    const IDLE_TIMEOUT_S: u64 = 1;
+    let dir = TempDir::new("idle");
+    let idle = IDLE_TIMEOUT_S.to_string();
+    let server = Served::start(
+        dir.path(),
+        &["--idle-timeout-s", &idle, "--header-timeout-s", "3600"],
+        dir.path(),
+    );
+    let mut stream = TcpStream::connect(&server.addr).expect("connect");
+    stream
+        .write_all(b"GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n")
+        .expect("request");
+    stream
+        .set_read_timeout(Some(PATIENCE))
+        .expect("read timeout");
+    let opened = Instant::now();
+    let mut answer = Vec::new();
+    // The answer, then the end of the stream when the kept-alive connection idles out.
+    stream
+        .read_to_end(&mut answer)
+        .expect("the server closes the idle connection");
+    let answer = String::from_utf8_lossy(&answer);
+    assert!(answer.starts_with("HTTP/1.1 200"), "{answer}");
+    eprintln!(
+        "idle connection closed {:?} after its request",
+        opened.elapsed()
+    );
+    assert!(opened.elapsed() >= Duration::from_secs(IDLE_TIMEOUT_S));
+}
