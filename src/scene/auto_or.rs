@@ -27,7 +27,7 @@ pub enum DomainSize {
 
 /// Which cycles are solved: `1` (every one) or `"auto"`.
 ///
-/// Fixed strides n > 1 are rejected rather than supported: the contract names only 1 and
+/// Fixed strides n > 1 are rejected rather than supported: `docs/scene.md` names only 1 and
 /// `"auto"`, and a stride would silently skip the fast plastic cycles at the start of a run,
 /// which `"auto"` resolves under an error bound.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

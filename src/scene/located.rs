@@ -13,10 +13,10 @@ use serde::Deserialize;
 use serde::de::DeserializeOwned;
 use serde_json::{Map, Value};
 
-use super::validate::{GRID_CELLS, MAX_CYCLES};
+use super::fields::{CYCLES, GRID};
 use super::{Ball, Corrosion, Disc, FieldError, Numerics, Scene, TestConditions, Wear};
 
-/// The top-level fields of a scene, in the contract's order.
+/// The top-level fields of a scene, in the order of `docs/scene.md`.
 pub(super) const SECTIONS: [&str; 7] = [
     "name",
     "ball",
@@ -80,8 +80,8 @@ pub(super) fn deserialize_located(document: &Value, errors: &mut Vec<FieldError>
 
 /// `top` without the sections (and `wear.archard_calibration`) that are not objects, each
 /// recorded as an error. Serde's derived structs also accept a JSON array of the fields in
-/// declaration order, so `"ball": [3]` would silently set the radius; the contract's shape is
-/// an object, and this keeps it so.
+/// declaration order, so `"ball": [3]` would silently set the radius; the documented shape
+/// is an object, and this keeps it so.
 fn drop_non_objects(top: &Map<String, Value>, errors: &mut Vec<FieldError>) -> Map<String, Value> {
     let mut kept = top.clone();
     for (key, value) in top {
@@ -193,13 +193,8 @@ fn table_errors(path: &str, value: &Value) -> Vec<FieldError> {
 
 /// The allowed range, for fields whose serde type error would not say it.
 fn hint(path: &str) -> Option<String> {
-    match path {
-        "test.cycles" => Some(format!("; must be a whole number in 1..={MAX_CYCLES}")),
-        "numerics.grid" => Some(format!(
-            "; must be \"auto\" or a whole number of cells in {}..={}",
-            GRID_CELLS.start(),
-            GRID_CELLS.end()
-        )),
-        _ => None,
-    }
+    [CYCLES, GRID]
+        .iter()
+        .find(|field| field.path == path)
+        .map(|field| format!("; must be {}", field.range.describe(field.unit)))
 }

@@ -1,4 +1,5 @@
-//! The scene: the user's description of one ball-on-disc test (the contract's "Scene").
+//! The scene: the user's description of one ball-on-disc test. `docs/scene.md` is the
+//! reference of its fields; its table is rendered from [`FIELDS`] by [`field_table`].
 //!
 //! Field names carry the user's units (`radius_mm`, `load_n`, ...); every field is optional on
 //! input and defaults to the paper's value. [`parse_scene`] resolves presets, fills defaults and
@@ -10,11 +11,14 @@
 
 mod auto_or;
 mod error;
+mod field;
+mod fields;
 pub(crate) mod format;
 mod located;
 mod parse;
 mod preset;
 mod record;
+mod reference;
 mod sections;
 mod validate;
 
@@ -26,9 +30,12 @@ use crate::hardness::{self, HardnessError, HardnessLaw};
 
 pub use auto_or::{CycleStep, DomainSize, FixedStrideError, GridSize};
 pub use error::{FieldError, SceneErrors};
+pub use field::{Field, Range};
+pub use fields::{FIELDS, field};
 pub use parse::{parse_scene, parse_scene_str, parse_scene_str_with, parse_scene_with};
 pub use preset::{DALMAU2018_316L, Preset, presets};
 pub use record::{MAX_RECORD_CYCLES, RecordCycles, TABLE3_TIMES_S};
+pub use reference::{FIELDS_BEGIN, FIELDS_END, field_table};
 pub use sections::{
     AnodicArea, ArchardCalibration, Ball, Corrosion, Disc, Numerics, PAPER_ARCHARD_CALIBRATION,
     PAPER_CYCLES, PAPER_HARDNESS_TABLE, STEP_CHANGE_BOUND, Switch, TestConditions, Wear,

@@ -84,7 +84,8 @@ mod tests {
     use super::*;
     use serde_json::json;
 
-    /// The contract's example scene, verbatim.
+    /// The preset written out in full with the names of `docs/scene.md`, which users and
+    /// scripts rely on: a renamed or dropped field fails here.
     const CONTRACT_EXAMPLE: &str = r#"{
       "name": "316L vs alumina, 5 N, 60 rpm",
       "ball": { "radius_mm": 3.0, "youngs_modulus_gpa": 300.0, "poisson_ratio": 0.21 },
@@ -129,7 +130,7 @@ mod tests {
 
     #[test]
     fn contract_example_is_the_preset_stopped_at_300_cycles_with_its_k() {
-        let parsed = parse_scene_str(CONTRACT_EXAMPLE).expect("the contract's example is valid");
+        let parsed = parse_scene_str(CONTRACT_EXAMPLE).expect("the full example is valid");
         let mut preset = presets()
             .into_iter()
             .find(|p| p.name == "dalmau2018-316l")

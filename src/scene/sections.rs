@@ -216,7 +216,8 @@ pub struct ArchardCalibration {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Corrosion {
-    /// Free corrosion potential E_corr, V.
+    /// Free corrosion potential E_corr, V against the reference electrode (the paper's:
+    /// Ag/AgCl in 3 M KCl).
     pub corrosion_potential_v: f64,
     /// Cathodic Tafel constant a_c, V (fitted with current densities in A/cm^2).
     pub tafel_a_c_v: f64,

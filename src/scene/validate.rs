@@ -3,67 +3,37 @@
 //! the allowed range. Whether the contact such a scene describes can be simulated is
 //! judged by the simulation (`simulation::check`).
 
-use std::ops::RangeInclusive;
-
+use super::field::Field;
+use super::fields::{
+    ANODIC_AREA_FACTOR, ANODIC_CURRENT, ARCHARD_K, BALL_MODULUS, BALL_POISSON, BALL_RADIUS,
+    CALIBRATION_HARDNESS, CALIBRATION_LOAD, CALIBRATION_SPEED, CALIBRATION_TIME,
+    CALIBRATION_TRACK_RADIUS, CALIBRATION_VOLUME, CORROSION_POTENTIAL, CYCLE_STEP_BOUND, CYCLES,
+    DENSITY, DISC_HARDNESS, DISC_MODULUS, DISC_POISSON, DOMAIN, EXPOSED_AREA, FRICTION, GRID, LOAD,
+    MOLAR_MASS, SPEED, TAFEL_A, TAFEL_B, TOLERANCE, TRACK_RADIUS, VALENCE, YIELD_FACTOR,
+};
 use super::format::num;
 use super::{DomainSize, FieldError, GridSize, MAX_RECORD_CYCLES, RecordCycles, Scene};
-use crate::contact::Grid;
-
-/// Longest run accepted; a cap on run time and on the size of the result.
-pub(super) const MAX_CYCLES: u64 = 1_000_000;
-/// Cells per side of a requested grid: below 8 a contact is not resolved at all; the upper
-/// bound is the largest grid the contact core accepts.
-pub(super) const GRID_CELLS: RangeInclusive<usize> = 8..=Grid::MAX_CELLS_PER_SIDE;
-/// Friction coefficient bounds: 2 is beyond any lubricated or dry metal-ceramic pair.
-const FRICTION: (f64, f64) = (0.0, 2.0);
-/// Largest domain side, um (10 cm, far beyond any ball-on-disc contact).
-const MAX_DOMAIN_UM: f64 = 100_000.0;
-/// Solver tolerance bounds. The relative residual has a round-off floor of about machine
-/// epsilon times the approach over the largest elastic displacement, so it rises as a groove
-/// deepens. Wear runs stalled with NotConverged at residuals of 1.2e-13 to 1.5e-13 (paper
-/// scene, 3600 cycles), 6e-13 (H falling to 300 MPa over 3600 cycles) and 1.3e-12 (to
-/// 100 MPa over 1000 cycles, grid 32); all of them ran at 1e-11. 1e-10 is also the tightest
-/// reference `tribosim bench wear` uses: 1e-8 already agrees with it to 4e-11 in volume.
-/// Above 1e-2 the pressures are too rough to wear with.
-const TOLERANCE: (f64, f64) = (1e-10, 1e-2);
-/// Cycle-step bound: above 0.1 a step skipped the end of the yielding phase (volume error
-/// 1.6e-3 at 300 cycles); below 1e-4 no step is ever taken.
-const CYCLE_STEP_BOUND: (f64, f64) = (1e-4, 0.1);
 
 /// All problems with `scene`'s own fields, empty when each is valid.
 pub(super) fn check(scene: &Scene) -> Vec<FieldError> {
     let mut c = Checks::default();
     let ball = &scene.ball;
-    c.positive("ball.radius_mm", ball.radius_mm, "mm");
-    c.positive("ball.youngs_modulus_gpa", ball.youngs_modulus_gpa, "GPa");
-    c.poisson("ball.poisson_ratio", ball.poisson_ratio);
+    c.number(&BALL_RADIUS, ball.radius_mm);
+    c.number(&BALL_MODULUS, ball.youngs_modulus_gpa);
+    c.number(&BALL_POISSON, ball.poisson_ratio);
 
     let disc = &scene.disc;
-    c.positive("disc.youngs_modulus_gpa", disc.youngs_modulus_gpa, "GPa");
-    c.poisson("disc.poisson_ratio", disc.poisson_ratio);
-    c.positive("disc.hardness_mpa", disc.hardness_mpa, "MPa");
-    c.positive("disc.yield_factor", disc.yield_factor, "");
+    c.number(&DISC_MODULUS, disc.youngs_modulus_gpa);
+    c.number(&DISC_POISSON, disc.poisson_ratio);
+    c.number(&DISC_HARDNESS, disc.hardness_mpa);
+    c.number(&YIELD_FACTOR, disc.yield_factor);
 
     let test = &scene.test;
-    c.positive("test.load_n", test.load_n, "N");
-    c.positive("test.track_radius_mm", test.track_radius_mm, "mm");
-    c.positive("test.speed_rpm", test.speed_rpm, "rpm");
-    c.closed(
-        "test.friction_coefficient",
-        test.friction_coefficient,
-        FRICTION.0,
-        FRICTION.1,
-        "",
-    );
-    if !(1..=MAX_CYCLES).contains(&test.cycles) {
-        c.fail(
-            "test.cycles",
-            format!(
-                "must be a whole number in 1..={MAX_CYCLES}, got {}",
-                test.cycles
-            ),
-        );
-    }
+    c.number(&LOAD, test.load_n);
+    c.number(&TRACK_RADIUS, test.track_radius_mm);
+    c.number(&SPEED, test.speed_rpm);
+    c.number(&FRICTION, test.friction_coefficient);
+    c.whole(&CYCLES, test.cycles);
 
     check_hardness_table(&mut c, scene);
     check_wear(&mut c, scene);
@@ -105,7 +75,8 @@ fn check_hardness_table(c: &mut Checks, scene: &Scene) {
         if cycle.is_finite() {
             previous = Some(cycle);
         }
-        c.positive(&format!("disc.hardness_table[{i}][1]"), hardness, "MPa");
+        let cell = format!("disc.hardness_table[{i}][1]");
+        c.number_at(&cell, &DISC_HARDNESS, hardness);
     }
     // Fit only well-formed data (the SVD of non-finite numbers need not terminate).
     if c.errors.len() > before || !(scene.disc.hardness_mpa.is_finite()) {
@@ -135,15 +106,7 @@ fn check_hardness_table(c: &mut Checks, scene: &Scene) {
 fn check_wear(c: &mut Checks, scene: &Scene) {
     let wear = &scene.wear;
     if let Some(k) = wear.archard_k {
-        if !(0.0..=1.0).contains(&k) {
-            c.fail(
-                "wear.archard_k",
-                format!(
-                    "must be in [0, 1] (0 is a run without wear), got {}",
-                    num(k)
-                ),
-            );
-        }
+        c.number(&ARCHARD_K, k);
     }
     let Some(calibration) = &wear.archard_calibration else {
         return;
@@ -155,25 +118,19 @@ fn check_wear(c: &mut Checks, scene: &Scene) {
              `archard_k` to null in the overrides)",
         );
     }
-    c.positive("wear.archard_calibration.time_s", calibration.time_s, "s");
+    c.number(&CALIBRATION_TIME, calibration.time_s);
+    c.number(&CALIBRATION_VOLUME, calibration.wear_volume_mm3);
     let conditions = [
-        ("hardness_mpa", calibration.hardness_mpa, "MPa"),
-        ("load_n", calibration.load_n, "N"),
-        ("speed_rpm", calibration.speed_rpm, "rpm"),
-        ("track_radius_mm", calibration.track_radius_mm, "mm"),
+        (&CALIBRATION_HARDNESS, calibration.hardness_mpa),
+        (&CALIBRATION_LOAD, calibration.load_n),
+        (&CALIBRATION_SPEED, calibration.speed_rpm),
+        (&CALIBRATION_TRACK_RADIUS, calibration.track_radius_mm),
     ];
-    for (field, value, unit) in conditions {
+    for (field, value) in conditions {
         if let Some(value) = value {
-            c.positive(&format!("wear.archard_calibration.{field}"), value, unit);
+            c.number(field, value);
         }
     }
-    c.closed(
-        "wear.archard_calibration.wear_volume_mm3",
-        calibration.wear_volume_mm3,
-        0.0,
-        f64::INFINITY,
-        " mm^3",
-    );
     // The derived k depends on the load, speed and hardness law; judge it only when all of
     // those passed, or a message about k would really be about them.
     if !c.errors.is_empty() {
@@ -182,12 +139,13 @@ fn check_wear(c: &mut Checks, scene: &Scene) {
     let mut derived = scene.clone();
     derived.wear.archard_k = None;
     if let Ok(k) = derived.archard_k() {
-        if !(0.0..=1.0).contains(&k) {
+        if !ARCHARD_K.range.admits(k) {
             c.fail(
                 "wear.archard_calibration",
                 format!(
-                    "gives k = {}, outside [0, 1]; check the units (s, mm^3)",
-                    num(k)
+                    "gives k = {}, which is not {}; check the units (s, mm^3)",
+                    num(k),
+                    ARCHARD_K.range.describe(ARCHARD_K.unit)
                 ),
             );
         }
@@ -197,43 +155,13 @@ fn check_wear(c: &mut Checks, scene: &Scene) {
 fn check_numerics(c: &mut Checks, scene: &Scene) {
     let numerics = &scene.numerics;
     if let GridSize::Cells(cells) = numerics.grid {
-        if !GRID_CELLS.contains(&cells) {
-            c.fail(
-                "numerics.grid",
-                format!(
-                    "must be \"auto\" or a whole number of cells per side in {}..={} \
-                     (larger grids' padded 2N x 2N spectra need gigabytes), got {cells}",
-                    GRID_CELLS.start(),
-                    GRID_CELLS.end()
-                ),
-            );
-        }
+        c.whole(&GRID, cells as u64);
     }
     if let DomainSize::Micrometres(um) = numerics.domain_um {
-        if !(um > 0.0 && um <= MAX_DOMAIN_UM) {
-            c.fail(
-                "numerics.domain_um",
-                format!(
-                    "must be \"auto\" or a side > 0 um and <= {MAX_DOMAIN_UM} um, got {}",
-                    num(um)
-                ),
-            );
-        }
+        c.number(&DOMAIN, um);
     }
-    c.closed(
-        "numerics.tolerance",
-        numerics.tolerance,
-        TOLERANCE.0,
-        TOLERANCE.1,
-        "",
-    );
-    c.closed(
-        "numerics.cycle_step_bound",
-        numerics.cycle_step_bound,
-        CYCLE_STEP_BOUND.0,
-        CYCLE_STEP_BOUND.1,
-        "",
-    );
+    c.number(&TOLERANCE, numerics.tolerance);
+    c.number(&CYCLE_STEP_BOUND, numerics.cycle_step_bound);
     check_record_cycles(c, scene);
 }
 
@@ -266,38 +194,15 @@ fn check_corrosion(c: &mut Checks, scene: &Scene) {
     let Some(corrosion) = &scene.corrosion else {
         return;
     };
-    c.finite(
-        "corrosion.corrosion_potential_v",
-        corrosion.corrosion_potential_v,
-    );
-    c.finite("corrosion.tafel_a_c_v", corrosion.tafel_a_c_v);
-    c.positive(
-        "corrosion.tafel_b_c_v_per_decade",
-        corrosion.tafel_b_c_v_per_decade,
-        "V/decade",
-    );
-    c.positive(
-        "corrosion.anodic_current_density_a_cm2",
-        corrosion.anodic_current_density_a_cm2,
-        "A/cm^2",
-    );
-    c.positive(
-        "corrosion.exposed_area_cm2",
-        corrosion.exposed_area_cm2,
-        "cm^2",
-    );
-    c.positive(
-        "corrosion.anodic_area_factor",
-        corrosion.anodic_area_factor,
-        "",
-    );
-    c.positive(
-        "corrosion.molar_mass_g_mol",
-        corrosion.molar_mass_g_mol,
-        "g/mol",
-    );
-    c.positive("corrosion.valence", corrosion.valence, "");
-    c.positive("corrosion.density_g_cm3", corrosion.density_g_cm3, "g/cm^3");
+    c.number(&CORROSION_POTENTIAL, corrosion.corrosion_potential_v);
+    c.number(&TAFEL_A, corrosion.tafel_a_c_v);
+    c.number(&TAFEL_B, corrosion.tafel_b_c_v_per_decade);
+    c.number(&ANODIC_CURRENT, corrosion.anodic_current_density_a_cm2);
+    c.number(&EXPOSED_AREA, corrosion.exposed_area_cm2);
+    c.number(&ANODIC_AREA_FACTOR, corrosion.anodic_area_factor);
+    c.number(&MOLAR_MASS, corrosion.molar_mass_g_mol);
+    c.number(&VALENCE, corrosion.valence);
+    c.number(&DENSITY, corrosion.density_g_cm3);
 }
 
 /// Collects failures.
@@ -311,49 +216,22 @@ impl Checks {
         self.errors.push(FieldError::new(path, message));
     }
 
-    /// `value` > 0 and finite; `unit` is printed after the bound ("" for none).
-    fn positive(&mut self, path: &str, value: f64, unit: &str) {
-        if !(value > 0.0 && value.is_finite()) {
-            let unit = if unit.is_empty() {
-                String::new()
-            } else {
-                format!(" {unit}")
-            };
-            self.fail(
-                path,
-                format!("must be > 0{unit} and finite, got {}", num(value)),
-            );
+    /// `value` within `field`'s range, else a failure at its path.
+    fn number(&mut self, field: &Field, value: f64) {
+        self.number_at(field.path, field, value);
+    }
+
+    /// `value` within `field`'s range, else a failure at `path` (an element of the field).
+    fn number_at(&mut self, path: &str, field: &Field, value: f64) {
+        if !field.range.admits(value) {
+            self.fail(path, field.number_message(value));
         }
     }
 
-    /// `lo` <= `value` <= `hi`, and not NaN; `unit` is appended to the interval.
-    fn closed(&mut self, path: &str, value: f64, lo: f64, hi: f64, unit: &str) {
-        if !(lo..=hi).contains(&value) || !value.is_finite() {
-            let range = if hi.is_infinite() {
-                format!(">= {}{unit} and finite", num(lo))
-            } else {
-                format!("in [{}, {}]{unit}", num(lo), num(hi))
-            };
-            self.fail(path, format!("must be {range}, got {}", num(value)));
-        }
-    }
-
-    fn poisson(&mut self, path: &str, value: f64) {
-        if !(value > -1.0 && value < 0.5) {
-            self.fail(
-                path,
-                format!(
-                    "must be in the open interval (-1, 0.5) (the bounds of an isotropic \
-                     elastic solid), got {}",
-                    num(value)
-                ),
-            );
-        }
-    }
-
-    fn finite(&mut self, path: &str, value: f64) {
-        if !value.is_finite() {
-            self.fail(path, format!("must be a finite number, got {}", num(value)));
+    /// The whole number `value` within `field`'s range, else a failure at its path.
+    fn whole(&mut self, field: &Field, value: u64) {
+        if !field.range.admits_whole(value) {
+            self.fail(field.path, field.message(&value.to_string()));
         }
     }
 }
@@ -361,6 +239,7 @@ impl Checks {
 #[cfg(test)]
 mod tests {
     use super::super::Corrosion;
+    use super::super::fields::MAX_CYCLES;
     use super::*;
 
     fn paths(scene: &Scene) -> Vec<String> {
@@ -404,18 +283,18 @@ mod tests {
     #[test]
     fn bounds_are_inclusive_or_exclusive_as_documented() {
         let mut scene = Scene::default();
-        scene.test.friction_coefficient = FRICTION.1;
+        scene.test.friction_coefficient = 2.0;
         scene.test.cycles = MAX_CYCLES;
-        scene.numerics.grid = GridSize::Cells(*GRID_CELLS.end());
-        scene.numerics.tolerance = TOLERANCE.0;
-        scene.numerics.cycle_step_bound = CYCLE_STEP_BOUND.1;
-        scene.numerics.domain_um = DomainSize::Micrometres(MAX_DOMAIN_UM);
+        scene.numerics.grid = GridSize::Cells(2048);
+        scene.numerics.tolerance = 1e-10;
+        scene.numerics.cycle_step_bound = 0.1;
+        scene.numerics.domain_um = DomainSize::Micrometres(100_000.0);
         scene.ball.poisson_ratio = -0.99;
         assert!(check(&scene).is_empty(), "{:?}", check(&scene));
 
         scene.test.friction_coefficient = 2.01;
         scene.test.cycles = MAX_CYCLES + 1;
-        scene.numerics.grid = GridSize::Cells(GRID_CELLS.start() - 1);
+        scene.numerics.grid = GridSize::Cells(7);
         scene.numerics.tolerance = 0.99e-10;
         scene.numerics.cycle_step_bound = 0.11;
         scene.numerics.domain_um = DomainSize::Micrometres(0.0);

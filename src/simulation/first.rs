@@ -9,7 +9,7 @@ use crate::scene::Scene;
 
 use super::{ModelChoice, Setup, SimulationError};
 
-/// The unworn contact at cycle 1, in the contract's units.
+/// The unworn contact at cycle 1, in the units of its names (`docs/result.md`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FirstContact {
     /// Largest pressure, MPa.

@@ -1,5 +1,5 @@
-//! The result of a run: the contract's "Result" JSON. Names carry units; values are in
-//! those units (the core works in SI and converts here).
+//! The result of a run, as JSON: `docs/result.md` describes every field. Names carry units;
+//! values are in those units (the core works in SI and converts here).
 
 use serde::{Deserialize, Serialize};
 
