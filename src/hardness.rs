@@ -59,6 +59,12 @@ impl HardnessLaw {
         let points: Vec<(f64, f64)> = std::iter::once((1.0, bulk_pa))
             .chain(table.iter().copied())
             .collect();
+        Self::fit_points(&points)
+    }
+
+    /// Least-squares fit of H(n) = A + B ln n through the `(cycle, hardness_pa)` pairs alone,
+    /// without the bulk anchor at n = 1 (the calibration offers both).
+    pub fn fit_points(points: &[(f64, f64)]) -> Result<Self, HardnessError> {
         if let Some(&(cycle, hardness_pa)) = points
             .iter()
             .find(|(n, h)| !(n.is_finite() && h.is_finite() && *n >= 1.0))
@@ -66,6 +72,9 @@ impl HardnessLaw {
             return Err(HardnessError::InvalidPoint { cycle, hardness_pa });
         }
         let rows = points.len();
+        if rows < 2 {
+            return Err(HardnessError::Degenerate);
+        }
         let design = DMatrix::from_fn(rows, 2, |i, j| if j == 0 { 1.0 } else { points[i].0.ln() });
         let rhs = DVector::from_iterator(rows, points.iter().map(|p| p.1));
         let svd = design.svd(true, true);
