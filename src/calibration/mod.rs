@@ -13,6 +13,7 @@
 //! s^2 (J^T J)^-1 with s^2 = RSS / (points - parameters): they describe the scatter of the
 //! table itself, not a stated measurement spread.
 
+mod archard;
 mod hardness;
 mod line;
 mod minimise;
@@ -27,6 +28,7 @@ use crate::hardness::HardnessError;
 use crate::scene::{GridSize, Scene, SceneErrors};
 use crate::simulation::SimulationError;
 
+pub use archard::{ArchardFit, ArchardOptions, VolumeResidual, fit_archard};
 pub use hardness::{HardnessFit, HardnessOptions, HardnessResidual, fit_hardness};
 pub use minimise::Trial;
 pub use ocp::{OcpFit, OcpPoint, fit_ocp};
