@@ -14,6 +14,7 @@
 //! table itself, not a stated measurement spread.
 
 mod archard;
+mod command;
 mod hardness;
 mod line;
 mod minimise;
@@ -29,6 +30,7 @@ use crate::scene::{GridSize, Scene, SceneErrors};
 use crate::simulation::SimulationError;
 
 pub use archard::{ArchardFit, ArchardOptions, VolumeResidual, fit_archard};
+pub use command::{CommandError, CommandOptions, FitKind, calibrate_files};
 pub use hardness::{HardnessFit, HardnessOptions, HardnessResidual, fit_hardness};
 pub use minimise::Trial;
 pub use ocp::{OcpFit, OcpPoint, fit_ocp};
