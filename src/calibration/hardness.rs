@@ -192,7 +192,8 @@ mod tests {
         let (a, b) = (2400.0, 75.0);
         let cycles = [3.0, 17.0, 250.0, 4000.0];
         let hardness: Vec<f64> = cycles.iter().map(|n: &f64| a + b * n.ln()).collect();
-        let table = Table::from_columns(&[("cycles", &cycles), ("hardness_mpa", &hardness)]);
+        let table = Table::from_columns(&[("cycles", &cycles), ("hardness_mpa", &hardness)])
+            .expect("equal-length finite columns");
         let scene = Scene {
             disc: crate::scene::Disc {
                 hardness_mpa: a,

@@ -63,12 +63,18 @@ impl Table {
         }
     }
 
-    /// Builds a table from named columns (for callers that hold their data in memory).
-    pub fn from_columns(columns: &[(&str, &[f64])]) -> Self {
-        Self {
-            names: columns.iter().map(|(n, _)| (*n).to_owned()).collect(),
-            columns: columns.iter().map(|(_, v)| v.to_vec()).collect(),
+    /// Builds a table from named columns (for callers that hold their data in memory),
+    /// refusing empty or unequal columns and cells that are not finite.
+    pub fn from_columns(columns: &[(&str, &[f64])]) -> Result<Self, TableError> {
+        for (name, values) in columns {
+            for (i, &v) in values.iter().enumerate() {
+                number(name, i + 1, Some(v), &v.to_string())?;
+            }
         }
+        Self::checked(
+            columns.iter().map(|(n, _)| (*n).to_owned()).collect(),
+            columns.iter().map(|(_, v)| v.to_vec()).collect(),
+        )
     }
 
     fn from_csv(text: &str) -> Result<Self, TableError> {
@@ -221,5 +227,7 @@ mod tests {
         assert!(matches!(Table::parse("cycles\n"), Err(TableError::Empty)));
         assert!(Table::parse(r#"{"a": [1, 2], "b": [1]}"#).is_err());
         assert!(Table::parse(r#"[{"a": 1}, {"a": null}]"#).is_err());
+        assert!(Table::from_columns(&[("a", &[1.0, 2.0]), ("b", &[1.0])]).is_err());
+        assert!(Table::from_columns(&[("a", &[f64::NAN])]).is_err());
     }
 }

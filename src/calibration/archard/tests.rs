@@ -39,7 +39,8 @@ fn k_comes_back_from_volumes_the_model_made() {
         runs: 0,
     };
     let volumes = maker.volumes_at(k_true).expect("runs");
-    let table = Table::from_columns(&[("cycles", &cycles), ("volume_mm3", &volumes)]);
+    let table = Table::from_columns(&[("cycles", &cycles), ("volume_mm3", &volumes)])
+        .expect("equal-length finite columns");
     let options = ArchardOptions {
         tolerance: 1e-6,
         ..ArchardOptions::default()

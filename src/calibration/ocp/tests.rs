@@ -38,6 +38,7 @@ fn fig14_curve(ratio: f64, noise_v: f64, seed: u64) -> Table {
         })
         .collect();
     Table::from_columns(&[("time_s", &times), ("potential_v", &potentials)])
+        .expect("equal-length finite columns")
 }
 
 #[test]
@@ -83,7 +84,8 @@ fn a_potential_above_e_corr_is_refused_naming_the_row() {
     let table = Table::from_columns(&[
         ("time_s", &[10.0, 20.0, 30.0]),
         ("potential_v", &[-0.3, -0.05, -0.3]),
-    ]);
+    ])
+    .expect("equal-length finite columns");
     let err = fit_ocp(&table, &paper_scene()).expect_err("above E_corr");
     assert!(
         matches!(
@@ -102,7 +104,8 @@ fn a_potential_above_e_corr_is_refused_naming_the_row() {
     let backwards = Table::from_columns(&[
         ("time_s", &[10.0, 5.0, 30.0]),
         ("potential_v", &[-0.3, -0.3, -0.3]),
-    ]);
+    ])
+    .expect("equal-length finite columns");
     let err = fit_ocp(&backwards, &paper_scene()).expect_err("not increasing");
     assert!(err.to_string().contains("`time_s`"), "{err}");
 }

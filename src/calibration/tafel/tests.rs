@@ -42,6 +42,7 @@ fn synthetic_curve(noise_decades: f64, seed: u64, anodic: bool) -> Table {
         ("potential_v", &potential),
         ("current_density_a_cm2", &current),
     ])
+    .expect("equal-length finite columns")
 }
 
 fn given_e_corr() -> TafelOptions {
@@ -135,7 +136,8 @@ fn a_curve_without_a_tafel_domain_is_refused() {
             "current_density_a_cm2",
             &[1e-6, 2e-6, 3e-6, 4e-6, 5e-6, 6e-6],
         ),
-    ]);
+    ])
+    .expect("equal-length finite columns");
     let err = fit_tafel(&anodic, &scene, given_e_corr()).expect_err("no cathodic branch");
     assert!(err.to_string().contains("`potential_v`"), "{err}");
     // log10 |i| a parabola in E everywhere: no straight stretch.
@@ -147,11 +149,13 @@ fn a_curve_without_a_tafel_domain_is_refused() {
     let curved = Table::from_columns(&[
         ("potential_v", &potential),
         ("current_density_a_cm2", &bent),
-    ]);
+    ])
+    .expect("equal-length finite columns");
     let err = fit_tafel(&curved, &scene, given_e_corr()).expect_err("curved");
     assert!(matches!(err, CalibrationError::NoTafelDomain(_)), "{err}");
     // Current in A/m^2 is read too; a missing current column is named.
-    let missing = Table::from_columns(&[("potential_v", &potential)]);
+    let missing =
+        Table::from_columns(&[("potential_v", &potential)]).expect("equal-length finite columns");
     let err = fit_tafel(&missing, &scene, given_e_corr()).expect_err("no current");
     assert!(err.to_string().contains("current_density_a_cm2"), "{err}");
 }
@@ -166,7 +170,8 @@ fn current_in_a_per_m2_gives_the_same_fit() {
         .iter()
         .map(|i| i * 1e4)
         .collect();
-    let si = Table::from_columns(&[("potential_v", &potential), ("current_density_a_m2", &a_m2)]);
+    let si = Table::from_columns(&[("potential_v", &potential), ("current_density_a_m2", &a_m2)])
+        .expect("equal-length finite columns");
     let fit = fit_tafel(&si, &Scene::default(), given_e_corr()).expect("straight");
     // One more multiplication per point: 1e-9 as in the A/cm^2 test.
     assert!(((fit.tafel_b_c_v_per_decade.value - B_C) / B_C).abs() < 1e-9);
