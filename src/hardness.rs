@@ -242,6 +242,22 @@ mod tests {
     }
 
     #[test]
+    fn fit_is_fit_points_with_the_bulk_anchor_first() {
+        let anchored: Vec<(f64, f64)> = std::iter::once((1.0, PAPER_BULK_PA))
+            .chain(PAPER_TABLE)
+            .collect();
+        // The same SVD of the same rows: bit for bit.
+        assert_eq!(
+            HardnessLaw::fit(PAPER_BULK_PA, &PAPER_TABLE),
+            HardnessLaw::fit_points(&anchored)
+        );
+        assert_eq!(
+            HardnessLaw::fit_points(&[(10.0, 2551e6)]),
+            Err(HardnessError::Degenerate)
+        );
+    }
+
+    #[test]
     fn non_finite_or_sub_unit_cycles_are_refused() {
         assert!(matches!(
             HardnessLaw::fit(2473e6, &[(10.0, f64::NAN)]),

@@ -8,6 +8,7 @@
 //! paper's equations lives.
 
 pub mod bench;
+pub mod calibration;
 pub mod contact;
 pub mod corrosion;
 pub mod hardness;

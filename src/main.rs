@@ -1,5 +1,6 @@
 //! The `tribosim` command line: serve the HTTP API and page (the default), run a scene,
-//! inspect its first contact, list presets, or print the speed-against-error tables.
+//! inspect its first contact, list presets, fit parameters to measurements, or print the
+//! speed-against-error tables.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -10,6 +11,7 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use tribosim::bench::{self, BenchTarget};
+use tribosim::calibration::{CommandOptions, FitKind, calibrate_files};
 use tribosim::scene::{Scene, presets};
 use tribosim::simulation::{first_contact, parse_scene_str, run};
 
@@ -47,6 +49,27 @@ enum Command {
     },
     /// Print the built-in scenes as JSON.
     Presets,
+    /// Fit the model's parameters to a measurement table (CSV or JSON, units in the column
+    /// names) and write the fit, with the scene filled in, as JSON.
+    Calibrate {
+        /// Which fit.
+        #[arg(value_enum)]
+        fit: FitKind,
+        /// The measurements.
+        table: PathBuf,
+        /// The scene to fill in (JSON); the paper's preset if absent.
+        #[arg(long)]
+        scene: Option<PathBuf>,
+        /// Where to write the fit; standard output if absent.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Hardness: fit the table alone, without the scene's bulk hardness at n = 1.
+        #[arg(long)]
+        no_bulk: bool,
+        /// Tafel: E_corr in V, instead of the potential of the smallest current.
+        #[arg(long, value_name = "V", allow_hyphen_values = true)]
+        e_corr: Option<f64>,
+    },
     /// Print the speed-against-error tables.
     Bench {
         /// Which tables.
@@ -118,6 +141,21 @@ fn main() -> ExitCode {
             .and_then(|s| first_contact(&s).map_err(|e| e.to_string()))
             .and_then(|c| write_json(&c, None)),
         Command::Presets => write_json(&presets(), None),
+        Command::Calibrate {
+            fit,
+            table,
+            scene,
+            output,
+            no_bulk,
+            e_corr,
+        } => {
+            let options = CommandOptions {
+                without_bulk: no_bulk,
+                corrosion_potential_v: e_corr,
+            };
+            calibrate_files(fit, &table, scene.as_deref(), output.as_deref(), options)
+                .map_err(|e| e.to_string())
+        }
         Command::Bench {
             target,
             json,

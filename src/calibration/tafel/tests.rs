@@ -1,0 +1,204 @@
+use rand::SeedableRng;
+use rand::rngs::StdRng;
+use rand_distr::{Distribution, Normal};
+
+use super::*;
+
+/// Table 2: E_corr = -0.10 V, a_c = -3.31 V, b_c = 0.56 V/decade.
+const E_CORR: f64 = -0.10;
+const A_C: f64 = -3.31;
+const B_C: f64 = 0.56;
+/// Anodic Tafel slope of the synthetic curve, V/decade: a typical 0.12 for the passive
+/// current's rise; it only shapes the bend near E_corr.
+const B_A: f64 = 0.12;
+
+/// The paper's scan: from E_corr down to -1.1 V at 1 mV per point (1 mV/s, Section 2.2).
+fn potentials() -> Vec<f64> {
+    (1..=1000).map(|k| E_CORR - 1e-3 * k as f64).collect()
+}
+
+/// Net current density (A/cm^2, negative: cathodic) of a cell whose cathodic branch is the
+/// Table 2 line and whose anodic branch meets it at E_corr, with log-normal noise of
+/// `noise_decades` from `seed`.
+fn synthetic_curve(noise_decades: f64, seed: u64, anodic: bool) -> Table {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, noise_decades).expect("finite spread");
+    let i_corr = 10f64.powf(A_C / B_C);
+    let potential = potentials();
+    let current: Vec<f64> = potential
+        .iter()
+        .map(|&e| {
+            let eta = e - E_CORR;
+            let cathodic = 10f64.powf((A_C - eta) / B_C);
+            let anodic = if anodic {
+                i_corr * 10f64.powf(eta / B_A)
+            } else {
+                0.0
+            };
+            -(cathodic - anodic) * 10f64.powf(normal.sample(&mut rng))
+        })
+        .collect();
+    Table::from_columns(&[
+        ("potential_v", &potential),
+        ("current_density_a_cm2", &current),
+    ])
+    .expect("equal-length finite columns")
+}
+
+fn given_e_corr() -> TafelOptions {
+    TafelOptions {
+        corrosion_potential_v: Some(E_CORR),
+        upper_v: None,
+    }
+}
+
+#[test]
+fn noise_free_tafel_line_comes_back_exactly() {
+    let fit = fit_tafel(
+        &synthetic_curve(0.0, 0, false),
+        &Scene::default(),
+        given_e_corr(),
+    )
+    .expect("a straight curve");
+    // Exact data on a line: the centred least squares loses a few ulps times the 1000
+    // points' sums, far inside 1e-9 relative.
+    assert!(
+        ((fit.tafel_a_c_v.value - A_C) / A_C).abs() < 1e-9,
+        "{fit:?}"
+    );
+    assert!(((fit.tafel_b_c_v_per_decade.value - B_C) / B_C).abs() < 1e-9);
+    assert_eq!(fit.domain.points, 1000);
+    let corrosion = fit.scene.corrosion.expect("filled in");
+    assert!((corrosion.tafel_b_c_v_per_decade - B_C).abs() < 1e-9);
+}
+
+#[test]
+fn table_2_values_come_back_from_a_noisy_curve_within_three_standard_errors() {
+    // 0.02 decades (4.7%) of noise on each current, fixed seed.
+    let fit = fit_tafel(
+        &synthetic_curve(0.02, 15, true),
+        &Scene::default(),
+        given_e_corr(),
+    )
+    .expect("a Tafel domain");
+    let (a, b) = (fit.tafel_a_c_v, fit.tafel_b_c_v_per_decade);
+    println!(
+        "a_c = {:.4} +- {:.4} V, b_c = {:.5} +- {:.5} V/dec, i_corr = {:.3e} A/cm2, domain {:.3} .. {:.3} V ({} points), rms {:.4} dec",
+        a.value,
+        a.standard_error,
+        b.value,
+        b.standard_error,
+        fit.corrosion_current_density_a_cm2,
+        fit.domain.lower_v,
+        fit.domain.upper_v,
+        fit.domain.points,
+        fit.rms_residual_decades
+    );
+    assert!((a.value - A_C).abs() < 3.0 * a.standard_error, "{a:?}");
+    assert!((b.value - B_C).abs() < 3.0 * b.standard_error, "{b:?}");
+    // The anodic branch bends the curve near E_corr: the domain must stop short of it, at
+    // least where the anodic current is 10% of the cathodic (eta = -1 / (1/b_a + 1/b_c)
+    // = -0.099 V, a bend of 0.046 decades, twice the noise).
+    let bend_v = E_CORR - 1.0 / (1.0 / B_A + 1.0 / B_C);
+    assert!(fit.domain.upper_v < bend_v, "{:?}", fit.domain);
+    // The residuals' spread is the noise put in: within 10% for ~900 points (the relative
+    // error of a standard deviation from n points is 1 / sqrt(2n) = 2.4%).
+    assert!((fit.rms_residual_decades - 0.02).abs() < 0.002);
+}
+
+#[test]
+fn e_corr_taken_from_the_curve_is_its_smallest_current() {
+    let fit = fit_tafel(
+        &synthetic_curve(0.02, 15, true),
+        &Scene::default(),
+        TafelOptions::default(),
+    )
+    .expect("a Tafel domain");
+    // The smallest |i| is the first point, 1 mV below the true E_corr; a_c moves with it
+    // (a_c' = a_c + (E_corr - E_corr')), so allow that shift beside 3 standard errors.
+    let shift = (fit.corrosion_potential_v - E_CORR).abs();
+    assert!(shift < 5e-3, "E_corr {}", fit.corrosion_potential_v);
+    assert!(!fit.corrosion_potential_given);
+    let a = fit.tafel_a_c_v;
+    assert!(
+        (a.value - A_C).abs() < 3.0 * a.standard_error + shift,
+        "{a:?}"
+    );
+}
+
+#[test]
+fn a_curve_without_a_tafel_domain_is_refused() {
+    let scene = Scene::default();
+    // Nothing below E_corr.
+    let anodic = Table::from_columns(&[
+        ("potential_v", &[0.0, 0.1, 0.2, 0.3, 0.4, 0.5]),
+        (
+            "current_density_a_cm2",
+            &[1e-6, 2e-6, 3e-6, 4e-6, 5e-6, 6e-6],
+        ),
+    ])
+    .expect("equal-length finite columns");
+    let err = fit_tafel(&anodic, &scene, given_e_corr()).expect_err("no cathodic branch");
+    assert!(err.to_string().contains("`potential_v`"), "{err}");
+    // log10 |i| a parabola in E everywhere: no straight stretch.
+    let potential = potentials();
+    let bent: Vec<f64> = potential
+        .iter()
+        .map(|e| -10f64.powf(-6.0 - 8.0 * (e - E_CORR).powi(2)))
+        .collect();
+    let curved = Table::from_columns(&[
+        ("potential_v", &potential),
+        ("current_density_a_cm2", &bent),
+    ])
+    .expect("equal-length finite columns");
+    let err = fit_tafel(&curved, &scene, given_e_corr()).expect_err("curved");
+    assert!(matches!(err, CalibrationError::NoTafelDomain(_)), "{err}");
+    // Current in A/m^2 is read too; a missing current column is named.
+    let missing =
+        Table::from_columns(&[("potential_v", &potential)]).expect("equal-length finite columns");
+    let err = fit_tafel(&missing, &scene, given_e_corr()).expect_err("no current");
+    assert!(err.to_string().contains("current_density_a_cm2"), "{err}");
+}
+
+#[test]
+fn current_in_a_per_m2_gives_the_same_fit() {
+    let curve = synthetic_curve(0.0, 0, false);
+    let potential = curve.column("potential_v").expect("present").to_vec();
+    let a_m2: Vec<f64> = curve
+        .column("current_density_a_cm2")
+        .expect("present")
+        .iter()
+        .map(|i| i * 1e4)
+        .collect();
+    let si = Table::from_columns(&[("potential_v", &potential), ("current_density_a_m2", &a_m2)])
+        .expect("equal-length finite columns");
+    let fit = fit_tafel(&si, &Scene::default(), given_e_corr()).expect("straight");
+    // One more multiplication per point: 1e-9 as in the A/cm^2 test.
+    assert!(((fit.tafel_b_c_v_per_decade.value - B_C) / B_C).abs() < 1e-9);
+}
+
+#[test]
+fn the_domain_leaves_no_bias_beyond_the_statistical_error() {
+    // Over 30 seeds the errors in standard errors, z, of an unbiased fit average to 0 with a
+    // standard deviation of 1 / sqrt(30) = 0.18: a bias above 3 x 0.18 = 0.55 fails.
+    // Measured: +0.22 for a_c, -0.24 for b_c, the largest |z| 2.1.
+    let (mut z_a, mut z_b) = (0.0, 0.0);
+    let seeds = 30;
+    for seed in 0..seeds {
+        let fit = fit_tafel(
+            &synthetic_curve(0.02, seed, true),
+            &Scene::default(),
+            given_e_corr(),
+        )
+        .expect("a Tafel domain");
+        z_a += (fit.tafel_a_c_v.value - A_C) / fit.tafel_a_c_v.standard_error;
+        z_b += (fit.tafel_b_c_v_per_decade.value - B_C) / fit.tafel_b_c_v_per_decade.standard_error;
+    }
+    let (mean_a, mean_b) = (z_a / seeds as f64, z_b / seeds as f64);
+    println!("mean z: a_c {mean_a:+.2}, b_c {mean_b:+.2}");
+    let limit = 3.0 / (seeds as f64).sqrt();
+    assert!(
+        mean_a.abs() < limit && mean_b.abs() < limit,
+        "{mean_a} {mean_b}"
+    );
+}
