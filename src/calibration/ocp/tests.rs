@@ -95,7 +95,10 @@ fn a_potential_above_e_corr_is_refused_naming_the_row() {
         "{err}"
     );
     assert!(err.to_string().contains("`potential_v`"));
-    let no_cell = Scene::default();
+    let no_cell = Scene {
+        corrosion: None,
+        ..Scene::default()
+    };
     let ok = fig14_curve(50.0, 0.0, 0);
     assert!(matches!(
         fit_ocp(&ok, &no_cell),
