@@ -134,6 +134,16 @@ try {
   assert.equal(volumePlot.measured, table3Cycles.filter((c) => c <= cyclesTotal).length);
   assert.ok(volumePlot.enabled, "the Table 3 choice is disabled for the preset's scene");
   assert.ok(volumePlot.xMax <= cyclesTotal, `the x axis runs to ${volumePlot.xMax}, past the run's ${cyclesTotal} cycles`);
+  // The cursor on Table 3's 60 s point: every series reads that one row (cycle 60).
+  const hover = await page.evaluate(() => {
+    const u = state.plots["plot-volume"];
+    u.setCursor({ left: u.valToPos(60, "x"), top: 10 });
+    return { x: u.data[0][u.cursor.idx], rows: u.cursor.idxs.slice(1), legend: document.querySelector("#plot-volume .u-legend").textContent };
+  });
+  console.log(`   hover: ${JSON.stringify(hover)}`);
+  assert.equal(hover.x, 60);
+  assert.ok(hover.rows.every((i) => i === hover.rows[0]), `the legend reads rows ${hover.rows}`);
+  assert.match(hover.legend, /simulated\s*\d/, "no simulated value at cycle 60");
   const potential = await page.evaluate(() => {
     const u = state.plots["plot-potential"];
     return { axis: u.axes[1].label, ecorr: u.data[2][0], series: u.series.map((s) => s.label) };
