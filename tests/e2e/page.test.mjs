@@ -123,6 +123,37 @@ try {
   await row.locator("button.delete").waitFor();
   await page.screenshot({ path: path.join(shots, "after-run.png"), fullPage: true });
 
+  step("the preset's run: Table 3 beside it, within the run's cycles; E_corr on the potential plot");
+  const table3Cycles = [10, 60, 300, 1800, 3600];
+  const volumePlot = await page.evaluate(() => ({
+    measured: Number(document.getElementById("plot-volume").dataset.measured),
+    enabled: !document.getElementById("show-table3").disabled,
+    xMax: state.plots["plot-volume"].scales.x.max,
+  }));
+  console.log(`   volume plot: ${JSON.stringify(volumePlot)}`);
+  assert.equal(volumePlot.measured, table3Cycles.filter((c) => c <= cyclesTotal).length);
+  assert.ok(volumePlot.enabled, "the Table 3 choice is disabled for the preset's scene");
+  assert.ok(volumePlot.xMax <= cyclesTotal, `the x axis runs to ${volumePlot.xMax}, past the run's ${cyclesTotal} cycles`);
+  // The cursor on Table 3's 60 s point: every series reads that one row (cycle 60).
+  const hover = await page.evaluate(() => {
+    const u = state.plots["plot-volume"];
+    u.setCursor({ left: u.valToPos(60, "x"), top: 10 });
+    return { x: u.data[0][u.cursor.idx], rows: u.cursor.idxs.slice(1), legend: document.querySelector("#plot-volume .u-legend").textContent };
+  });
+  console.log(`   hover: ${JSON.stringify(hover)}`);
+  assert.equal(hover.x, 60);
+  assert.ok(hover.rows.every((i) => i === hover.rows[0]), `the legend reads rows ${hover.rows}`);
+  assert.match(hover.legend, /simulated\s*\d/, "no simulated value at cycle 60");
+  const potential = await page.evaluate(() => {
+    const u = state.plots["plot-potential"];
+    return { axis: u.axes[1].label, ecorr: u.data[2][0], series: u.series.map((s) => s.label) };
+  });
+  console.log(`   potential plot: ${JSON.stringify(potential)}`);
+  assert.equal(potential.axis, "potential (V vs Ag/AgCl)");
+  assert.equal(potential.ecorr, -0.1, "the dashed line is not the preset's E_corr (-0.1 V)");
+  assert.ok(potential.series.some((l) => /E_corr/.test(l)));
+  assert.doesNotMatch(await page.textContent("#run-panel"), /\bum\b/, "the run panel says um, not µm");
+
   step("download the JSON and the CSV");
   const [download] = await Promise.all([page.waitForEvent("download"), page.click("#download-json")]);
   const file = await download.path();
@@ -136,16 +167,60 @@ try {
   assert.equal(csv.length, result.cycles.length + 1);
   console.log(`   ${csvDownload.suggestedFilename()}: ${csv.length - 1} rows`);
 
-  step("cancel a running job, then delete it");
+  step("a 10 N run: no Table 3 beside it, and the page says why");
+  await page.fill("#f-test-load_n", "10");
+  await page.fill("#f-test-cycles", "20");
+  const presetRun = await page.$eval("#jobs tbody tr.selected", (tr) => tr.dataset.id);
+  await page.click("#submit");
+  await page.waitForFunction((id) => {
+    const tr = document.querySelector("#jobs tbody tr.selected");
+    return tr && tr.dataset.id !== id;
+  }, presetRun);
+  await page.waitForFunction(() => document.getElementById("run-status").textContent.startsWith("succeeded"), null, { timeout: 600_000 });
+  await page.waitForFunction(() => Number(document.getElementById("plot-pressure").dataset.points) > 0);
+  assert.equal(await page.$eval("#plot-volume", (el) => el.dataset.measured), "0");
+  assert.equal(await page.isDisabled("#show-table3"), true);
+  assert.match(await page.textContent("#table3-note"), /differ/);
+
+  step("cancel a running job (after a confirmation), see why it stopped, then delete it");
   await page.fill("#f-test-cycles", "100000");
   await page.click("#submit");
   const newest = page.locator("#jobs tbody tr").first();
+  let question = "";
+  page.once("dialog", (d) => { question = d.message(); d.accept(); });
   await newest.locator("button.cancel").click();
   await newest.locator("td", { hasText: "cancelled" }).waitFor();
+  assert.match(question, /^Cancel the run/);
+  await newest.locator(".reason", { hasText: /Cancelled on request after \d+ of 100000 cycles/ }).waitFor();
   page.once("dialog", (d) => d.accept());
   const before = await page.locator("#jobs tbody tr").count();
   await newest.locator("button.delete").click();
   await page.waitForFunction((n) => document.querySelectorAll("#jobs tbody tr").length === n - 1, before);
+
+  step("failed, damaged and re-run jobs show their reasons in the page's text");
+  const fakes = [
+    { status: "failed", error: "internal error: the simulation panicked: test", rerun_reason: null },
+    { status: "damaged", error: "stored scene damaged: bad CRC", rerun_reason: null },
+    { status: "queued", error: null, rerun_reason: "the stored result was damaged: bad CRC" },
+  ].map((f, i) => ({
+    id: `00000000-0000-4000-8000-00000000000${i}`, name: `fake ${f.status}`, cycles_done: 3, cycles_total: 10,
+    eta_s: null, created_at: new Date().toISOString(), started_at: null, finished_at: null, ...f,
+  }));
+  // The service cannot be made to fail or damage a job from outside; the page's rendering
+  // of such records is what is tested, so the job list is answered with them added.
+  const jobList = (url) => url.pathname === "/api/v1/jobs";
+  await page.route(jobList, async (route) => {
+    if (route.request().method() !== "GET") return route.continue();
+    const response = await route.fetch();
+    route.fulfill({ response, json: [...fakes, ...(await response.json())] });
+  });
+  await page.evaluate(() => refreshJobs());
+  for (const [name, text] of [["fake failed", "Failed: internal error"], ["fake damaged", "Damaged: stored scene damaged"], ["fake queued", "Run again: the stored result was damaged"]]) {
+    const reason = page.locator("#jobs tbody tr", { hasText: name }).locator(".reason");
+    await reason.filter({ hasText: text }).waitFor();
+    assert.ok(await reason.isVisible(), `${name}: the reason is not visible`);
+  }
+  await page.unroute(jobList);
 
   assert.deepEqual(errors, [], "errors in the page");
   console.log("e2e: all checks passed");
