@@ -5,6 +5,7 @@
 //! [`crate::simulation`]; the command line drives it through [`command`].
 
 mod axes;
+pub mod command;
 
 mod expand;
 mod run;
