@@ -234,3 +234,27 @@ fn a_failed_member_leaves_the_others_and_a_cancel_stops_those_not_started() {
         ));
     }
 }
+
+#[test]
+fn the_documented_example_expands_as_docs_study_md_says() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/study-load-speed.json");
+    let text = std::fs::read_to_string(path).expect("the example is in scenes/");
+    let members = Study::parse(&text)
+        .and_then(|s| s.members(MAX_MEMBERS))
+        .expect("the example is a valid study");
+    let got: Vec<(f64, f64)> = members
+        .iter()
+        .map(|m| (m.scene.test.load_n, m.scene.test.speed_rpm))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            (2.0, 30.0),
+            (2.0, 60.0),
+            (5.0, 30.0),
+            (5.0, 60.0),
+            (10.0, 30.0),
+            (10.0, 60.0)
+        ]
+    );
+}
