@@ -169,10 +169,17 @@ fn a_study_over_the_member_limit_is_refused_before_any_member_is_built() {
 }
 
 #[test]
-fn a_key_given_twice_is_refused() {
+fn a_key_given_twice_and_a_malformed_file_are_refused() {
     let text = r#"{"base": {}, "axes": {"test.load_n": [2], "test.load_n": [5]}}"#;
     let error = Study::parse(text).expect_err("duplicate axis");
     assert!(error.to_string().contains("axes.test.load_n"), "{error}");
+
+    let no_axes_key = Study::parse(r#"{"base": {}}"#).expect_err("no axes");
+    assert!(no_axes_key.to_string().contains("axes"), "{no_axes_key}");
+    let not_a_scene = Study::parse(r#"{"base": 5, "axes": {"test.load_n": [2]}}"#)
+        .and_then(|s| s.members(MAX_MEMBERS))
+        .expect_err("a number is no scene");
+    assert!(matches!(not_a_scene, StudyError::BaseNotObject));
 }
 
 /// A summary without its wall time, the one number that differs between two runs.

@@ -67,7 +67,7 @@ fn set(document: &mut Value, path: &str, value: Value) -> Result<(), StudyError>
         message: message.to_owned(),
     };
     let Some(root) = document.as_object_mut() else {
-        return Err(StudyError::Shape("`base` must be a scene object".into()));
+        return Err(StudyError::BaseNotObject);
     };
     let mut at = if root.contains_key("preset") {
         root.entry("overrides")

@@ -52,9 +52,13 @@ pub enum StudyError {
     /// The study file is not JSON, or gives a key twice.
     #[error("{0}")]
     Json(#[from] JsonError),
-    /// The study document does not have the study's shape.
+    /// The study document does not have the study's shape (`base` and `axes`, nothing
+    /// else).
     #[error("invalid study: {0}")]
-    Shape(String),
+    Shape(#[source] serde_json::Error),
+    /// `base` is not a JSON object, so no scene.
+    #[error("`base` must be a scene (a JSON object)")]
+    BaseNotObject,
     /// A study with no axes is a single run.
     #[error("the study has no axes; give at least one under `axes` (or use `tribosim run`)")]
     NoAxes,
@@ -114,8 +118,7 @@ impl Study {
     /// twice anywhere, as a scene does.
     pub fn parse(text: &str) -> Result<Self, StudyError> {
         crate::json::from_str(text)?;
-        let file: StudyFile =
-            serde_json::from_str(text).map_err(|e| StudyError::Shape(e.to_string()))?;
+        let file: StudyFile = serde_json::from_str(text).map_err(StudyError::Shape)?;
         let axes = file
             .axes
             .0
