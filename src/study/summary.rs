@@ -163,3 +163,40 @@ fn csv_field(cell: &str) -> String {
         cell.to_owned()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn failed_row(error: &str) -> StudySummary {
+        StudySummary {
+            axes: vec!["corrosion.model".into()],
+            workers: 1,
+            wall_s: 0.0,
+            members: vec![MemberRow {
+                index: 0,
+                values: [("corrosion.model".to_owned(), Value::from("a|b"))]
+                    .into_iter()
+                    .collect(),
+                summary: None,
+                error: Some(error.into()),
+            }],
+        }
+    }
+
+    #[test]
+    fn an_error_with_commas_and_quotes_stays_one_csv_cell() {
+        let csv = failed_row(r#"cycle 3: "x", then y"#).to_csv();
+        let row = csv.lines().nth(1).expect("a data row");
+        // member, the axis, eight empty summary cells, then the quoted error.
+        assert_eq!(row, r#"0,a|b,,,,,,,,,"cycle 3: ""x"", then y""#);
+    }
+
+    #[test]
+    fn a_pipe_in_a_value_does_not_split_a_markdown_cell() {
+        let markdown = failed_row("stopped").to_markdown();
+        let row = markdown.lines().nth(2).expect("a data row");
+        assert!(row.starts_with(r"| 0 | a\|b |"), "{row}");
+        assert!(row.ends_with("| stopped |"), "{row}");
+    }
+}
