@@ -265,3 +265,34 @@ fn the_documented_example_expands_as_docs_study_md_says() {
         ]
     );
 }
+
+#[test]
+fn the_command_writes_the_summary_and_names_the_flag_over_the_limit() {
+    let example = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/study-load-speed.json");
+    let output = std::env::temp_dir().join(format!("tribosim-study-{}.json", std::process::id()));
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_tribosim"))
+        .args(["study", example, "--workers", "2", "-o"])
+        .arg(&output)
+        .stderr(std::process::Stdio::null())
+        .status()
+        .expect("the binary starts");
+    let text = std::fs::read_to_string(&output).expect("the summary is written");
+    let _ = std::fs::remove_file(&output);
+    assert!(status.success());
+    let summary: StudySummary = serde_json::from_str(&text).expect("the summary's JSON");
+    assert_eq!(
+        (summary.members.len(), summary.failed(), summary.workers),
+        (6, 0, 2)
+    );
+
+    let refused = std::process::Command::new(env!("CARGO_BIN_EXE_tribosim"))
+        .args(["study", example, "--max-members", "5"])
+        .output()
+        .expect("the binary starts");
+    let message = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success());
+    assert!(
+        message.contains("6 members") && message.contains("--max-members"),
+        "{message}"
+    );
+}

@@ -45,6 +45,15 @@ pub enum CommandError {
         #[source]
         source: StudyError,
     },
+    /// The study has more members than the limit the command was given.
+    #[error("{path}: {source}; raise the limit with --max-members if this is meant")]
+    OverLimit {
+        /// The study file.
+        path: PathBuf,
+        /// The counts and the limit.
+        #[source]
+        source: StudyError,
+    },
     /// An output could not be written.
     #[error("cannot write {path}: {source}")]
     Write {
@@ -72,9 +81,15 @@ pub fn study(args: &StudyArgs) -> Result<StudySummary, CommandError> {
         path: args.study.clone(),
         source,
     })?;
-    let refused = |source| CommandError::Study {
-        path: args.study.clone(),
-        source,
+    let refused = |source| match source {
+        StudyError::TooManyMembers { .. } => CommandError::OverLimit {
+            path: args.study.clone(),
+            source,
+        },
+        _ => CommandError::Study {
+            path: args.study.clone(),
+            source,
+        },
     };
     let members = Study::parse(&text)
         .and_then(|study| study.members(args.max_members))
