@@ -16,4 +16,5 @@ pub mod json;
 pub mod scene;
 pub mod service;
 pub mod simulation;
+pub mod study;
 pub mod wear;

@@ -1,6 +1,6 @@
 //! The `tribosim` command line: serve the HTTP API and page (the default), run a scene,
-//! inspect its first contact, list presets, fit parameters to measurements, or print the
-//! speed-against-error tables.
+//! inspect its first contact, list presets, fit parameters to measurements, run a study,
+//! or print the speed-against-error tables.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -14,6 +14,7 @@ use tribosim::bench::{self, BenchTarget};
 use tribosim::calibration::{CommandOptions, FitKind, calibrate_files};
 use tribosim::scene::{Scene, presets};
 use tribosim::simulation::{first_contact, parse_scene_str, run};
+use tribosim::study::command::StudyArgs;
 
 #[derive(Parser)]
 #[command(
@@ -69,6 +70,23 @@ enum Command {
         /// Tafel: E_corr in V, instead of the potential of the smallest current.
         #[arg(long, value_name = "V", allow_hyphen_values = true)]
         e_corr: Option<f64>,
+    },
+    /// Run a study (a base scene and axes, `docs/study.md`) and write its summary JSON.
+    Study {
+        /// The study file (JSON).
+        study: PathBuf,
+        /// Worker threads; one per available core by default.
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+        workers: Option<u64>,
+        /// The most members the study may have.
+        #[arg(long, default_value_t = tribosim::study::MAX_MEMBERS)]
+        max_members: usize,
+        /// Where to write the summary; standard output if absent.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Also write the summary table as CSV here.
+        #[arg(long, value_name = "PATH")]
+        csv: Option<PathBuf>,
     },
     /// Print the speed-against-error tables.
     Bench {
@@ -156,6 +174,21 @@ fn main() -> ExitCode {
             calibrate_files(fit, &table, scene.as_deref(), output.as_deref(), options)
                 .map_err(|e| e.to_string())
         }
+        Command::Study {
+            study,
+            workers,
+            max_members,
+            output,
+            csv,
+        } => tribosim::study::command::study(&StudyArgs {
+            study,
+            workers: workers.map(|n| usize::try_from(n).unwrap_or(usize::MAX)),
+            max_members,
+            output,
+            csv,
+        })
+        .map(drop)
+        .map_err(|e| e.to_string()),
         Command::Bench {
             target,
             json,

@@ -1,0 +1,95 @@
+//! From a study to its members: every combination of the axes' values, each set at its
+//! path in the base scene and parsed as any scene is.
+
+use serde_json::{Map, Value};
+
+use crate::simulation::parse_scene;
+
+use super::{Member, Study, StudyError, describe_values};
+
+impl Study {
+    /// Every member, the first axis varying slowest (as nested loops written in the axes'
+    /// order). Refuses a study with no axes or more than `max_members` members before
+    /// building any, and a member whose scene the scene parser refuses, naming the field.
+    pub fn members(&self, max_members: usize) -> Result<Vec<Member>, StudyError> {
+        if self.axes.is_empty() {
+            return Err(StudyError::NoAxes);
+        }
+        let count = self.member_count();
+        if count > max_members {
+            let sizes = self
+                .axes
+                .iter()
+                .map(|axis| format!("{}: {}", axis.path, axis.values.len()))
+                .collect::<Vec<_>>()
+                .join(" x ");
+            return Err(StudyError::TooManyMembers {
+                members: count,
+                sizes,
+                limit: max_members,
+            });
+        }
+        (0..count).map(|index| self.member(index)).collect()
+    }
+
+    /// The member at `index` of the expansion order (mixed-radix digits, last axis fastest).
+    fn member(&self, index: usize) -> Result<Member, StudyError> {
+        let mut rest = index;
+        let mut values = vec![(String::new(), Value::Null); self.axes.len()];
+        for (slot, axis) in values.iter_mut().zip(&self.axes).rev() {
+            let n = axis.values.len();
+            *slot = (axis.path.clone(), axis.values[rest % n].clone());
+            rest /= n;
+        }
+        let mut document = self.base.clone();
+        for (path, value) in &values {
+            set(&mut document, path, value.clone())?;
+        }
+        let scene = parse_scene(&document).map_err(|source| StudyError::Member {
+            index,
+            values: describe_values(&values),
+            source,
+        })?;
+        Ok(Member {
+            index,
+            values,
+            scene,
+        })
+    }
+}
+
+/// Sets `value` at the dotted `path` of a scene document, under `overrides` when the
+/// document starts from a preset, creating the objects on the way. Whether the field exists
+/// is the scene parser's to say.
+fn set(document: &mut Value, path: &str, value: Value) -> Result<(), StudyError> {
+    let fail = |message: &str| StudyError::Axis {
+        axis: path.to_owned(),
+        message: message.to_owned(),
+    };
+    let Some(root) = document.as_object_mut() else {
+        return Err(StudyError::BaseNotObject);
+    };
+    let mut at = if root.contains_key("preset") {
+        root.entry("overrides")
+            .or_insert_with(|| Value::Object(Map::new()))
+    } else {
+        document
+    };
+    let keys: Vec<&str> = path.split('.').collect();
+    for (depth, key) in keys.iter().enumerate() {
+        let Some(object) = at.as_object_mut() else {
+            return Err(fail(&format!(
+                "`{}` is not an object in the base scene, so nothing can be set under it",
+                keys[..depth].join(".")
+            )));
+        };
+        if depth + 1 == keys.len() {
+            object.insert((*key).to_owned(), value);
+            return Ok(());
+        }
+        at = object
+            .entry(*key)
+            .or_insert_with(|| Value::Object(Map::new()));
+    }
+    Ok(())
+}

@@ -1,0 +1,202 @@
+//! A study's summary: one row per member with its varied values and its run's summary or
+//! its error, as JSON and as a markdown or CSV table.
+
+use serde::{Deserialize, Serialize};
+use serde_json::{Map, Value};
+
+use crate::simulation::Summary;
+
+use super::{Member, MemberOutcome};
+
+/// The summary of a study that ran.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StudySummary {
+    /// The axes' paths, in the order given.
+    pub axes: Vec<String>,
+    /// Worker threads used.
+    pub workers: usize,
+    /// Wall-clock time of the whole study, s.
+    pub wall_s: f64,
+    /// One row per member, in the expansion order.
+    pub members: Vec<MemberRow>,
+}
+
+/// One member of a study that ran.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MemberRow {
+    /// The member's position in the expansion order, from 0.
+    pub index: usize,
+    /// Each axis's path and the value it took.
+    pub values: Map<String, Value>,
+    /// The run's summary, when it finished.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub summary: Option<Summary>,
+    /// Why the run stopped, when it did not finish.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+/// The table's columns after the member number and the axes.
+const COLUMNS: [&str; 9] = [
+    "cycles",
+    "wear_volume_mm3",
+    "max_depth_um",
+    "wac_volume_mm3",
+    "potential_v",
+    "archard_k",
+    "wall_s",
+    "solves",
+    "error",
+];
+
+impl StudySummary {
+    /// Gathers the outcomes of `members` (as [`super::run_members`] returns them).
+    pub fn new(
+        members: &[Member],
+        outcomes: &[MemberOutcome],
+        workers: usize,
+        wall_s: f64,
+    ) -> Self {
+        let axes = members
+            .first()
+            .map(|m| m.values.iter().map(|(path, _)| path.clone()).collect())
+            .unwrap_or_default();
+        let members = members
+            .iter()
+            .zip(outcomes)
+            .map(|(member, outcome)| MemberRow {
+                index: member.index,
+                values: member.values.iter().cloned().collect(),
+                summary: outcome.result.as_ref().ok().map(|r| r.summary.clone()),
+                error: outcome.result.as_ref().err().map(ToString::to_string),
+            })
+            .collect();
+        Self {
+            axes,
+            workers,
+            wall_s,
+            members,
+        }
+    }
+
+    /// How many members did not finish.
+    pub fn failed(&self) -> usize {
+        self.members.iter().filter(|m| m.summary.is_none()).count()
+    }
+
+    /// The header and the cells of each row, as text.
+    fn cells(&self) -> (Vec<String>, Vec<Vec<String>>) {
+        let header = std::iter::once("member".to_owned())
+            .chain(self.axes.iter().cloned())
+            .chain(COLUMNS.iter().map(|c| (*c).to_owned()))
+            .collect();
+        let rows = self.members.iter().map(|row| self.row_cells(row)).collect();
+        (header, rows)
+    }
+
+    fn row_cells(&self, row: &MemberRow) -> Vec<String> {
+        let mut cells = vec![row.index.to_string()];
+        for axis in &self.axes {
+            cells.push(row.values.get(axis).map(plain).unwrap_or_default());
+        }
+        let optional = |x: Option<f64>| x.map(|x| format!("{x:.6e}")).unwrap_or_default();
+        match &row.summary {
+            Some(s) => cells.extend([
+                s.cycles.to_string(),
+                format!("{:.6e}", s.wear_volume_mm3),
+                format!("{:.4}", s.max_depth_um),
+                optional(s.wac_volume_mm3),
+                s.potential_v.map(|v| format!("{v:.5}")).unwrap_or_default(),
+                format!("{:.6e}", s.archard_k),
+                format!("{:.2}", s.wall_s),
+                s.solves.to_string(),
+                String::new(),
+            ]),
+            None => {
+                cells.extend(std::iter::repeat_n(String::new(), COLUMNS.len() - 1));
+                cells.push(row.error.clone().unwrap_or_default());
+            }
+        }
+        cells
+    }
+
+    /// The rows as a markdown table.
+    pub fn to_markdown(&self) -> String {
+        let (header, rows) = self.cells();
+        let line = |cells: &[String]| {
+            let escaped: Vec<String> = cells.iter().map(|c| c.replace('|', "\\|")).collect();
+            format!("| {} |\n", escaped.join(" | "))
+        };
+        let mut text = line(&header);
+        text += &format!("|{}\n", "---|".repeat(header.len()));
+        for row in &rows {
+            text += &line(row);
+        }
+        text
+    }
+
+    /// The rows as CSV (RFC 4180 quoting).
+    pub fn to_csv(&self) -> String {
+        let (header, rows) = self.cells();
+        std::iter::once(header)
+            .chain(rows)
+            .map(|cells| {
+                let quoted: Vec<String> = cells.iter().map(|c| csv_field(c)).collect();
+                quoted.join(",") + "\n"
+            })
+            .collect()
+    }
+}
+
+/// A value as a cell: strings without their JSON quotes.
+fn plain(value: &Value) -> String {
+    match value {
+        Value::String(s) => s.clone(),
+        other => other.to_string(),
+    }
+}
+
+fn csv_field(cell: &str) -> String {
+    if cell.contains([',', '"', '\n']) {
+        format!("\"{}\"", cell.replace('"', "\"\""))
+    } else {
+        cell.to_owned()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn failed_row(error: &str) -> StudySummary {
+        StudySummary {
+            axes: vec!["corrosion.model".into()],
+            workers: 1,
+            wall_s: 0.0,
+            members: vec![MemberRow {
+                index: 0,
+                values: [("corrosion.model".to_owned(), Value::from("a|b"))]
+                    .into_iter()
+                    .collect(),
+                summary: None,
+                error: Some(error.into()),
+            }],
+        }
+    }
+
+    #[test]
+    fn an_error_with_commas_and_quotes_stays_one_csv_cell() {
+        let csv = failed_row(r#"cycle 3: "x", then y"#).to_csv();
+        let row = csv.lines().nth(1).expect("a data row");
+        // member, the axis, eight empty summary cells, then the quoted error.
+        assert_eq!(row, r#"0,a|b,,,,,,,,,"cycle 3: ""x"", then y""#);
+    }
+
+    #[test]
+    fn a_pipe_in_a_value_does_not_split_a_markdown_cell() {
+        let markdown = failed_row("stopped").to_markdown();
+        let row = markdown.lines().nth(2).expect("a data row");
+        assert!(row.starts_with(r"| 0 | a\|b |"), "{row}");
+        assert!(row.ends_with("| stopped |"), "{row}");
+    }
+}
