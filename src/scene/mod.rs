@@ -99,7 +99,7 @@ impl Scene {
 
     /// Sliding speed 2 pi R_c rpm / 60, m/s (18.8 mm/s in the paper).
     pub fn sliding_speed_m_s(&self) -> f64 {
-        self.track_length_m() * self.test.speed_rpm / 60.0
+        self.test.sliding_speed_m_s()
     }
 
     /// Duration of one cycle, 60 / rpm, s.
@@ -109,7 +109,7 @@ impl Scene {
 
     /// Cycles completed after `time_s` of rubbing (fractional).
     pub fn cycles_at(&self, time_s: f64) -> f64 {
-        time_s * self.test.speed_rpm / 60.0
+        self.test.cycles_at(time_s)
     }
 
     /// The cycles recorded exactly (solved, profile kept), ascending.
@@ -132,30 +132,37 @@ impl Scene {
         if let Some(k) = self.wear.archard_k {
             return Ok(k);
         }
-        let point = self.archard_calibration();
-        let speed_rpm = point.speed_rpm.unwrap_or(self.test.speed_rpm);
-        let track_radius_m = point.track_radius_mm.unwrap_or(self.test.track_radius_mm) * 1e-3;
-        let sliding_distance_m = 2.0 * PI * track_radius_m * speed_rpm / 60.0 * point.time_s;
+        let (point, test) = self.archard_calibration();
         let hardness_pa = match point.hardness_mpa {
             Some(mpa) => mpa * 1e6,
             None => self
                 .hardness_law()?
-                .hardness_pa(point.time_s * speed_rpm / 60.0),
+                .hardness_pa(test.cycles_at(point.time_s)),
         };
         Ok(hardness::archard_k_from_measurement(
             point.wear_volume_mm3 * 1e-9,
             hardness_pa,
-            point.load_n.unwrap_or(self.test.load_n),
-            sliding_distance_m,
+            test.load_n,
+            test.sliding_speed_m_s() * point.time_s,
         ))
     }
 
-    /// The calibration point k is derived from when `archard_k` is not given.
-    fn archard_calibration(&self) -> &ArchardCalibration {
-        self.wear
+    /// The calibration point k is derived from when `archard_k` is not given, and the test
+    /// it was measured in: the scene's, with the point's own load, speed and track radius
+    /// where it gives them.
+    fn archard_calibration(&self) -> (&ArchardCalibration, TestConditions) {
+        let point = self
+            .wear
             .archard_calibration
             .as_ref()
-            .unwrap_or(&PAPER_ARCHARD_CALIBRATION)
+            .unwrap_or(&PAPER_ARCHARD_CALIBRATION);
+        let test = TestConditions {
+            load_n: point.load_n.unwrap_or(self.test.load_n),
+            speed_rpm: point.speed_rpm.unwrap_or(self.test.speed_rpm),
+            track_radius_mm: point.track_radius_mm.unwrap_or(self.test.track_radius_mm),
+            ..self.test.clone()
+        };
+        (point, test)
     }
 
     /// Where the Archard coefficient comes from, in words, for the `archard` model's reason.
@@ -163,7 +170,7 @@ impl Scene {
         if self.wear.archard_k.is_some() {
             return "given as wear.archard_k".to_owned();
         }
-        let point = self.archard_calibration();
+        let (point, test) = self.archard_calibration();
         let hardness = match point.hardness_mpa {
             Some(mpa) => format!("the measured H = {mpa} MPa"),
             None => "H from the hardness law".to_owned(),
@@ -171,11 +178,7 @@ impl Scene {
         format!(
             "eq. 14 from {} mm^3 worn after {} s at {} N and {} rpm on a {} mm track, with \
              {hardness}",
-            point.wear_volume_mm3,
-            point.time_s,
-            point.load_n.unwrap_or(self.test.load_n),
-            point.speed_rpm.unwrap_or(self.test.speed_rpm),
-            point.track_radius_mm.unwrap_or(self.test.track_radius_mm),
+            point.wear_volume_mm3, point.time_s, test.load_n, test.speed_rpm, test.track_radius_mm,
         )
     }
 

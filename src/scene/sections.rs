@@ -164,6 +164,19 @@ impl Default for TestConditions {
     }
 }
 
+impl TestConditions {
+    /// Sliding speed 2 pi R_c rpm / 60, m/s (18.8 mm/s in the paper).
+    pub fn sliding_speed_m_s(&self) -> f64 {
+        // The same order of operations as `Scene::track_length_m` times the turns per second.
+        2.0 * std::f64::consts::PI * (self.track_radius_mm * 1e-3) * self.speed_rpm / 60.0
+    }
+
+    /// Cycles completed after `time_s` of rubbing (fractional).
+    pub fn cycles_at(&self, time_s: f64) -> f64 {
+        time_s * self.speed_rpm / 60.0
+    }
+}
+
 /// Wear law settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
