@@ -158,6 +158,27 @@ try {
   assert.equal(potential.ecorr, -0.1, "the dashed line is not the preset's E_corr (-0.1 V)");
   assert.ok(potential.series.some((l) => /E_corr/.test(l)));
   assert.doesNotMatch(await page.textContent("#run-panel"), /\bum\b/, "the run panel says um, not µm");
+  assert.doesNotMatch(await page.textContent("#run-panel"), /--|WearTrack/, "a legend or a reason says -- or WearTrack");
+
+  step("the pressure maps: both at one length scale, x and y alike");
+  const maps = await page.evaluate(() => [...document.querySelectorAll("#plot-pressure svg g[data-cycle]")].map((g) => {
+    const map = state.result.pressure_maps.find((m) => m.cycle === Number(g.dataset.cycle));
+    const frame = g.querySelector("rect.frame");
+    const span = (c) => c[c.length - 1] - c[0] + (c[1] - c[0]);
+    return { cycle: map.cycle, spanX: span(map.x_um), spanY: span(map.y_um), width: Number(frame.getAttribute("width")), height: Number(frame.getAttribute("height")), umPerPx: Number(g.dataset.umPerPx) };
+  }));
+  console.log(`   maps: ${JSON.stringify(maps)}`);
+  assert.equal(maps.length, 2);
+  assert.equal(maps[0].umPerPx, maps[1].umPerPx);
+  // Each frame is its span at the one scale, to the 0.005 px of its two written decimals.
+  for (const m of maps) {
+    assert.ok(Math.abs(m.spanX / maps[0].umPerPx - m.width) <= 0.0051, `map ${m.cycle}: x not at the common scale`);
+    assert.ok(Math.abs(m.spanY / maps[0].umPerPx - m.height) <= 0.0051, `map ${m.cycle}: y not at the common scale`);
+  }
+
+  step("the run's parameters: the scene as run, and what differs from the preset");
+  assert.match(await page.textContent("#params-diff"), /Differs from the preset dalmau2018-316l in \d+ fields?:.*grid 64/);
+  assert.match(await page.textContent("#params-json"), /"load_n": 5/);
 
   step("download the JSON and the CSV");
   const [download] = await Promise.all([page.waitForEvent("download"), page.click("#download-json")]);
@@ -174,7 +195,6 @@ try {
 
   step("a 10 N run: no Table 3 beside it, and the page says why");
   await page.fill("#f-test-load_n", "10");
-  await page.fill("#f-test-cycles", "20");
   const presetRun = await page.$eval("#jobs tbody tr.selected", (tr) => tr.dataset.id);
   await page.click("#submit");
   await page.waitForFunction((id) => {
@@ -186,6 +206,176 @@ try {
   assert.equal(await page.$eval("#plot-volume", (el) => el.dataset.measured), "0");
   assert.equal(await page.isDisabled("#show-table3"), true);
   assert.match(await page.textContent("#table3-note"), /differ/);
+  const tenRun = await page.$eval("#jobs tbody tr.selected", (tr) => tr.dataset.id);
+
+  step("edit and run again: the form takes the run's values, and the name follows the fields");
+  await page.click("#edit-again");
+  assert.equal(await page.inputValue("#f-test-load_n"), "10");
+  assert.equal(await page.inputValue("#f-numerics-grid"), "64");
+  assert.match(await page.inputValue("#f-name"), /load 10 N/);
+  await page.fill("#f-test-load_n", "7");
+  assert.match(await page.inputValue("#f-name"), /load 7 N/);
+  assert.doesNotMatch(await page.inputValue("#f-name"), /10 N/);
+  await page.fill("#f-test-load_n", "5");
+
+  step("compare the 5 N and the 10 N runs: both curves, a legend from their scenes, summaries side by side");
+  for (const id of [presetRun, tenRun]) await page.check(`#jobs tr[data-id="${id}"] .compare-pick`);
+  await page.click("#compare-button");
+  await page.waitForSelector("#compare-panel:not([hidden])");
+  for (const id of ["cmp-volume", "cmp-depth", "cmp-potential", "cmp-wac", "cmp-profile"]) {
+    await page.waitForFunction((plotId) => document.getElementById(plotId).dataset.curves === "2", id);
+  }
+  const compared = await page.evaluate(() => {
+    const u = state.plots["cmp-volume"];
+    return {
+      labels: u.series.slice(1).map((s) => s.label),
+      points: u.data.slice(1).map((col) => col.filter((v) => v != null).length),
+      colours: u.series.slice(1).map((s) => s._stroke || s.stroke),
+      table: document.getElementById("cmp-table").innerText,
+    };
+  });
+  console.log(`   comparison: ${JSON.stringify({ labels: compared.labels, points: compared.points })}`);
+  assert.deepEqual(compared.labels, ["load 5 N", "load 10 N"]);
+  assert.ok(compared.points.every((n) => n > 10), `a curve is missing: ${compared.points}`);
+  assert.notEqual(compared.colours[0], compared.colours[1]);
+  assert.match(compared.table, /load \(N\)\s+5\s+10/);
+  assert.match(compared.table, /wear volume \(10⁻³ mm³\)\s+[\d.]+\s+[\d.]+ \(\+[\d.]+ %\)/);
+  await page.check('input[name="cmp-x"][value="time"]');
+  assert.equal(await page.evaluate(() => state.specs["cmp-volume"].xLabel), "time (s)");
+  await page.check('input[name="cmp-x"][value="cycles"]');
+  await page.locator("#compare-panel").screenshot({ path: path.join(shots, "comparison.png") });
+
+  step("export the comparison's volume figure as SVG and PNG, and open both");
+  const [svgDownload] = await Promise.all([page.waitForEvent("download"), page.click("#cmp-volume .export-svg")]);
+  const svgText = fs.readFileSync(await svgDownload.path(), "utf8");
+  const svg = await page.evaluate((text) => {
+    const doc = new DOMParser().parseFromString(text, "image/svg+xml");
+    const root = doc.documentElement;
+    return {
+      error: doc.querySelector("parsererror") ? doc.querySelector("parsererror").textContent : null,
+      width: Number(root.getAttribute("width")), height: Number(root.getAttribute("height")),
+      lines: [...doc.querySelectorAll("polyline")].map((l) => [l.getAttribute("data-series"), l.getAttribute("points").split(" ").length]),
+      texts: [...doc.querySelectorAll("text")].map((t) => t.textContent),
+    };
+  }, svgText);
+  console.log(`   ${svgDownload.suggestedFilename()}: ${svg.width} x ${svg.height}, lines ${JSON.stringify(svg.lines)}`);
+  assert.equal(svg.error, null);
+  assert.deepEqual(svg.lines.map((l) => l[0]), ["load 5 N", "load 10 N"]);
+  assert.ok(svg.lines.every((l) => l[1] > 10));
+  for (const text of ["wear volume (10⁻³ mm³)", "cycles (passes of the ball)", "load 5 N", "load 10 N"]) assert.ok(svg.texts.includes(text), `the SVG lacks "${text}"`);
+  const [pngDownload] = await Promise.all([page.waitForEvent("download"), page.click("#cmp-volume .export-png")]);
+  const png = fs.readFileSync(await pngDownload.path());
+  assert.equal(png.subarray(1, 4).toString("latin1"), "PNG");
+  const pngSize = [png.readUInt32BE(16), png.readUInt32BE(20)];
+  const decoded = await page.evaluate(async (b64) => {
+    const bitmap = await createImageBitmap(await (await fetch("data:image/png;base64," + b64)).blob());
+    return [bitmap.width, bitmap.height];
+  }, png.toString("base64"));
+  console.log(`   ${pngDownload.suggestedFilename()}: ${pngSize.join(" x ")} px, ${png.length} bytes`);
+  assert.deepEqual(pngSize, [svg.width * 3, svg.height * 3]);
+  assert.deepEqual(decoded, pngSize);
+  const [mapDownload] = await Promise.all([page.waitForEvent("download"), page.click("#plot-pressure .export-svg")]);
+  const mapRects = await page.evaluate((text) => new DOMParser().parseFromString(text, "image/svg+xml").querySelectorAll("g[data-cycle] rect").length, fs.readFileSync(await mapDownload.path(), "utf8"));
+  assert.ok(mapRects > 100, `the pressure maps' SVG has ${mapRects} cells`);
+
+  step("contrast: focus ring, status colours and chart lines against WCAG AA");
+  // A keyboard move, so that the focus ring (:focus-visible) shows.
+  await page.focus("#f-test-cycles");
+  await page.keyboard.press("Tab");
+  const contrast = await page.evaluate(() => {
+    const rgb = (c) => c.match(/\d+(\.\d+)?/g).slice(0, 3).map(Number);
+    const lum = (c) => {
+      const [r, g, b] = rgb(c).map((v) => { v /= 255; return v <= 0.03928 ? v / 12.92 : ((v + 0.055) / 1.055) ** 2.4; });
+      return 0.2126 * r + 0.7152 * g + 0.0722 * b;
+    };
+    const ratio = (a, b) => { const [x, y] = [lum(a), lum(b)].sort((p, q) => q - p); return (x + 0.05) / (y + 0.05); };
+    const white = "rgb(255, 255, 255)", selected = getComputedStyle(document.querySelector("#jobs tr.selected") || document.body).backgroundColor;
+    const focusStyle = getComputedStyle(document.activeElement);
+    const ring = focusStyle.outlineStyle === "none" ? white : focusStyle.outlineColor;
+    const probe = document.createElement("span");
+    document.body.appendChild(probe);
+    const status = {};
+    for (const s of ["succeeded", "failed", "running", "cancelled", "damaged"]) {
+      probe.className = "status-" + s;
+      status[s] = Math.min(ratio(getComputedStyle(probe).color, white), ratio(getComputedStyle(probe).color, selected.startsWith("rgba(0, 0, 0, 0)") ? white : selected));
+    }
+    probe.className = "muted";
+    const muted = ratio(getComputedStyle(probe).color, white);
+    probe.remove();
+    return { ring: ratio(ring, white), status, muted, lines: Math.min(...COLORS.map((c) => ratio(`rgb(${parseInt(c.slice(1, 3), 16)}, ${parseInt(c.slice(3, 5), 16)}, ${parseInt(c.slice(5, 7), 16)})`, white))) };
+  });
+  console.log(`   contrast: ${JSON.stringify(contrast)}`);
+  assert.ok(contrast.ring >= 3, "focus ring below 3:1");
+  assert.ok(contrast.lines >= 3, "a chart colour below 3:1");
+  assert.ok(contrast.muted >= 4.5, "muted text below 4.5:1");
+  for (const [s, r] of Object.entries(contrast.status)) assert.ok(r >= 4.5, `status ${s} below 4.5:1`);
+
+  step("phone width (390 px): no horizontal scroll, no chart or input past the edge; a job lower in the list brings its plots into view");
+  await page.setViewportSize({ width: 390, height: 844 });
+  await page.waitForTimeout(400);
+  const phone = await page.evaluate(() => {
+    const past = [...document.querySelectorAll(".plot, canvas, .heatmaps svg, #run-form input, #run-form select, #run-form textarea, #run-form button")]
+      .filter((el) => el.offsetParent && el.getBoundingClientRect().right > document.documentElement.clientWidth + 0.5)
+      .map((el) => el.id || el.className || el.tagName);
+    const cut = [...document.querySelectorAll("#run-form input:not([type=checkbox]), #run-form select")]
+      .filter((el) => el.getBoundingClientRect().width < 60).map((el) => el.id);
+    return { scrollWidth: document.documentElement.scrollWidth, clientWidth: document.documentElement.clientWidth, past, cut };
+  });
+  console.log(`   phone: ${JSON.stringify(phone)}`);
+  assert.ok(phone.scrollWidth <= phone.clientWidth, `the page scrolls sideways: ${phone.scrollWidth} > ${phone.clientWidth}`);
+  assert.deepEqual(phone.past, []);
+  assert.deepEqual(phone.cut, []);
+  await page.screenshot({ path: path.join(shots, "phone.png"), fullPage: false });
+  await page.evaluate(() => window.scrollTo(0, 0));
+  const lowest = page.locator("#jobs tbody tr").last();
+  await lowest.locator("button.view").click();
+  await page.waitForFunction(() => {
+    const top = document.getElementById("run-panel").getBoundingClientRect().top;
+    return top >= -1 && top < window.innerHeight / 2;
+  });
+  await page.setViewportSize({ width: 1440, height: 1000 });
+
+  step("keyboard only, from a fresh load: a run started and viewed; the tab order follows the page");
+  await page.goto(base);
+  await page.waitForSelector("body[data-ready=true]");
+  await page.waitForSelector("#jobs tbody tr");
+  await page.evaluate(() => { window.tabbed = []; });
+  const tabTo = async (selector, limit = 60) => {
+    for (let i = 0; i < limit; i++) {
+      await page.keyboard.press("Tab");
+      const hit = await page.evaluate((sel) => { window.tabbed.push(document.activeElement); return document.activeElement.matches(sel); }, selector);
+      if (hit) return;
+    }
+    throw new Error(`Tab never reached ${selector}`);
+  };
+  await tabTo("#f-test-cycles");
+  await page.keyboard.press("Control+A");
+  await page.keyboard.type("20");
+  await tabTo("#f-numerics-grid");
+  await page.keyboard.press("Control+A");
+  await page.keyboard.type("32");
+  assert.match(await page.inputValue("#f-name"), /cycles 20, grid 32/);
+  await tabTo("#submit");
+  const known = await page.$$eval("#jobs tbody tr", (trs) => trs.map((tr) => tr.dataset.id));
+  await page.keyboard.press("Enter");
+  await page.waitForFunction((ids) => [...document.querySelectorAll("#jobs tbody tr")].some((tr) => !ids.includes(tr.dataset.id)), known);
+  const keyRun = await page.$eval("#jobs tbody tr", (tr) => tr.dataset.id);
+  assert.ok(!known.includes(keyRun), "the newest row is not the keyboard's run");
+  await page.waitForFunction((id) => /succeeded/.test(document.querySelector(`#jobs tr[data-id="${id}"]`).textContent), keyRun, { timeout: 600_000 });
+  await tabTo(`#jobs tr[data-id="${keyRun}"] button.view`);
+  await page.keyboard.press("Enter");
+  await page.waitForFunction(() => document.activeElement.id === "run-panel" && document.getElementById("run-status").textContent.startsWith("succeeded"));
+  await page.waitForFunction(() => Number(document.getElementById("plot-depth").dataset.points) > 0);
+  const order = await page.evaluate(() => {
+    const seq = window.tabbed.filter((el) => el.isConnected);
+    const back = [];
+    for (let i = 1; i < seq.length; i++) {
+      if (seq[i] !== seq[i - 1] && !(seq[i - 1].compareDocumentPosition(seq[i]) & Node.DOCUMENT_POSITION_FOLLOWING)) back.push(`${seq[i - 1].id || seq[i - 1].className} -> ${seq[i].id || seq[i].className}`);
+    }
+    return { count: seq.length, back };
+  });
+  console.log(`   ${order.count} tab stops, backwards: ${JSON.stringify(order.back)}`);
+  assert.deepEqual(order.back, [], "the tab order jumps back in the page");
 
   step("cancel a running job (after a confirmation), see why it stopped, then delete it");
   await page.fill("#f-test-cycles", "100000");
