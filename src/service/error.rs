@@ -103,6 +103,22 @@ impl ApiError {
         }
     }
 
+    /// 422: a well-formed request whose content is refused, with the fields at fault.
+    pub fn unprocessable(message: impl Into<String>, fields: Vec<FieldError>) -> Self {
+        Self {
+            fields,
+            ..Self::new(StatusCode::UNPROCESSABLE_ENTITY, message)
+        }
+    }
+
+    /// 429 with its own message: a study needs more places than the queue has free now.
+    pub fn no_room(message: impl Into<String>, retry_after_s: u64) -> Self {
+        Self {
+            retry_after_s: Some(retry_after_s),
+            ..Self::new(StatusCode::TOO_MANY_REQUESTS, message)
+        }
+    }
+
     /// 429: the queue is full; try again after `retry_after_s` seconds.
     pub fn queue_full(capacity: usize, retry_after_s: u64) -> Self {
         Self {

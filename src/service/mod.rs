@@ -23,6 +23,9 @@ mod queue;
 mod registry;
 mod routes;
 mod store;
+mod studies;
+mod study_record;
+mod study_routes;
 mod worker;
 
 use std::future::Future;
@@ -48,6 +51,7 @@ pub use routes::{MAX_URI_BYTES, OPENAPI_YAML, ROUTES, Route, Verb};
 
 use registry::Jobs;
 use store::Store;
+use studies::Studies;
 
 /// Largest request body accepted (a scene is a few kilobytes).
 pub const BODY_LIMIT_BYTES: usize = 1 << 20;
@@ -67,6 +71,10 @@ pub struct ServeArgs {
     /// Jobs that may wait for a worker; further submissions get 429.
     #[arg(long, default_value_t = NonZeroUsize::new(64).unwrap_or(NonZeroUsize::MIN))]
     pub queue_capacity: NonZeroUsize,
+    /// The most members a study may have; larger studies are refused (422). A study must
+    /// also fit in the queue (--queue-capacity).
+    #[arg(long, default_value_t = default_max_study_members())]
+    pub max_study_members: NonZeroUsize,
     /// Bearer token required on every API call (`Authorization: Bearer <token>`). A token
     /// on the command line shows in the process list: prefer TRIBOSIM_TOKEN or --token-file.
     #[arg(long, env = "TRIBOSIM_TOKEN", hide_env_values = true)]
@@ -155,6 +163,10 @@ fn seconds() -> clap::builder::RangedU64ValueParser<u64> {
     clap::value_parser!(u64).range(1..)
 }
 
+fn default_max_study_members() -> NonZeroUsize {
+    NonZeroUsize::new(crate::study::MAX_MEMBERS).unwrap_or(NonZeroUsize::MIN)
+}
+
 fn default_workers() -> NonZeroUsize {
     std::thread::available_parallelism().unwrap_or(NonZeroUsize::MIN)
 }
@@ -211,6 +223,7 @@ pub enum ServeError {
 #[derive(Clone)]
 struct AppState {
     jobs: Arc<Jobs>,
+    studies: Arc<Studies>,
     token: Option<Arc<str>>,
     /// Where the page is read from; the built-in copy when `None`.
     static_dir: Option<Arc<Path>>,
@@ -253,8 +266,13 @@ pub async fn serve_on(
     let cors = cors_layer(&args.cors_origins)?;
     let data_dir = args.data_dir.clone();
     let capacity = args.queue_capacity.get();
-    let jobs = tokio::task::spawn_blocking(move || {
-        Store::open(&data_dir).and_then(|store| Jobs::open(store, capacity))
+    let (max_members, workers) = (args.max_study_members.get(), args.workers.get());
+    let (jobs, studies) = tokio::task::spawn_blocking(move || {
+        let store = Store::open(&data_dir)?;
+        let quarantine = store.quarantine_dir().to_owned();
+        let jobs = Jobs::open(store, capacity)?;
+        let studies = Studies::open(&data_dir, &quarantine, max_members, workers)?;
+        Ok::<_, io::Error>((jobs, Arc::new(studies)))
     })
     .await
     .map_err(io::Error::other)?
@@ -276,6 +294,7 @@ pub async fn serve_on(
     }
     let app = AppState {
         jobs: Arc::clone(&jobs),
+        studies,
         token: token.map(Arc::from),
         static_dir: args.static_dir.as_deref().map(Arc::from),
         body_timeout_s: limits.body_timeout_s,

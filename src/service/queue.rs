@@ -47,18 +47,32 @@ impl Queue {
 
     /// Promises a place to a submission; `false` when the queue is full.
     pub(super) fn reserve(&self) -> bool {
+        self.reserve_many(1).is_ok()
+    }
+
+    /// Promises `count` places at once (a study's members), all or none; the places free
+    /// when there are fewer.
+    pub(super) fn reserve_many(&self, count: usize) -> Result<(), usize> {
         let mut pending = self.lock();
-        if pending.jobs.len() + pending.reserved >= self.capacity {
-            return false;
+        let free = self
+            .capacity
+            .saturating_sub(pending.jobs.len() + pending.reserved);
+        if count > free {
+            return Err(free);
         }
-        pending.reserved += 1;
-        true
+        pending.reserved += count;
+        Ok(())
     }
 
     /// Gives back a place whose submission failed.
     pub(super) fn release(&self) {
+        self.release_many(1);
+    }
+
+    /// Gives back `count` places whose submissions failed.
+    pub(super) fn release_many(&self, count: usize) {
         let mut pending = self.lock();
-        pending.reserved = pending.reserved.saturating_sub(1);
+        pending.reserved = pending.reserved.saturating_sub(count);
     }
 
     /// Queues a job in the place reserved for it.

@@ -25,6 +25,8 @@ pub enum SubmitError {
     QueueFull {
         /// The queue's capacity.
         capacity: usize,
+        /// Places free now (fewer than asked for).
+        free: usize,
         /// A hint for Retry-After.
         retry_after_s: u64,
     },
@@ -182,6 +184,7 @@ impl Jobs {
         if !self.queue.reserve() {
             return Err(SubmitError::QueueFull {
                 capacity: self.queue.capacity(),
+                free: 0,
                 retry_after_s: self.retry_after_s(),
             });
         }
@@ -200,6 +203,57 @@ impl Jobs {
         self.queue.admit(job);
         tracing::info!(id = %record.id, cycles = record.cycles_total, "job queued");
         Ok(record)
+    }
+
+    /// Accepts several validated scenes at once (a study's members), all or none: places
+    /// for all of them are reserved, each is made durable, `persist` records what owns them,
+    /// and only then are they queued. If any step fails, the jobs already written are
+    /// removed. Blocking (file writes).
+    pub fn submit_many(
+        &self,
+        scenes: Vec<Scene>,
+        persist: impl FnOnce(&[JobRecord]) -> io::Result<()>,
+    ) -> Result<Vec<JobRecord>, SubmitError> {
+        let count = scenes.len();
+        if let Err(free) = self.queue.reserve_many(count) {
+            return Err(SubmitError::QueueFull {
+                capacity: self.queue.capacity(),
+                free,
+                retry_after_s: self.retry_after_s(),
+            });
+        }
+        let mut created: Vec<(JobRecord, Scene)> = Vec::with_capacity(count);
+        let mut written = Ok(());
+        for scene in scenes {
+            let record = JobRecord::queued(&scene);
+            written = self.store.create(&record, &scene);
+            if written.is_err() {
+                break;
+            }
+            created.push((record, scene));
+        }
+        let records: Vec<JobRecord> = created.iter().map(|(r, _)| r.clone()).collect();
+        if let Err(e) = written.and_then(|()| persist(&records)) {
+            for record in &records {
+                if let Err(e) = self.store.remove(record.id) {
+                    tracing::error!(id = %record.id, "cannot remove a refused job: {e}");
+                }
+            }
+            self.queue.release_many(count);
+            return Err(if is_disk_full(&e) {
+                tracing::error!("jobs refused: {e}");
+                SubmitError::DiskFull
+            } else {
+                SubmitError::Storage(e)
+            });
+        }
+        for (record, scene) in created {
+            let job = Arc::new(Job::new(record, Some(scene), Some(Vec::new())));
+            self.insert(Arc::clone(&job));
+            self.queue.admit(job);
+        }
+        tracing::info!(jobs = count, "jobs queued together");
+        Ok(records)
     }
 
     /// Seconds until a place in the queue is likely to free up: the soonest running job's
@@ -271,44 +325,55 @@ impl Jobs {
     pub fn delete(&self, id: Uuid) -> Option<io::Result<Deletion>> {
         let job = self.get(id)?;
         let _disk = job.disk();
-        let mut record = job.record();
-        let deletion = match record.status {
-            JobStatus::Queued | JobStatus::Running => {
-                let was = record.status;
-                record.status = JobStatus::Cancelled;
-                record.eta_s = None;
-                record.finished_at = Some(OffsetDateTime::now_utc());
-                if let Err(e) = self.store.write_status(&record) {
-                    return Some(Err(e));
-                }
-                if was == JobStatus::Queued {
-                    self.queue.remove(id);
-                    tracing::info!(%id, "queued job cancelled");
-                    Deletion::Cancelled(job.update(|state| state.record = record))
-                } else {
-                    // On disk the job is cancelled already; in memory it runs until the
-                    // worker sees the flag, within a cycle.
-                    job.state().cancel_requested = true;
-                    job.cancel.store(true, Ordering::Relaxed);
-                    tracing::info!(%id, "running job asked to cancel");
-                    Deletion::Cancelling(job.record())
-                }
-            }
-            JobStatus::Succeeded
-            | JobStatus::Failed
-            | JobStatus::Cancelled
-            | JobStatus::Damaged => {
-                // `None` when a concurrent DELETE removed it first.
-                self.lock_jobs().remove(&id)?;
-                if let Err(e) = self.store.remove(id) {
-                    self.insert(Arc::clone(&job));
-                    return Some(Err(e));
-                }
-                tracing::info!(%id, "finished job removed");
-                Deletion::Removed
-            }
-        };
-        Some(Ok(deletion))
+        let record = job.record();
+        if !record.status.is_final() {
+            return Some(self.cancel_locked(&job, record));
+        }
+        // `None` when a concurrent DELETE removed it first.
+        self.lock_jobs().remove(&id)?;
+        if let Err(e) = self.store.remove(id) {
+            self.insert(Arc::clone(&job));
+            return Some(Err(e));
+        }
+        tracing::info!(%id, "finished job removed");
+        Some(Ok(Deletion::Removed))
+    }
+
+    /// Cancels a job as DELETE does if it has not finished; leaves a finished one alone
+    /// (`Ok(None)`), so that a job ending meanwhile keeps its result. `None` for an unknown
+    /// id. Blocking (files).
+    pub fn cancel(&self, id: Uuid) -> Option<io::Result<Option<Deletion>>> {
+        let job = self.get(id)?;
+        let _disk = job.disk();
+        let record = job.record();
+        if record.status.is_final() {
+            return Some(Ok(None));
+        }
+        Some(self.cancel_locked(&job, record).map(Some))
+    }
+
+    /// Cancels a queued or running job, its disk lock held.
+    fn cancel_locked(&self, job: &Arc<Job>, mut record: JobRecord) -> io::Result<Deletion> {
+        let id = job.id;
+        let was = record.status;
+        record.status = JobStatus::Cancelled;
+        record.eta_s = None;
+        record.finished_at = Some(OffsetDateTime::now_utc());
+        self.store.write_status(&record)?;
+        if was == JobStatus::Queued {
+            self.queue.remove(id);
+            tracing::info!(%id, "queued job cancelled");
+            Ok(Deletion::Cancelled(
+                job.update(|state| state.record = record),
+            ))
+        } else {
+            // On disk the job is cancelled already; in memory it runs until the worker sees
+            // the flag, within a cycle.
+            job.state().cancel_requested = true;
+            job.cancel.store(true, Ordering::Relaxed);
+            tracing::info!(%id, "running job asked to cancel");
+            Ok(Deletion::Cancelling(job.record()))
+        }
     }
 }
 

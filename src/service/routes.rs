@@ -25,6 +25,7 @@ use super::export;
 use super::job::JobStatus;
 use super::registry::{Deletion, SubmitError};
 use super::store::is_disk_full;
+use super::study_routes;
 use crate::json::{self, JsonError};
 use crate::scene::{FieldError, SceneErrors, presets};
 use crate::simulation::parse_scene;
@@ -161,6 +162,42 @@ pub const ROUTES: &[Route] = &[
         auth: true,
         handler: |f| on(f, job_result_csv),
     },
+    Route {
+        verb: Verb::Post,
+        path: "/api/v1/studies",
+        auth: true,
+        handler: |f| on(f, study_routes::submit_study),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/studies",
+        auth: true,
+        handler: |f| on(f, study_routes::list_studies),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/studies/{id}",
+        auth: true,
+        handler: |f| on(f, study_routes::get_study),
+    },
+    Route {
+        verb: Verb::Delete,
+        path: "/api/v1/studies/{id}",
+        auth: true,
+        handler: |f| on(f, study_routes::delete_study),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/studies/{id}/summary",
+        auth: true,
+        handler: |f| on(f, study_routes::study_summary),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/studies/{id}/summary.csv",
+        auth: true,
+        handler: |f| on(f, study_routes::study_summary_csv),
+    },
 ];
 
 /// A job id from the path, parsed as a UUID before anything else looks at it.
@@ -178,7 +215,7 @@ impl<S: Send + Sync> FromRequestParts<S> for JobId {
 }
 
 /// The first [`ECHOED_ID_CHARS`] characters of `raw`, with an ellipsis if there were more.
-fn cut(raw: &str) -> String {
+pub(super) fn cut(raw: &str) -> String {
     match raw.char_indices().nth(ECHOED_ID_CHARS) {
         Some((end, _)) => format!("{}...", &raw[..end]),
         None => raw.to_owned(),
@@ -321,6 +358,7 @@ async fn submit(State(app): State<AppState>, request: Request) -> Result<Respons
             SubmitError::QueueFull {
                 capacity,
                 retry_after_s,
+                ..
             } => ApiError::queue_full(capacity, retry_after_s),
             SubmitError::DiskFull => disk_full("the job was not accepted"),
             SubmitError::Storage(e) => ApiError::internal("storing the job", &e),
@@ -336,7 +374,7 @@ async fn submit(State(app): State<AppState>, request: Request) -> Result<Respons
 
 /// The whole body, within the body timeout: a client sending a byte now and then holds no
 /// handler for longer.
-async fn read_body(app: &AppState, request: Request) -> Result<Bytes, ApiError> {
+pub(super) async fn read_body(app: &AppState, request: Request) -> Result<Bytes, ApiError> {
     let limit = Duration::from_secs(app.body_timeout_s);
     let body: Result<Bytes, BytesRejection> =
         tokio::time::timeout(limit, Bytes::from_request(request, app))
@@ -346,7 +384,7 @@ async fn read_body(app: &AppState, request: Request) -> Result<Bytes, ApiError> 
 }
 
 /// `application/json`, any parameters, or a `+json` type.
-fn is_json(headers: &HeaderMap) -> bool {
+pub(super) fn is_json(headers: &HeaderMap) -> bool {
     headers
         .get(header::CONTENT_TYPE)
         .and_then(|value| value.to_str().ok())
@@ -359,7 +397,7 @@ async fn list_jobs(State(app): State<AppState>) -> impl IntoResponse {
     Json(app.jobs.list())
 }
 
-fn disk_full(what: &str) -> ApiError {
+pub(super) fn disk_full(what: &str) -> ApiError {
     ApiError::insufficient_storage(format!(
         "the server's disk is full: {what}; retry once space is freed"
     ))

@@ -200,19 +200,12 @@ impl Store {
 
     /// Moves `path` into the quarantine directory, logging where; logs if it cannot.
     fn quarantine(&self, path: &Path) {
-        let name = path.file_name().unwrap_or_default().to_string_lossy();
-        let target = self
-            .quarantine_dir
-            .join(format!("{name}.{}", Uuid::new_v4().simple()));
-        let moved = fs::create_dir_all(&self.quarantine_dir)
-            .and_then(|()| fs::rename(path, &target))
-            .and_then(|()| sync_dir(&self.jobs_dir));
-        match moved {
-            Ok(()) => tracing::warn!(from = %path.display(), to = %target.display(), "quarantined"),
-            Err(e) => {
-                tracing::error!(path = %path.display(), "cannot quarantine: {e}; left in place");
-            }
-        }
+        quarantine(&self.quarantine_dir, path);
+    }
+
+    /// Where damaged files are moved (`<data-dir>/quarantine`).
+    pub fn quarantine_dir(&self) -> &Path {
+        &self.quarantine_dir
     }
 
     fn dir(&self, id: Uuid) -> PathBuf {
@@ -386,6 +379,22 @@ fn read_json<T: serde::de::DeserializeOwned>(dir: &Path, file: &'static str) -> 
     })
 }
 
+/// Moves `path` into `quarantine_dir` under a unique name, logging where; logs if it cannot.
+pub(super) fn quarantine(quarantine_dir: &Path, path: &Path) {
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    let target = quarantine_dir.join(format!("{name}.{}", Uuid::new_v4().simple()));
+    let parent = path.parent().unwrap_or(quarantine_dir);
+    let moved = fs::create_dir_all(quarantine_dir)
+        .and_then(|()| fs::rename(path, &target))
+        .and_then(|()| sync_dir(parent));
+    match moved {
+        Ok(()) => tracing::warn!(from = %path.display(), to = %target.display(), "quarantined"),
+        Err(e) => {
+            tracing::error!(path = %path.display(), "cannot quarantine: {e}; left in place");
+        }
+    }
+}
+
 /// Removes a file or a directory tree.
 fn remove_any(path: &Path) -> io::Result<()> {
     if fs::symlink_metadata(path)?.is_dir() {
@@ -396,7 +405,7 @@ fn remove_any(path: &Path) -> io::Result<()> {
 }
 
 /// Removes the temporary files of writes a crash interrupted.
-fn sweep_temporaries(job_dir: &Path) -> io::Result<()> {
+pub(super) fn sweep_temporaries(job_dir: &Path) -> io::Result<()> {
     for entry in fs::read_dir(job_dir)? {
         let entry = entry?;
         let name = entry.file_name();
@@ -450,12 +459,12 @@ pub fn is_disk_full(error: &io::Error) -> bool {
     )
 }
 
-fn to_json(value: &impl serde::Serialize) -> io::Result<Vec<u8>> {
+pub(super) fn to_json(value: &impl serde::Serialize) -> io::Result<Vec<u8>> {
     serde_json::to_vec_pretty(value).map_err(io::Error::other)
 }
 
 /// Writes `dir/name` atomically and durably.
-fn write_atomic(dir: &Path, name: &str, bytes: &[u8]) -> io::Result<()> {
+pub(super) fn write_atomic(dir: &Path, name: &str, bytes: &[u8]) -> io::Result<()> {
     // A unique temporary name, so two writers can never interleave in one temporary file.
     let temporary = dir.join(format!(".{name}.{}.tmp", Uuid::new_v4()));
     let written = (|| {
@@ -473,6 +482,6 @@ fn write_atomic(dir: &Path, name: &str, bytes: &[u8]) -> io::Result<()> {
 }
 
 /// Makes a directory's entries (creations, renames) durable.
-fn sync_dir(dir: &Path) -> io::Result<()> {
+pub(super) fn sync_dir(dir: &Path) -> io::Result<()> {
     File::open(dir)?.sync_all()
 }

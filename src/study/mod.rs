@@ -19,7 +19,7 @@ use crate::scene::{Scene, SceneErrors};
 
 pub use axes::{Axis, AxisValues};
 pub use run::{MemberOutcome, run_members};
-pub use summary::{MemberRow, StudySummary};
+pub use summary::{MemberRow, Pending, StudySummary};
 
 /// The most members a study may have unless the caller raises it: at the paper's full test
 /// (about 6 s a run on one core) 1000 members are hours of a workstation's time, which a

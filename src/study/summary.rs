@@ -34,6 +34,30 @@ pub struct MemberRow {
     /// Why the run stopped, when it did not finish.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
+    /// Where a member that has not ended is, in a summary taken while the study runs (the
+    /// service's); absent once it has ended, so always absent from `tribosim study`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pending: Option<Pending>,
+}
+
+/// Where a member that has not ended is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Pending {
+    /// Waiting for a worker.
+    Queued,
+    /// Running.
+    Running,
+}
+
+impl Pending {
+    /// The state as the JSON spells it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Queued => "queued",
+            Self::Running => "running",
+        }
+    }
 }
 
 /// The table's columns after the member number and the axes.
@@ -69,6 +93,7 @@ impl StudySummary {
                 values: member.values.iter().cloned().collect(),
                 summary: outcome.result.as_ref().ok().map(|r| r.summary.clone()),
                 error: outcome.result.as_ref().err().map(ToString::to_string),
+                pending: None,
             })
             .collect();
         Self {
@@ -79,9 +104,12 @@ impl StudySummary {
         }
     }
 
-    /// How many members did not finish.
+    /// How many members ended without a result.
     pub fn failed(&self) -> usize {
-        self.members.iter().filter(|m| m.summary.is_none()).count()
+        self.members
+            .iter()
+            .filter(|m| m.summary.is_none() && m.pending.is_none())
+            .count()
     }
 
     /// The header and the cells of each row, as text.
@@ -114,7 +142,8 @@ impl StudySummary {
             ]),
             None => {
                 cells.extend(std::iter::repeat_n(String::new(), COLUMNS.len() - 1));
-                cells.push(row.error.clone().unwrap_or_default());
+                let not_done = row.pending.map(|p| format!("not finished ({})", p.name()));
+                cells.push(row.error.clone().or(not_done).unwrap_or_default());
             }
         }
         cells
@@ -180,6 +209,7 @@ mod tests {
                     .collect(),
                 summary: None,
                 error: Some(error.into()),
+                pending: None,
             }],
         }
     }

@@ -72,6 +72,7 @@ pub fn args(data_dir: &Path) -> ServeArgs {
         data_dir: data_dir.to_owned(),
         workers: NonZeroUsize::new(2).expect("non-zero"),
         queue_capacity: NonZeroUsize::new(64).expect("non-zero"),
+        max_study_members: NonZeroUsize::new(tribosim::study::MAX_MEMBERS).expect("non-zero"),
         token: None,
         token_file: None,
         cors_origins: Vec::new(),
