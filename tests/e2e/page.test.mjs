@@ -377,6 +377,30 @@ try {
   console.log(`   ${order.count} tab stops, backwards: ${JSON.stringify(order.back)}`);
   assert.deepEqual(order.back, [], "the tab order jumps back in the page");
 
+  step("a study: the form's scene at 2 and 5 N; its members' results against the load; two members compared");
+  await page.fill("#f-test-cycles", "20");
+  await page.fill("#f-numerics-grid", "32");
+  await page.click("#study-new summary");
+  await page.fill("#study-axes", JSON.stringify({ "test.load_n": [2, 5] }));
+  await page.click("#study-submit");
+  await page.waitForSelector("#study-panel:not([hidden])");
+  await page.waitForFunction(() => document.getElementById("study-status").textContent.startsWith("succeeded"), null, { timeout: 600_000 });
+  await page.waitForFunction(() => Number(document.getElementById("study-volume").dataset.points) === 2);
+  const study = await page.evaluate(() => ({
+    rows: [...document.querySelectorAll("#study-members tbody tr")].map((tr) => tr.innerText.replace(/\s+/g, " ").trim()),
+    xLabel: state.specs["study-volume"].xLabel,
+    volumes: state.plots["study-volume"].data[1],
+  }));
+  console.log(`   study: ${JSON.stringify(study)}`);
+  assert.equal(study.rows.length, 2);
+  assert.equal(study.xLabel, "load (N)");
+  assert.ok(study.volumes[1] > study.volumes[0], "the 5 N member did not wear more than the 2 N one");
+  for (const box of await page.$$("#study-members tbody input[type=checkbox]")) await box.check();
+  await page.click("#study-compare");
+  await page.waitForFunction(() => document.getElementById("cmp-volume").dataset.curves === "2" && state.compared.length === 2);
+  assert.deepEqual(await page.evaluate(() => state.compared.map((r) => r.label)), ["load 2 N", "load 5 N"]);
+  await page.click("#compare-close");
+
   step("cancel a running job (after a confirmation), see why it stopped, then delete it");
   await page.fill("#f-test-cycles", "100000");
   await page.click("#submit");
