@@ -146,7 +146,7 @@ fn require_points(
 }
 
 /// Checks that `values` increases strictly, row by row.
-fn require_increasing(column: &'static str, values: &[f64]) -> Result<(), CalibrationError> {
+pub fn require_increasing(column: &'static str, values: &[f64]) -> Result<(), CalibrationError> {
     match values.windows(2).position(|w| w[1] <= w[0]) {
         Some(i) => Err(CalibrationError::NotIncreasing {
             column,
@@ -158,7 +158,7 @@ fn require_increasing(column: &'static str, values: &[f64]) -> Result<(), Calibr
 }
 
 /// Checks that every value is at least `minimum`.
-fn require_at_least(
+pub fn require_at_least(
     column: &'static str,
     values: &[f64],
     minimum: f64,

@@ -77,7 +77,8 @@ impl Table {
         )
     }
 
-    fn from_csv(text: &str) -> Result<Self, TableError> {
+    /// Reads CSV text: a header row, then one row per point.
+    pub fn from_csv(text: &str) -> Result<Self, TableError> {
         let mut lines = text
             .lines()
             .map(str::trim)
@@ -106,7 +107,8 @@ impl Table {
         Self::checked(names, columns)
     }
 
-    fn from_json(value: &Value) -> Result<Self, TableError> {
+    /// Reads a JSON table: an array of row objects, or an object of column arrays.
+    pub fn from_json(value: &Value) -> Result<Self, TableError> {
         match value {
             Value::Array(rows) => {
                 let first = rows.first().and_then(Value::as_object);
@@ -159,6 +161,11 @@ impl Table {
             )));
         }
         Ok(Self { names, columns })
+    }
+
+    /// The column names, in the table's order.
+    pub fn names(&self) -> &[String] {
+        &self.names
     }
 
     /// The column called `name`, if present.

@@ -54,6 +54,11 @@ impl ApiError {
         Self::new(StatusCode::NOT_FOUND, message)
     }
 
+    /// 404: no job has this id.
+    pub fn unknown_job(id: uuid::Uuid) -> Self {
+        Self::not_found(format!("no job {id}"))
+    }
+
     /// 405: the path exists but not with this method.
     pub fn method_not_allowed() -> Self {
         Self::new(
@@ -80,6 +85,14 @@ impl ApiError {
         Self::new(
             StatusCode::UNSUPPORTED_MEDIA_TYPE,
             "the scene must be sent with `Content-Type: application/json`",
+        )
+    }
+
+    /// 415: a measurement table that is declared neither CSV nor JSON.
+    pub fn unsupported_table_type() -> Self {
+        Self::new(
+            StatusCode::UNSUPPORTED_MEDIA_TYPE,
+            "a measurement table must be sent with `Content-Type: text/csv` or `application/json`",
         )
     }
 
@@ -119,6 +132,18 @@ impl ApiError {
         }
     }
 
+    /// 422: a measurement table of `kind` that cannot be used; `column` names the column at
+    /// fault (empty for the whole table).
+    pub fn invalid_table(kind: &str, column: String, message: &str) -> Self {
+        Self {
+            fields: vec![FieldError::new(column, message)],
+            ..Self::new(
+                StatusCode::UNPROCESSABLE_ENTITY,
+                format!("invalid {kind} table: {message}"),
+            )
+        }
+    }
+
     /// 429: the queue is full; try again after `retry_after_s` seconds.
     pub fn queue_full(capacity: usize, retry_after_s: u64) -> Self {
         Self {
@@ -139,6 +164,13 @@ impl ApiError {
     /// 507: the server's disk is full; nothing of the request was kept.
     pub fn insufficient_storage(message: impl Into<String>) -> Self {
         Self::new(StatusCode::INSUFFICIENT_STORAGE, message)
+    }
+
+    /// 507 for a request that needed the disk: `what` says what became of the request.
+    pub fn disk_full(what: &str) -> Self {
+        Self::insufficient_storage(format!(
+            "the server's disk is full: {what}; retry once space is freed"
+        ))
     }
 
     /// 500: a fault of the server (its storage), never of the request. The cause goes to the

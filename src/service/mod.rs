@@ -17,8 +17,11 @@
 mod error;
 mod events;
 mod export;
+mod extract;
 mod job;
+mod job_routes;
 mod listen;
+mod measurements;
 mod queue;
 mod registry;
 mod routes;
@@ -53,7 +56,8 @@ use registry::Jobs;
 use store::Store;
 use studies::Studies;
 
-/// Largest request body accepted (a scene is a few kilobytes).
+/// Largest request body accepted: a scene is a few kilobytes, a measured table some tens
+/// (a profilometer trace of a few thousand points).
 pub const BODY_LIMIT_BYTES: usize = 1 << 20;
 
 /// Options of `tribosim serve`.
@@ -375,7 +379,7 @@ fn cors_layer(origins: &[String]) -> Result<Option<CorsLayer>, ServeError> {
     Ok(Some(
         CorsLayer::new()
             .allow_origin(origins)
-            .allow_methods([Method::GET, Method::POST, Method::DELETE])
+            .allow_methods([Method::GET, Method::POST, Method::PUT, Method::DELETE])
             .allow_headers([
                 header::AUTHORIZATION,
                 header::CONTENT_TYPE,

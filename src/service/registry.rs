@@ -14,6 +14,7 @@ use time::OffsetDateTime;
 use uuid::Uuid;
 
 use super::job::{Job, JobRecord, JobStatus};
+use super::measurements::{Columns, MeasurementKind, Measurements};
 use super::queue::Queue;
 use super::store::{Damage, Store, StoredJob, is_disk_full};
 use crate::scene::Scene;
@@ -33,6 +34,17 @@ pub enum SubmitError {
     /// The disk is full: the job could not be made durable, and nothing of it is left.
     DiskFull,
     /// The job could not be made durable.
+    Storage(io::Error),
+}
+
+/// Why a job's measurements could not be read or changed.
+#[derive(Debug)]
+pub enum MeasuredError {
+    /// The job is damaged (its error says how), so nothing is attached to it.
+    JobDamaged(String),
+    /// A stored table does not match its digest; replacing or deleting it mends it.
+    Damaged(Damage),
+    /// A file could not be written.
     Storage(io::Error),
 }
 
@@ -374,6 +386,62 @@ impl Jobs {
             tracing::info!(%id, "running job asked to cancel");
             Ok(Deletion::Cancelling(job.record()))
         }
+    }
+}
+
+impl Jobs {
+    /// A job's measurements; `None` for an unknown id. Blocking (files).
+    pub fn measurements(&self, id: Uuid) -> Option<Result<Measurements, MeasuredError>> {
+        self.measured(id, |_| Ok(()))
+    }
+
+    /// Stores a job's table of `kind`, replacing any; then every table. Blocking (files).
+    pub fn put_measurement(
+        &self,
+        id: Uuid,
+        kind: MeasurementKind,
+        columns: Columns,
+    ) -> Option<Result<Measurements, MeasuredError>> {
+        self.measured(id, |store| store.write_measurement(id, kind, columns))
+    }
+
+    /// Removes a job's table of `kind`, if any; then every table. Blocking (files).
+    pub fn delete_measurement(
+        &self,
+        id: Uuid,
+        kind: MeasurementKind,
+    ) -> Option<Result<Measurements, MeasuredError>> {
+        self.measured(id, |store| store.remove_measurement(id, kind))
+    }
+
+    /// Applies `change` to a job's files and reads its tables back, under the job's disk
+    /// lock, so that a DELETE of the job cannot remove its directory meanwhile; `None` when
+    /// the job is unknown or was deleted first.
+    fn measured(
+        &self,
+        id: Uuid,
+        change: impl FnOnce(&Store) -> io::Result<()>,
+    ) -> Option<Result<Measurements, MeasuredError>> {
+        let job = self.get(id)?;
+        let _disk = job.disk();
+        if !self.get(id).is_some_and(|known| Arc::ptr_eq(&known, &job)) {
+            return None;
+        }
+        let record = job.record();
+        if record.status == JobStatus::Damaged {
+            return Some(Err(MeasuredError::JobDamaged(
+                record.error.unwrap_or_default(),
+            )));
+        }
+        Some(
+            change(&self.store)
+                .map_err(MeasuredError::Storage)
+                .and_then(|()| {
+                    self.store
+                        .read_measurements(id)
+                        .map_err(MeasuredError::Damaged)
+                }),
+        )
     }
 }
 

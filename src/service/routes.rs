@@ -3,13 +3,9 @@
 //! from which the router is built and against which `openapi.yaml` is checked.
 
 use std::sync::Arc;
-use std::time::Duration;
 
 use axum::Json;
-use axum::body::Bytes;
-use axum::extract::rejection::BytesRejection;
-use axum::extract::{FromRequest, FromRequestParts, Path, Request, State};
-use axum::http::request::Parts;
+use axum::extract::{Request, State};
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::middleware::Next;
 use axum::response::sse::{KeepAlive, Sse};
@@ -22,7 +18,9 @@ use super::AppState;
 use super::error::ApiError;
 use super::events;
 use super::export;
+use super::extract::{JobId, is_json, read_body};
 use super::job::JobStatus;
+use super::job_routes;
 use super::registry::{Deletion, SubmitError};
 use super::store::is_disk_full;
 use super::study_routes;
@@ -41,9 +39,6 @@ const PAGE_HTML: &str = include_str!("../../static/index.html");
 /// the JSON body (hyper itself refuses targets over 64 KiB, with an empty body).
 pub const MAX_URI_BYTES: usize = 8 * 1024;
 
-/// How much of a malformed job id is echoed in an error: a UUID and a little more.
-const ECHOED_ID_CHARS: usize = 40;
-
 /// An HTTP method used by the route table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Verb {
@@ -51,6 +46,8 @@ pub enum Verb {
     Get,
     /// POST.
     Post,
+    /// PUT.
+    Put,
     /// DELETE.
     Delete,
 }
@@ -61,6 +58,7 @@ impl Verb {
         match self {
             Self::Get => "get",
             Self::Post => "post",
+            Self::Put => "put",
             Self::Delete => "delete",
         }
     }
@@ -69,6 +67,7 @@ impl Verb {
         match self {
             Self::Get => MethodFilter::GET,
             Self::Post => MethodFilter::POST,
+            Self::Put => MethodFilter::PUT,
             Self::Delete => MethodFilter::DELETE,
         }
     }
@@ -163,6 +162,30 @@ pub const ROUTES: &[Route] = &[
         handler: |f| on(f, job_result_csv),
     },
     Route {
+        verb: Verb::Get,
+        path: "/api/v1/jobs/{id}/scene",
+        auth: true,
+        handler: |f| on(f, job_routes::job_scene),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/jobs/{id}/measurements",
+        auth: true,
+        handler: |f| on(f, job_routes::get_measurements),
+    },
+    Route {
+        verb: Verb::Put,
+        path: "/api/v1/jobs/{id}/measurements/{kind}",
+        auth: true,
+        handler: |f| on(f, job_routes::put_measurement),
+    },
+    Route {
+        verb: Verb::Delete,
+        path: "/api/v1/jobs/{id}/measurements/{kind}",
+        auth: true,
+        handler: |f| on(f, job_routes::delete_measurement),
+    },
+    Route {
         verb: Verb::Post,
         path: "/api/v1/studies",
         auth: true,
@@ -199,28 +222,6 @@ pub const ROUTES: &[Route] = &[
         handler: |f| on(f, study_routes::study_summary_csv),
     },
 ];
-
-/// A job id from the path, parsed as a UUID before anything else looks at it.
-struct JobId(Uuid);
-
-impl<S: Send + Sync> FromRequestParts<S> for JobId {
-    type Rejection = ApiError;
-
-    async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
-        let Path(raw) = Path::<String>::from_request_parts(parts, state).await?;
-        Uuid::try_parse(&raw)
-            .map(JobId)
-            .map_err(|_| ApiError::bad_request(format!("{:?} is not a job id (a UUID)", cut(&raw))))
-    }
-}
-
-/// The first [`ECHOED_ID_CHARS`] characters of `raw`, with an ellipsis if there were more.
-pub(super) fn cut(raw: &str) -> String {
-    match raw.char_indices().nth(ECHOED_ID_CHARS) {
-        Some((end, _)) => format!("{}...", &raw[..end]),
-        None => raw.to_owned(),
-    }
-}
 
 /// 414 with the JSON body for a request target over [`MAX_URI_BYTES`].
 pub(super) async fn limit_uri(request: Request, next: Next) -> Response {
@@ -360,7 +361,7 @@ async fn submit(State(app): State<AppState>, request: Request) -> Result<Respons
                 retry_after_s,
                 ..
             } => ApiError::queue_full(capacity, retry_after_s),
-            SubmitError::DiskFull => disk_full("the job was not accepted"),
+            SubmitError::DiskFull => ApiError::disk_full("the job was not accepted"),
             SubmitError::Storage(e) => ApiError::internal("storing the job", &e),
         })?;
     let location = format!("/api/v1/jobs/{}", record.id);
@@ -372,43 +373,12 @@ async fn submit(State(app): State<AppState>, request: Request) -> Result<Respons
         .into_response())
 }
 
-/// The whole body, within the body timeout: a client sending a byte now and then holds no
-/// handler for longer.
-pub(super) async fn read_body(app: &AppState, request: Request) -> Result<Bytes, ApiError> {
-    let limit = Duration::from_secs(app.body_timeout_s);
-    let body: Result<Bytes, BytesRejection> =
-        tokio::time::timeout(limit, Bytes::from_request(request, app))
-            .await
-            .map_err(|_| ApiError::body_timeout(app.body_timeout_s))?;
-    Ok(body?)
-}
-
-/// `application/json`, any parameters, or a `+json` type.
-pub(super) fn is_json(headers: &HeaderMap) -> bool {
-    headers
-        .get(header::CONTENT_TYPE)
-        .and_then(|value| value.to_str().ok())
-        .and_then(|value| value.split(';').next())
-        .map(|essence| essence.trim().to_ascii_lowercase())
-        .is_some_and(|essence| essence == "application/json" || essence.ends_with("+json"))
-}
-
 async fn list_jobs(State(app): State<AppState>) -> impl IntoResponse {
     Json(app.jobs.list())
 }
 
-pub(super) fn disk_full(what: &str) -> ApiError {
-    ApiError::insufficient_storage(format!(
-        "the server's disk is full: {what}; retry once space is freed"
-    ))
-}
-
-fn unknown_job(id: Uuid) -> ApiError {
-    ApiError::not_found(format!("no job {id}"))
-}
-
 async fn get_job(State(app): State<AppState>, JobId(id): JobId) -> Result<Response, ApiError> {
-    let job = app.jobs.get(id).ok_or_else(|| unknown_job(id))?;
+    let job = app.jobs.get(id).ok_or_else(|| ApiError::unknown_job(id))?;
     Ok(Json(job.record()).into_response())
 }
 
@@ -417,10 +387,10 @@ async fn delete_job(State(app): State<AppState>, JobId(id): JobId) -> Result<Res
     let deletion = tokio::task::spawn_blocking(move || jobs.delete(id))
         .await
         .map_err(|e| ApiError::internal("deleting a job", &e))?
-        .ok_or_else(|| unknown_job(id))?
+        .ok_or_else(|| ApiError::unknown_job(id))?
         .map_err(|e| {
             if is_disk_full(&e) {
-                disk_full("the job was not changed")
+                ApiError::disk_full("the job was not changed")
             } else {
                 ApiError::internal("deleting a job", &e)
             }
@@ -437,7 +407,7 @@ async fn job_events(
     JobId(id): JobId,
     headers: HeaderMap,
 ) -> Result<Response, ApiError> {
-    let job = app.jobs.get(id).ok_or_else(|| unknown_job(id))?;
+    let job = app.jobs.get(id).ok_or_else(|| ApiError::unknown_job(id))?;
     // An unreadable Last-Event-ID is treated as absent: the client gets the whole stream,
     // which is more useful than an error from a reconnecting EventSource.
     let after = headers
@@ -454,7 +424,7 @@ async fn job_events(
 /// The bytes of a succeeded job's `result.json`, checked against its manifest; 409 while it
 /// has none. A damaged result sends the job back to the queue (409 too).
 async fn result_bytes(app: &AppState, id: Uuid) -> Result<Vec<u8>, ApiError> {
-    let job = app.jobs.get(id).ok_or_else(|| unknown_job(id))?;
+    let job = app.jobs.get(id).ok_or_else(|| ApiError::unknown_job(id))?;
     let record = job.record();
     match (record.status, record.error) {
         (JobStatus::Succeeded, _) => {}
@@ -479,7 +449,7 @@ async fn result_bytes(app: &AppState, id: Uuid) -> Result<Vec<u8>, ApiError> {
             }
             match jobs.rerun(&job, &damage) {
                 // Deleted between the status check and the read.
-                None => unknown_job(id),
+                None => ApiError::unknown_job(id),
                 Some(record) => ApiError::conflict(match record.error {
                     Some(error) if record.status == JobStatus::Damaged => {
                         format!("job is damaged: {error}")

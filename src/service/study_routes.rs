@@ -12,7 +12,7 @@ use uuid::Uuid;
 use super::AppState;
 use super::error::ApiError;
 use super::registry::SubmitError;
-use super::routes::{cut, disk_full, is_json, read_body};
+use super::extract::{cut, is_json, read_body};
 use super::store::is_disk_full;
 use super::studies::{StudyDeletion, StudySubmitError};
 use crate::json::JsonError;
@@ -94,7 +94,7 @@ fn refused(error: StudySubmitError) -> ApiError {
             ),
             retry_after_s,
         ),
-        StudySubmitError::Submit(SubmitError::DiskFull) => disk_full("the study was not accepted"),
+        StudySubmitError::Submit(SubmitError::DiskFull) => ApiError::disk_full("the study was not accepted"),
         StudySubmitError::Submit(SubmitError::Storage(e)) => {
             ApiError::internal("storing the study", &e)
         }
@@ -151,7 +151,7 @@ pub(super) async fn delete_study(
         .ok_or_else(|| unknown_study(id))?
         .map_err(|e| {
             if is_disk_full(&e) {
-                disk_full("the study was not changed")
+                ApiError::disk_full("the study was not changed")
             } else {
                 ApiError::internal("deleting a study", &e)
             }

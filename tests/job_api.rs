@@ -1,0 +1,149 @@
+//! What a job carries besides its run, against the real `tribosim serve` binary: measured
+//! points attached to it (stored, checked, kept across a restart, deleted with the job)
+//! and the scene as run.
+
+mod common;
+
+use serde_json::{Value, json};
+
+use common::process::ServerProcess;
+use common::{TempDir, get_json, is_final, small_scene, submit, wait_for_job};
+
+/// PUT a table; the status and the JSON body.
+async fn put_table(
+    client: &reqwest::Client,
+    url: &str,
+    content_type: &str,
+    body: &str,
+) -> (u16, Value) {
+    let response = client
+        .put(url)
+        .header("content-type", content_type)
+        .body(body.to_owned())
+        .send()
+        .await
+        .expect("PUT");
+    let status = response.status().as_u16();
+    (status, response.json().await.expect("JSON body"))
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn measurements_round_trip_survive_a_restart_and_go_with_their_job() {
+    let dir = TempDir::new("measurements");
+    let client = reqwest::Client::new();
+    let mut server = ServerProcess::start(dir.path());
+    let job = submit(&client, &server.base, &small_scene(5)).await;
+    let id = job["id"].as_str().expect("id").to_owned();
+    let url = |path: &str| server.url(&format!("/api/v1/jobs/{id}{path}"));
+
+    // A job just accepted takes measurements already.
+    let empty = get_json(&client, &url("/measurements")).await;
+    assert_eq!(
+        empty,
+        json!({"wear_volume": null, "profile": null, "potential": null})
+    );
+    let csv =
+        "# Table 3, 5 N\ntime_s,volume_mm3,spread_mm3\n600,0.0042,0.0005\n3600,0.0118,0.0011\n";
+    let (status, answer) = put_table(
+        &client,
+        &url("/measurements/wear_volume"),
+        "text/csv; charset=utf-8",
+        csv,
+    )
+    .await;
+    assert_eq!(status, 200, "{answer}");
+    let wear = json!({"time_s": [600.0, 3600.0], "volume_mm3": [0.0042, 0.0118],
+                      "spread_mm3": [0.0005, 0.0011]});
+    assert_eq!(answer["wear_volume"], wear);
+    let profile = json!({"y_mm": [-0.1, 0.0, 0.1], "depth_um": [-0.2, 3.5, 0.1]});
+    let (status, answer) = put_table(
+        &client,
+        &url("/measurements/profile"),
+        "application/json",
+        &profile.to_string(),
+    )
+    .await;
+    assert_eq!(status, 200, "{answer}");
+    assert_eq!(answer["profile"], profile);
+    assert_eq!(answer["wear_volume"], wear);
+
+    // Refusals name the column; nothing of a refused table is kept.
+    let refusals = [
+        (
+            "wear_volume",
+            "time_s,volume_mm3\n600,0.004\n3600,-0.01\n",
+            "volume_mm3",
+        ),
+        (
+            "potential",
+            "time_s,potential_v\n10,-0.2\n5,-0.3\n",
+            "time_s",
+        ),
+        ("potential", "time_s\n10\n", "potential_v"),
+        ("profile", "y_mm,depth_um\n0,1\n0.1,inf\n", "depth_um"),
+    ];
+    for (kind, csv, column) in refusals {
+        let (status, answer) = put_table(
+            &client,
+            &url(&format!("/measurements/{kind}")),
+            "text/csv",
+            csv,
+        )
+        .await;
+        assert_eq!(status, 422, "{answer}");
+        assert_eq!(answer["fields"][0]["path"], column, "{answer}");
+        assert!(answer["error"].as_str().expect("message").contains(column));
+    }
+    let (status, _) = put_table(&client, &url("/measurements/wear"), "text/csv", csv).await;
+    assert_eq!(status, 400);
+    let (status, _) = put_table(&client, &url("/measurements/profile"), "text/plain", csv).await;
+    assert_eq!(status, 415);
+    let kept = get_json(&client, &url("/measurements")).await;
+    assert_eq!(kept["wear_volume"], wear);
+    assert_eq!(kept["potential"], Value::Null);
+
+    // Kept across a restart, even one without a shutdown.
+    wait_for_job(&client, &server.base, &id, is_final).await;
+    server.kill_9();
+    let server = ServerProcess::start(dir.path());
+    let url = |path: &str| server.url(&format!("/api/v1/jobs/{id}{path}"));
+    let after = get_json(&client, &url("/measurements")).await;
+    assert_eq!(after, kept);
+
+    // DELETE removes one kind; deleting the job removes the rest with it.
+    let response = client
+        .delete(url("/measurements/profile"))
+        .send()
+        .await
+        .expect("DELETE");
+    assert_eq!(response.status(), 200);
+    let left: Value = response.json().await.expect("JSON");
+    assert_eq!(left["profile"], Value::Null);
+    assert_eq!(left["wear_volume"], wear);
+    let response = client.delete(url("")).send().await.expect("DELETE job");
+    assert_eq!(response.status(), 204);
+    assert!(!dir.path().join("jobs").join(&id).exists());
+    let response = client.get(url("/measurements")).send().await.expect("GET");
+    assert_eq!(response.status(), 404);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_scene_as_run_has_every_default_and_runs_the_same_test() {
+    let dir = TempDir::new("scene-as-run");
+    let client = reqwest::Client::new();
+    let server = ServerProcess::start(dir.path());
+    let job = submit(&client, &server.base, &small_scene(3)).await;
+    let id = job["id"].as_str().expect("id").to_owned();
+    let scene = get_json(&client, &server.url(&format!("/api/v1/jobs/{id}/scene"))).await;
+    // The preset's values are filled in beside the overrides.
+    assert_eq!(scene["test"]["cycles"], 3);
+    assert_eq!(scene["numerics"]["grid"], 32);
+    assert!(scene["test"]["load_n"].as_f64().is_some(), "{scene}");
+    assert!(scene["ball"]["radius_mm"].as_f64().is_some(), "{scene}");
+    let finished = wait_for_job(&client, &server.base, &id, is_final).await;
+    assert_eq!(finished["status"], "succeeded");
+    let result = get_json(&client, &server.url(&format!("/api/v1/jobs/{id}/result"))).await;
+    assert_eq!(result["scene"], scene);
+    // Submitted again, it is accepted as it stands.
+    submit(&client, &server.base, &scene).await;
+}
