@@ -193,6 +193,35 @@ try {
   assert.equal(csv.length, result.cycles.length + 1);
   console.log(`   ${csvDownload.suggestedFilename()}: ${csv.length - 1} rows`);
 
+  step("measurements attached to the run: a bad table refused with its column named, then three kinds drawn");
+  await page.click("#measurements summary");
+  const attach = async (kind, csv, asFile) => {
+    await page.selectOption("#measure-kind", kind);
+    if (asFile) await page.setInputFiles("#measure-file", { name: `${kind}.csv`, mimeType: "text/csv", buffer: Buffer.from(csv) });
+    else await page.fill("#measure-text", csv);
+    await page.click("#measure-attach");
+  };
+  await attach("wear_volume", "cycles,volume_mm3\n10,-0.001\n", false);
+  await page.locator("#measure-errors", { hasText: "volume_mm3" }).waitFor();
+  console.log(`   refused: ${await page.textContent("#measure-errors")}`);
+  await attach("wear_volume", "cycles,volume_mm3\n10,0.00097\n60,0.00109\n300,0.00118\n", true);
+  await page.waitForFunction(() => document.getElementById("plot-volume").dataset.attached === "3");
+  await attach("profile", "y_mm,depth_um\n-0.1,0.4\n0,3.1\n0.1,0.4\n", false);
+  await page.waitForFunction(() => document.getElementById("plot-profile").dataset.attached === "3");
+  await attach("potential", "time_s,potential_v\n100,-0.30\n1000,-0.35\n", false);
+  await page.waitForFunction(() => document.getElementById("plot-potential").dataset.attached === "2");
+  assert.equal(await page.textContent("#measure-errors"), "");
+  const drawn = await page.evaluate(() => ["plot-volume", "plot-profile", "plot-potential"].map((id) => {
+    const u = state.plots[id];
+    const k = u.series.findIndex((s) => s.label === "attached measurement");
+    return [id, k > 0 ? u.data[k].filter((v) => v != null).length : 0];
+  }));
+  console.log(`   attached points drawn: ${JSON.stringify(drawn)}`);
+  assert.deepEqual(drawn, [["plot-volume", 3], ["plot-profile", 3], ["plot-potential", 2]]);
+  // Stored with the job: the API returns them.
+  const stored = await page.evaluate(async () => (await api(`/api/v1/jobs/${state.selected}/measurements`)).body);
+  assert.deepEqual(stored.wear_volume.cycles, [10, 60, 300]);
+
   step("a 10 N run: no Table 3 beside it, and the page says why");
   await page.fill("#f-test-load_n", "10");
   const presetRun = await page.$eval("#jobs tbody tr.selected", (tr) => tr.dataset.id);
