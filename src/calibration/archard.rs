@@ -135,23 +135,7 @@ pub fn fit_archard(
 ) -> Result<ArchardFit, CalibrationError> {
     let started = Instant::now();
     let mut problem = problem(table, scene)?;
-    let last = problem.cycles.len() - 1;
-    let (n_last, v_last) = (problem.cycles[last], problem.volumes[last]);
-    let law = scene.hardness_law()?;
-    let eq14 = archard_k_from_measurement(
-        v_last * 1e-9,
-        law.hardness_pa(n_last),
-        scene.load_n(),
-        n_last * scene.track_length_m(),
-    );
-    if eq14 <= 0.0 {
-        return Err(CalibrationError::BelowMinimum {
-            column: "volume_mm3",
-            row: last + 1,
-            value: v_last,
-            minimum: f64::MIN_POSITIVE,
-        });
-    }
+    let eq14 = eq14_k(&problem, scene)?;
     let bracket = (eq14 / options.span, eq14 * options.span);
     let (k, tried) = golden_section("archard_k", bracket, options.tolerance, &mut |k| {
         Ok(problem.residuals_at(k)?.iter().map(|r| r * r).sum())
@@ -200,6 +184,34 @@ pub fn fit_archard(
         wall_s: started.elapsed().as_secs_f64(),
         scene: filled,
     })
+}
+
+/// Refuses a table the Archard fit cannot use, naming the column and row, without running
+/// anything: the cheap part of [`fit_archard`].
+pub(super) fn check(table: &Table, scene: &Scene) -> Result<(), CalibrationError> {
+    eq14_k(&problem(table, scene)?, scene).map(drop)
+}
+
+/// Eq. 14's k from the last point, with H from the scene's law; refused when not positive.
+fn eq14_k(problem: &Problem, scene: &Scene) -> Result<f64, CalibrationError> {
+    let last = problem.cycles.len() - 1;
+    let (n_last, v_last) = (problem.cycles[last], problem.volumes[last]);
+    let law = scene.hardness_law()?;
+    let eq14 = archard_k_from_measurement(
+        v_last * 1e-9,
+        law.hardness_pa(n_last),
+        scene.load_n(),
+        n_last * scene.track_length_m(),
+    );
+    if eq14 <= 0.0 {
+        return Err(CalibrationError::BelowMinimum {
+            column: "volume_mm3",
+            row: last + 1,
+            value: v_last,
+            minimum: f64::MIN_POSITIVE,
+        });
+    }
+    Ok(eq14)
 }
 
 /// The checked measurements and the scene the runs use.

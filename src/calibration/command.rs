@@ -6,34 +6,9 @@ use std::path::{Path, PathBuf};
 
 use thiserror::Error;
 
-use super::{
-    ArchardOptions, CalibrationError, HardnessOptions, Table, TafelOptions, fit_archard,
-    fit_hardness, fit_ocp, fit_tafel,
-};
-use crate::scene::{DALMAU2018_316L, Scene, SceneErrors, presets};
+use super::{CalibrationError, CommandOptions, FitKind, Table, calibrate, default_scene};
+use crate::scene::SceneErrors;
 use crate::simulation::parse_scene_str;
-
-/// Which fit.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum FitKind {
-    /// H = A + B ln n from `cycles` (or `time_s`) and `hardness_mpa`.
-    Hardness,
-    /// a_c, b_c from `potential_v` and `current_density_a_cm2` (or `_a_m2`).
-    Tafel,
-    /// The depassivated area and `anodic_area_factor` from `time_s` and `potential_v`.
-    Ocp,
-    /// Archard's k from `time_s` (or `cycles`), `volume_mm3` and optional `spread_mm3`.
-    Archard,
-}
-
-/// The settings of the fits the command line exposes.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct CommandOptions {
-    /// Hardness: leave the scene's bulk value out of the fit.
-    pub without_bulk: bool,
-    /// Tafel: E_corr, V, instead of the potential of the smallest current.
-    pub corrosion_potential_v: Option<f64>,
-}
 
 /// Why the command failed.
 #[derive(Debug, Error)]
@@ -95,29 +70,11 @@ pub fn calibrate_files(
             path: path.to_owned(),
             errors,
         })?,
-        None => paper_scene(),
+        None => default_scene(),
     };
-    let json = match kind {
-        FitKind::Hardness => {
-            let options = HardnessOptions {
-                include_bulk: !options.without_bulk,
-            };
-            serde_json::to_string_pretty(
-                &fit_hardness(&parsed, &scene, options).map_err(fit_error)?,
-            )
-        }
-        FitKind::Tafel => {
-            let options = TafelOptions {
-                corrosion_potential_v: options.corrosion_potential_v,
-                upper_v: None,
-            };
-            serde_json::to_string_pretty(&fit_tafel(&parsed, &scene, options).map_err(fit_error)?)
-        }
-        FitKind::Ocp => serde_json::to_string_pretty(&fit_ocp(&parsed, &scene).map_err(fit_error)?),
-        FitKind::Archard => serde_json::to_string_pretty(
-            &fit_archard(&parsed, &scene, ArchardOptions::default()).map_err(fit_error)?,
-        ),
-    }?;
+    let json = serde_json::to_string_pretty(
+        &calibrate(kind, &parsed, &scene, options).map_err(fit_error)?,
+    )?;
     match output {
         Some(path) => std::fs::write(path, json + "\n").map_err(|source| CommandError::Write {
             path: path.to_owned(),
@@ -135,13 +92,4 @@ fn read(path: &Path) -> Result<String, CommandError> {
         path: path.to_owned(),
         source,
     })
-}
-
-/// The paper's scene, the default a table is fitted with.
-fn paper_scene() -> Scene {
-    presets()
-        .into_iter()
-        .find(|p| p.name == DALMAU2018_316L)
-        .map(|p| p.scene)
-        .unwrap_or_default()
 }

@@ -16,6 +16,7 @@
 mod archard;
 mod command;
 mod hardness;
+mod kind;
 mod line;
 mod minimise;
 mod ocp;
@@ -30,8 +31,9 @@ use crate::scene::{GridSize, Scene, SceneErrors};
 use crate::simulation::SimulationError;
 
 pub use archard::{ArchardFit, ArchardOptions, VolumeResidual, fit_archard};
-pub use command::{CommandError, CommandOptions, FitKind, calibrate_files};
+pub use command::{CommandError, calibrate_files};
 pub use hardness::{HardnessFit, HardnessOptions, HardnessResidual, fit_hardness};
+pub use kind::{CommandOptions, Fit, FitKind, calibrate, check, default_scene};
 pub use minimise::Trial;
 pub use ocp::{OcpFit, OcpPoint, fit_ocp};
 pub use table::{Table, TableError};

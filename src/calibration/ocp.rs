@@ -16,7 +16,7 @@ use super::{
     require_increasing, require_points,
 };
 use crate::corrosion::{CorrosionModel, real_contact_area_m2};
-use crate::scene::{AnodicArea, Scene};
+use crate::scene::{AnodicArea, Corrosion, Scene};
 use crate::simulation::run;
 
 /// The factor's search bracket starts here (a thousandth of the chosen area).
@@ -69,26 +69,8 @@ pub struct OcpFit {
 /// Inverts eq. 18 over a potential-during-rubbing table (`time_s`, `potential_v`) and fits
 /// the scene's anodic area factor to it.
 pub fn fit_ocp(table: &Table, scene: &Scene) -> Result<OcpFit, CalibrationError> {
-    let times = table.column("time_s")?;
-    let potentials = table.column("potential_v")?;
-    require_points("time_s", times, 3)?;
-    require_at_least("time_s", times, 0.0)?;
-    require_increasing("time_s", times)?;
-    let corrosion = scene
-        .corrosion
-        .as_ref()
-        .ok_or(CalibrationError::MissingSection("corrosion"))?;
+    let (times, potentials, corrosion) = checked(table, scene)?;
     let cell = corrosion.model();
-    if let Some(row) = potentials
-        .iter()
-        .position(|&e| e >= cell.corrosion_potential_v)
-    {
-        return Err(CalibrationError::AboveCorrosionPotential {
-            row: row + 1,
-            value: potentials[row],
-            corrosion_potential_v: cell.corrosion_potential_v,
-        });
-    }
     let cycles: Vec<f64> = times.iter().map(|&t| scene.cycles_at(t)).collect();
     let (run_scene, grid_cells) = calibration_scene(scene, cycles[cycles.len() - 1]);
     let law = scene.hardness_law()?;
@@ -145,6 +127,33 @@ pub fn fit_ocp(table: &Table, scene: &Scene) -> Result<OcpFit, CalibrationError>
         grid_cells,
         scene: fitted,
     })
+}
+
+/// The table's times and potentials and the scene's cell, refused (column and row named)
+/// unless the fit can use them: the cheap part of [`fit_ocp`], before its run.
+pub(super) fn checked<'a>(
+    table: &'a Table,
+    scene: &'a Scene,
+) -> Result<(&'a [f64], &'a [f64], &'a Corrosion), CalibrationError> {
+    let times = table.column("time_s")?;
+    let potentials = table.column("potential_v")?;
+    require_points("time_s", times, 3)?;
+    require_at_least("time_s", times, 0.0)?;
+    require_increasing("time_s", times)?;
+    let corrosion = scene
+        .corrosion
+        .as_ref()
+        .ok_or(CalibrationError::MissingSection("corrosion"))?;
+    let e_corr = corrosion.model().corrosion_potential_v;
+    if let Some(row) = potentials.iter().position(|&e| e >= e_corr) {
+        return Err(CalibrationError::AboveCorrosionPotential {
+            row: row + 1,
+            value: potentials[row],
+            corrosion_potential_v: e_corr,
+        });
+    }
+    scene.hardness_law()?;
+    Ok((times, potentials, corrosion))
 }
 
 /// The model's anodic area of kind `kind` (factor 1) at each cycle count, m^2.

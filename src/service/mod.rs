@@ -14,6 +14,8 @@
 //!   persisted status, so they run again at the next start. Waiting for them instead could
 //!   take minutes, longer than a container runtime waits before killing the process anyway.
 
+mod calibration_routes;
+mod calibrations;
 mod error;
 mod events;
 mod export;
@@ -52,6 +54,7 @@ use tracing::Level;
 
 pub use routes::{MAX_URI_BYTES, OPENAPI_YAML, ROUTES, Route, Verb};
 
+use calibrations::Calibrations;
 use registry::Jobs;
 use store::Store;
 use studies::Studies;
@@ -228,6 +231,7 @@ pub enum ServeError {
 struct AppState {
     jobs: Arc<Jobs>,
     studies: Arc<Studies>,
+    calibrations: Arc<Calibrations>,
     token: Option<Arc<str>>,
     /// Where the page is read from; the built-in copy when `None`.
     static_dir: Option<Arc<Path>>,
@@ -299,6 +303,7 @@ pub async fn serve_on(
     let app = AppState {
         jobs: Arc::clone(&jobs),
         studies,
+        calibrations: Arc::default(),
         token: token.map(Arc::from),
         static_dir: args.static_dir.as_deref().map(Arc::from),
         body_timeout_s: limits.body_timeout_s,

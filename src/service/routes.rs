@@ -23,7 +23,7 @@ use super::job::JobStatus;
 use super::job_routes;
 use super::registry::{Deletion, SubmitError};
 use super::store::is_disk_full;
-use super::study_routes;
+use super::{calibration_routes, study_routes};
 use crate::json::{self, JsonError};
 use crate::scene::{FieldError, SceneErrors, presets};
 use crate::simulation::parse_scene;
@@ -220,6 +220,18 @@ pub const ROUTES: &[Route] = &[
         path: "/api/v1/studies/{id}/summary.csv",
         auth: true,
         handler: |f| on(f, study_routes::study_summary_csv),
+    },
+    Route {
+        verb: Verb::Post,
+        path: "/api/v1/calibrations",
+        auth: true,
+        handler: |f| on(f, calibration_routes::submit_calibration),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/calibrations/{id}",
+        auth: true,
+        handler: |f| on(f, calibration_routes::get_calibration),
     },
 ];
 

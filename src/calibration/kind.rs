@@ -1,0 +1,104 @@
+//! One entry point for every fit: which fit ([`FitKind`]), its settings, the cheap check of
+//! a table before any run ([`check`]) and the fit itself ([`calibrate`]), as the command line
+//! and the service call them.
+
+use serde::{Deserialize, Serialize};
+
+use super::{
+    ArchardFit, ArchardOptions, CalibrationError, HardnessFit, HardnessOptions, OcpFit, Table,
+    TafelFit, TafelOptions, archard, fit_archard, fit_hardness, fit_ocp, fit_tafel, ocp,
+};
+use crate::scene::{DALMAU2018_316L, Scene, presets};
+
+/// Which fit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FitKind {
+    /// H = A + B ln n from `cycles` (or `time_s`) and `hardness_mpa`.
+    Hardness,
+    /// a_c, b_c from `potential_v` and `current_density_a_cm2` (or `_a_m2`).
+    Tafel,
+    /// The depassivated area and `anodic_area_factor` from `time_s` and `potential_v`.
+    Ocp,
+    /// Archard's k from `time_s` (or `cycles`), `volume_mm3` and optional `spread_mm3`.
+    Archard,
+}
+
+/// The settings of the fits the command line and the service expose.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CommandOptions {
+    /// Hardness: leave the scene's bulk value out of the fit.
+    pub without_bulk: bool,
+    /// Tafel: E_corr, V, instead of the potential of the smallest current.
+    pub corrosion_potential_v: Option<f64>,
+}
+
+impl CommandOptions {
+    fn hardness(self) -> HardnessOptions {
+        HardnessOptions {
+            include_bulk: !self.without_bulk,
+        }
+    }
+
+    fn tafel(self) -> TafelOptions {
+        TafelOptions {
+            corrosion_potential_v: self.corrosion_potential_v,
+            upper_v: None,
+        }
+    }
+}
+
+/// A fit of any kind; its JSON is the fit's own (`tribosim calibrate -o`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum Fit {
+    /// The hardness law.
+    Hardness(HardnessFit),
+    /// The Tafel line.
+    Tafel(TafelFit),
+    /// The depassivated area.
+    Ocp(OcpFit),
+    /// Archard's k.
+    Archard(ArchardFit),
+}
+
+/// Fits `table` with `scene`. The Archard fit runs whole simulations (seconds to minutes),
+/// the OCP fit one; the others are immediate.
+pub fn calibrate(
+    kind: FitKind,
+    table: &Table,
+    scene: &Scene,
+    options: CommandOptions,
+) -> Result<Fit, CalibrationError> {
+    Ok(match kind {
+        FitKind::Hardness => Fit::Hardness(fit_hardness(table, scene, options.hardness())?),
+        FitKind::Tafel => Fit::Tafel(fit_tafel(table, scene, options.tafel())?),
+        FitKind::Ocp => Fit::Ocp(fit_ocp(table, scene)?),
+        FitKind::Archard => Fit::Archard(fit_archard(table, scene, ArchardOptions::default())?),
+    })
+}
+
+/// Refuses what [`calibrate`] would refuse about the table and the scene (column and row
+/// named) without any simulated run: the immediate fits are made and dropped, the others
+/// checked up to their runs. A fit that passes may still fail later (not converging).
+pub fn check(
+    kind: FitKind,
+    table: &Table,
+    scene: &Scene,
+    options: CommandOptions,
+) -> Result<(), CalibrationError> {
+    match kind {
+        FitKind::Hardness | FitKind::Tafel => calibrate(kind, table, scene, options).map(drop),
+        FitKind::Ocp => ocp::checked(table, scene).map(drop),
+        FitKind::Archard => archard::check(table, scene),
+    }
+}
+
+/// The paper's scene, which a table is fitted with unless a scene is given.
+pub fn default_scene() -> Scene {
+    presets()
+        .into_iter()
+        .find(|p| p.name == DALMAU2018_316L)
+        .map(|p| p.scene)
+        .unwrap_or_default()
+}
