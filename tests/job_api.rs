@@ -1,13 +1,13 @@
 //! What a job carries besides its run, against the real `tribosim serve` binary: measured
-//! points attached to it (stored, checked, kept across a restart, deleted with the job)
-//! and the scene as run.
+//! points attached to it (stored, checked, kept across a restart, deleted with the job),
+//! the scene as run, and the place of a queued job.
 
 mod common;
 
 use serde_json::{Value, json};
 
 use common::process::ServerProcess;
-use common::{TempDir, get_json, is_final, small_scene, submit, wait_for_job};
+use common::{TempDir, get_job, get_json, is_final, long_scene, small_scene, submit, wait_for_job};
 
 /// PUT a table; the status and the JSON body.
 async fn put_table(
@@ -146,4 +146,58 @@ async fn the_scene_as_run_has_every_default_and_runs_the_same_test() {
     assert_eq!(result["scene"], scene);
     // Submitted again, it is accepted as it stands.
     submit(&client, &server.base, &scene).await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn queued_jobs_show_their_place_in_the_queue() {
+    let dir = TempDir::new("queue-position");
+    let client = reqwest::Client::new();
+    // One worker: the long job runs, the next three wait in the order they came.
+    let server = ServerProcess::start(dir.path());
+    let busy = submit(&client, &server.base, &long_scene(3000)).await;
+    let busy = busy["id"].as_str().expect("id").to_owned();
+    wait_for_job(&client, &server.base, &busy, |job| {
+        job["status"] == "running"
+    })
+    .await;
+    let mut waiting = Vec::new();
+    for place in 1..=3 {
+        let job = submit(&client, &server.base, &small_scene(3)).await;
+        assert_eq!(job["queue_position"], place, "{job}");
+        waiting.push(job["id"].as_str().expect("id").to_owned());
+    }
+    for (id, place) in waiting.iter().zip(1..) {
+        assert_eq!(
+            get_job(&client, &server.base, id).await["queue_position"],
+            place
+        );
+    }
+    assert_eq!(
+        get_job(&client, &server.base, &busy).await["queue_position"],
+        Value::Null
+    );
+    // The first waiting job cancelled, the others move up.
+    let response = client
+        .delete(server.url(&format!("/api/v1/jobs/{}", waiting[0])))
+        .send()
+        .await
+        .expect("DELETE");
+    let cancelled: Value = response.json().await.expect("JSON");
+    assert_eq!(cancelled["queue_position"], Value::Null, "{cancelled}");
+    let list = get_json(&client, &server.url("/api/v1/jobs")).await;
+    let place = |id: &str| {
+        list.as_array()
+            .expect("list")
+            .iter()
+            .find(|job| job["id"] == id)
+            .map(|job| job["queue_position"].clone())
+    };
+    assert_eq!(place(&waiting[1]), Some(json!(1)));
+    assert_eq!(place(&waiting[2]), Some(json!(2)));
+    assert_eq!(place(&waiting[0]), Some(Value::Null));
+    client
+        .delete(server.url(&format!("/api/v1/jobs/{busy}")))
+        .send()
+        .await
+        .expect("DELETE");
 }

@@ -74,6 +74,10 @@ pub struct JobRecord {
     /// damaged); null for a job on its first run.
     #[serde(default)]
     pub rerun_reason: Option<String>,
+    /// The job's place among the jobs waiting for a worker, from 1 (the next to run); null
+    /// unless it waits. Worked out when the record is shown: stored records hold null.
+    #[serde(default, skip_deserializing)]
+    pub queue_position: Option<usize>,
     /// When the job was accepted.
     #[serde(with = "time::serde::rfc3339")]
     pub created_at: OffsetDateTime,
@@ -97,6 +101,7 @@ impl JobRecord {
             eta_s: None,
             error: None,
             rerun_reason: None,
+            queue_position: None,
             created_at: OffsetDateTime::now_utc(),
             started_at: None,
             finished_at: None,

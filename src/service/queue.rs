@@ -1,7 +1,7 @@
 //! The bounded queue of jobs waiting for a worker. Places are reserved before a submission
 //! writes its files, so the bound holds while those writes are under way.
 
-use std::collections::VecDeque;
+use std::collections::{HashMap, VecDeque};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
 
 use uuid::Uuid;
@@ -94,6 +94,27 @@ impl Queue {
     /// Takes a job out of the queue (it was cancelled).
     pub(super) fn remove(&self, id: Uuid) {
         self.lock().jobs.retain(|queued| queued.id != id);
+    }
+
+    /// The place of a waiting job, from 1 (the next to run); `None` when it does not wait.
+    pub(super) fn position(&self, id: Uuid) -> Option<usize> {
+        let pending = self.lock();
+        pending
+            .jobs
+            .iter()
+            .position(|job| job.id == id)
+            .map(|i| i + 1)
+    }
+
+    /// The place of every waiting job, from 1.
+    pub(super) fn positions(&self) -> HashMap<Uuid, usize> {
+        let pending = self.lock();
+        pending
+            .jobs
+            .iter()
+            .enumerate()
+            .map(|(i, job)| (job.id, i + 1))
+            .collect()
     }
 
     /// The next job, waiting for one; `None` once stopping.

@@ -178,10 +178,25 @@ impl Jobs {
         self.lock_jobs().get(&id).cloned()
     }
 
-    /// Every job's record, newest first.
+    /// A job's record as the API shows it, with its place in the queue.
+    pub fn shown(&self, job: &Job) -> JobRecord {
+        JobRecord {
+            queue_position: self.queue.position(job.id),
+            ..job.record()
+        }
+    }
+
+    /// Every job's record as the API shows it, newest first.
     pub fn list(&self) -> Vec<JobRecord> {
         let jobs: Vec<Arc<Job>> = self.lock_jobs().values().cloned().collect();
-        let mut records: Vec<JobRecord> = jobs.iter().map(|job| job.record()).collect();
+        let positions = self.queue.positions();
+        let mut records: Vec<JobRecord> = jobs
+            .iter()
+            .map(|job| JobRecord {
+                queue_position: positions.get(&job.id).copied(),
+                ..job.record()
+            })
+            .collect();
         records.sort_by(|a, b| b.created_at.cmp(&a.created_at).then(a.id.cmp(&b.id)));
         records
     }
@@ -210,9 +225,10 @@ impl Jobs {
                 SubmitError::Storage(e)
             });
         }
-        let job = Arc::new(Job::new(record.clone(), Some(scene), Some(Vec::new())));
+        let job = Arc::new(Job::new(record, Some(scene), Some(Vec::new())));
         self.insert(Arc::clone(&job));
-        self.queue.admit(job);
+        self.queue.admit(Arc::clone(&job));
+        let record = self.shown(&job);
         tracing::info!(id = %record.id, cycles = record.cycles_total, "job queued");
         Ok(record)
     }
@@ -456,6 +472,7 @@ fn placeholder(id: Uuid, created_at: OffsetDateTime) -> JobRecord {
         eta_s: None,
         error: None,
         rerun_reason: None,
+        queue_position: None,
         created_at,
         started_at: None,
         finished_at: None,

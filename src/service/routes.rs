@@ -391,7 +391,7 @@ async fn list_jobs(State(app): State<AppState>) -> impl IntoResponse {
 
 async fn get_job(State(app): State<AppState>, JobId(id): JobId) -> Result<Response, ApiError> {
     let job = app.jobs.get(id).ok_or_else(|| ApiError::unknown_job(id))?;
-    Ok(Json(job.record()).into_response())
+    Ok(Json(app.jobs.shown(&job)).into_response())
 }
 
 async fn delete_job(State(app): State<AppState>, JobId(id): JobId) -> Result<Response, ApiError> {
