@@ -430,9 +430,48 @@ try {
   assert.deepEqual(await page.evaluate(() => state.compared.map((r) => r.label)), ["load 2 N", "load 5 N"]);
   await page.click("#compare-close");
 
-  step("cancel a running job (after a confirmation), see why it stopped, then delete it");
+  step("a calibration: a table the fit cannot use is refused; the hardness law fitted to Table 3's hardness; the fitted scene run");
+  await page.click("#calib-new summary");
+  const hardnessCsv = path.resolve("../../docs/calibration/table3_hardness.csv");
+  await page.selectOption("#calib-kind", "tafel");
+  await page.setInputFiles("#calib-file", hardnessCsv);
+  await page.click("#calib-submit");
+  await page.locator("#calib-errors", { hasText: /potential_v|current_density/ }).waitFor();
+  console.log(`   refused: ${await page.textContent("#calib-errors")}`);
+  await page.selectOption("#calib-kind", "hardness");
+  await page.setInputFiles("#calib-file", hardnessCsv);
+  await page.click("#calib-submit");
+  await page.waitForFunction(() => document.getElementById("calib-status").textContent === "succeeded", null, { timeout: 300_000 });
+  const calib = await page.evaluate(() => ({
+    values: [...document.querySelectorAll("#calib-values tbody tr")].map((tr) => tr.innerText.replace(/\s+/g, " ").trim()),
+    residuals: document.querySelectorAll("#calib-residuals tbody tr").length,
+    plotted: Number(document.getElementById("calib-plot").dataset.points),
+  }));
+  console.log(`   calibration: ${JSON.stringify(calib)}`);
+  // docs/calibration.md: A = 2454.99 ± 26.98 MPa, B = 63.38 ± 4.96 MPa over the five points and the bulk value.
+  assert.deepEqual(calib.values, ["a (MPa) 2455 26.98", "b (MPa) 63.38 4.955"]);
+  assert.equal(calib.residuals, 6);
+  assert.equal(calib.plotted, 6);
+  const beforeFit = await page.$$eval("#jobs tbody tr", (trs) => trs.map((tr) => tr.dataset.id));
+  await page.click("#calib-run");
+  await page.waitForFunction((ids) => state.selected && !ids.includes(state.selected), beforeFit);
+  await page.waitForFunction(() => document.getElementById("run-status").textContent.startsWith("succeeded"), null, { timeout: 600_000 });
+
+  step("cancel a running job (after a confirmation), see why it stopped, then delete it; a job queued behind it shows its place");
   await page.fill("#f-test-cycles", "100000");
   await page.click("#submit");
+  await page.waitForFunction(() => (document.querySelector("#jobs tbody tr .status") || {}).textContent === "running");
+  await page.click("#submit");
+  const queued = page.locator("#jobs tbody tr").first();
+  await queued.locator(".progress", { hasText: "number 1 in the queue" }).waitFor();
+  console.log(`   queued: ${(await queued.locator(".progress").innerText()).replace(/\s+/g, " ")}`);
+  page.once("dialog", (d) => d.accept());
+  await queued.locator("button.cancel").click();
+  await queued.locator("td", { hasText: "cancelled" }).waitFor();
+  const withQueued = await page.locator("#jobs tbody tr").count();
+  page.once("dialog", (d) => d.accept());
+  await queued.locator("button.delete").click();
+  await page.waitForFunction((n) => document.querySelectorAll("#jobs tbody tr").length === n - 1, withQueued);
   const newest = page.locator("#jobs tbody tr").first();
   let question = "";
   page.once("dialog", (d) => { question = d.message(); d.accept(); });
