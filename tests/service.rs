@@ -286,12 +286,35 @@ async fn cancelling_a_running_job_stops_it_within_a_cycle() {
     assert_eq!(job["status"], "cancelled");
     assert!(job["cycles_done"].as_u64() < Some(300));
 
-    let response = client
-        .get(server.url(&format!("/api/v1/jobs/{id}/result")))
+    // What was computed before the cancel is kept: the result's shape, marked incomplete,
+    // with every cycle the stream sent.
+    let partial = get_json(&client, &server.url(&format!("/api/v1/jobs/{id}/result"))).await;
+    assert_eq!(partial["complete"], false, "{}", partial["summary"]);
+    let streamed: Vec<Value> = events
+        .iter()
+        .filter(|event| event.event == "cycle")
+        .map(common::Event::json)
+        .collect();
+    assert_eq!(partial["cycles"], Value::Array(streamed.clone()));
+    assert_eq!(partial["summary"]["cycles"], job["cycles_done"]);
+    let last = streamed.last().expect("cycles before the cancel");
+    assert_eq!(
+        partial["summary"]["wear_volume_mm3"],
+        last["wear_volume_mm3"]
+    );
+    let csv = client
+        .get(server.url(&format!("/api/v1/jobs/{id}/result.csv")))
         .send()
         .await
-        .expect("result");
-    assert_eq!(response.status(), 409);
+        .expect("CSV")
+        .text()
+        .await
+        .expect("text");
+    assert_eq!(
+        csv.lines().count(),
+        1 + streamed.len(),
+        "a header and a row per cycle"
+    );
 
     // DELETE on a finished job removes it.
     let response = client.delete(&delete_url).send().await.expect("delete");
@@ -567,7 +590,14 @@ async fn bad_input_gets_a_4xx_json_error_never_a_5xx() {
 
     // Ids: unknown UUID 404, anything else 400, on every job route.
     let unknown = uuid::Uuid::new_v4().to_string();
-    for suffix in ["", "/events", "/result", "/result.csv"] {
+    for suffix in [
+        "",
+        "/events",
+        "/result",
+        "/result.csv",
+        "/scene",
+        "/measurements",
+    ] {
         for (id, status) in [
             (unknown.as_str(), 404),
             ("not-a-uuid", 400),

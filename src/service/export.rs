@@ -6,10 +6,11 @@ use serde::Deserialize;
 
 use crate::simulation::CycleRecord;
 
-/// The CSV columns, in the cycle record's order and with its names (units in the names).
+/// The CSV columns: the cycle record's, in its order and with its names (units in the
+/// names), then the cycles stepped over since the previous row.
 const HEADER: &str = "cycle,time_s,wear_volume_mm3,max_depth_um,max_pressure_mpa,\
                       contact_area_mm2,plastic_area_mm2,hardness_mpa,approach_um,iterations,\
-                      potential_v,anodic_area_mm2,wac_volume_mm3";
+                      potential_v,anodic_area_mm2,wac_volume_mm3,cycles_stepped_over";
 
 /// Only the cycles of a result; the rest of the document is skipped unparsed.
 #[derive(Deserialize)]
@@ -19,17 +20,23 @@ struct Cycles {
 
 /// The `cycles` of a result JSON as CSV: one row per solved cycle. The corrosion columns are
 /// always present and empty for a scene without corrosion, so every file has one shape.
+/// `cycles_stepped_over` counts the cycles between the previous row and this one that were
+/// not solved: with `numerics.cycle_step` "auto" the previous solve stood for them (the
+/// cycle loop's step, Fig. 4), wearing the groove at its pressure.
 pub fn cycles_csv(result_json: &[u8]) -> Result<String, serde_json::Error> {
     let Cycles { cycles } = serde_json::from_slice(result_json)?;
     let mut csv = String::with_capacity(64 + cycles.len() * 160);
     csv.push_str(HEADER);
     csv.push_str("\r\n");
+    let mut previous = 0;
     for c in &cycles {
+        let stepped_over = c.cycle.saturating_sub(previous + 1);
+        previous = c.cycle;
         let optional = |value: Option<f64>| value.map(|v| v.to_string()).unwrap_or_default();
         // Writing to a String cannot fail.
         let _ = write!(
             csv,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{}\r\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{}\r\n",
             c.cycle,
             c.time_s,
             c.wear_volume_mm3,
@@ -43,6 +50,7 @@ pub fn cycles_csv(result_json: &[u8]) -> Result<String, serde_json::Error> {
             optional(c.potential_v),
             optional(c.anodic_area_mm2),
             optional(c.wac_volume_mm3),
+            stepped_over,
         );
     }
     Ok(csv)
@@ -53,7 +61,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn one_row_per_cycle_with_empty_corrosion_cells() {
+    fn one_row_per_cycle_with_empty_corrosion_cells_and_the_cycles_stepped_over() {
         let json = br#"{"scene": {}, "cycles": [
             {"cycle": 1, "time_s": 1.0, "wear_volume_mm3": 0.5, "max_depth_um": 0.25,
              "max_pressure_mpa": 1200.0, "contact_area_mm2": 0.01, "plastic_area_mm2": 0.0,
@@ -66,11 +74,12 @@ mod tests {
         let csv = cycles_csv(json).expect("valid result");
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines.len(), 3);
-        assert_eq!(lines[0].split(',').count(), 13);
-        assert_eq!(lines[1], "1,1,0.5,0.25,1200,0.01,0,2473,1.5,12,,,");
+        assert_eq!(lines[0].split(',').count(), 14);
+        assert_eq!(lines[1], "1,1,0.5,0.25,1200,0.01,0,2473,1.5,12,,,,0");
+        // Cycle 2 was stepped over: cycle 1's solve stood for it.
         assert_eq!(
             lines[2],
-            "3,3,1.5,0.5,1100,0.02,0.001,2500,1.6,9,-0.2,0.3,0.000001"
+            "3,3,1.5,0.5,1100,0.02,0.001,2500,1.6,9,-0.2,0.3,0.000001,1"
         );
     }
 }

@@ -24,6 +24,7 @@ mod job;
 mod job_routes;
 mod listen;
 mod measurements;
+mod partial;
 mod queue;
 mod registry;
 mod routes;

@@ -19,8 +19,9 @@ use super::error::ApiError;
 use super::events;
 use super::export;
 use super::extract::{JobId, is_json, read_body};
-use super::job::JobStatus;
+use super::job::{Job, JobStatus};
 use super::job_routes;
+use super::partial::{self, PartialError};
 use super::registry::{Deletion, SubmitError};
 use super::store::is_disk_full;
 use super::{calibration_routes, study_routes};
@@ -440,15 +441,15 @@ async fn result_bytes(app: &AppState, id: Uuid) -> Result<Vec<u8>, ApiError> {
     let record = job.record();
     match (record.status, record.error) {
         (JobStatus::Succeeded, _) => {}
-        (JobStatus::Failed, Some(error)) => {
-            return Err(ApiError::conflict(format!("job failed: {error}")));
+        (JobStatus::Failed | JobStatus::Cancelled, error) => {
+            return partial_bytes(app, job, error).await;
         }
         (JobStatus::Damaged, Some(error)) => {
             return Err(ApiError::conflict(format!("job is damaged: {error}")));
         }
         (status, _) => {
             return Err(ApiError::conflict(format!(
-                "job is {}; only a succeeded job has a result",
+                "job is {}; a result comes once it has finished",
                 status.name()
             )));
         }
@@ -476,6 +477,29 @@ async fn result_bytes(app: &AppState, id: Uuid) -> Result<Vec<u8>, ApiError> {
     })
     .await
     .map_err(|e| ApiError::internal("reading a result", &e))?
+    .map(partial::marked_complete)
+}
+
+/// What a failed or cancelled job computed, as a result with `"complete": false`.
+async fn partial_bytes(
+    app: &AppState,
+    job: Arc<Job>,
+    error: Option<String>,
+) -> Result<Vec<u8>, ApiError> {
+    let jobs = Arc::clone(&app.jobs);
+    tokio::task::spawn_blocking(move || jobs.partial_result(&job))
+        .await
+        .map_err(|e| ApiError::internal("reading a partial result", &e))?
+        .map_err(|e| match e {
+            PartialError::Scene(ref damage) if !damage.is_read_failure() => {
+                ApiError::conflict(e.to_string())
+            }
+            PartialError::Setup(_) => ApiError::conflict(format!(
+                "job failed before its first cycle: {}",
+                error.unwrap_or_else(|| e.to_string())
+            )),
+            _ => ApiError::internal("reading a partial result", &e),
+        })
 }
 
 fn attachment(content_type: &'static str, filename: &str, body: impl IntoResponse) -> Response {

@@ -10,6 +10,9 @@ use crate::wear::Groove;
 /// A whole run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SimulationResult {
+    /// Whether the run went to its last cycle. Only the service's result of a failed or
+    /// cancelled job is incomplete: it holds the cycles solved before the stop.
+    pub complete: bool,
     /// The scene as run, every default filled in.
     pub scene: Scene,
     /// Which physical and numerical models the run used, and why.

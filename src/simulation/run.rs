@@ -323,6 +323,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             iterations: self.iterations,
         };
         SimulationResult {
+            complete: true,
             scene: scene.clone(),
             models,
             warnings: setup.warnings.clone(),
