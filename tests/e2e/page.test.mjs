@@ -191,6 +191,7 @@ try {
   const [csvDownload] = await Promise.all([page.waitForEvent("download"), page.click("#download-csv")]);
   const csv = fs.readFileSync(await csvDownload.path(), "utf8").trim().split("\n");
   assert.equal(csv.length, result.cycles.length + 1);
+  assert.ok(csv[0].trim().split(",").includes("cycles_stepped_over"), `the CSV does not say which cycles were stepped over: ${csv[0]}`);
   console.log(`   ${csvDownload.suggestedFilename()}: ${csv.length - 1} rows`);
 
   step("measurements attached to the run: a bad table refused with its column named, then three kinds drawn");
@@ -473,6 +474,8 @@ try {
   page.once("dialog", (d) => d.accept());
   await queued.locator("button.delete").click();
   await page.waitForFunction((n) => document.querySelectorAll("#jobs tbody tr").length === n - 1, withQueued);
+  // Some cycles done before the cancel, so that there is a partial result to see.
+  await page.waitForFunction(() => document.querySelector("#jobs tbody tr progress").value > 0);
   const newest = page.locator("#jobs tbody tr").first();
   let question = "";
   page.once("dialog", (d) => { question = d.message(); d.accept(); });
@@ -480,6 +483,16 @@ try {
   await newest.locator("td", { hasText: "cancelled" }).waitFor();
   assert.match(question, /^Cancel the run/);
   await newest.locator(".reason", { hasText: /Cancelled on request after \d+ of 100000 cycles/ }).waitFor();
+
+  step("the cancelled run keeps what it computed: drawn, and downloadable as CSV");
+  await newest.locator("button.view").click();
+  await page.locator("#run-partial", { hasText: "Partial result" }).waitFor();
+  await page.waitForFunction(() => Number(document.getElementById("plot-depth").dataset.points) > 0 && !document.getElementById("download-csv").disabled);
+  const [partialCsv] = await Promise.all([page.waitForEvent("download"), page.click("#download-csv")]);
+  const partialRows = fs.readFileSync(await partialCsv.path(), "utf8").trim().split("\n");
+  console.log(`   ${await page.textContent("#run-partial")} (${partialRows.length - 1} CSV rows)`);
+  assert.ok(partialRows.length > 1, "the partial CSV has no rows");
+  assert.ok(partialRows[0].trim().split(",").includes("cycles_stepped_over"), `the CSV does not say which cycles were stepped over: ${partialRows[0]}`);
   page.once("dialog", (d) => d.accept());
   const before = await page.locator("#jobs tbody tr").count();
   await newest.locator("button.delete").click();
