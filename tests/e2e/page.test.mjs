@@ -523,6 +523,17 @@ try {
   }
   await page.unroute(jobList);
 
+  step("phone width again, with the study and calibration panels open: no sideways scroll");
+  await page.setViewportSize({ width: 390, height: 844 });
+  await page.waitForTimeout(400);
+  const phoneAgain = await page.evaluate(() => ({
+    open: ["study-panel", "calib-panel"].filter((id) => !document.getElementById(id).hidden),
+    scrollWidth: document.documentElement.scrollWidth, clientWidth: document.documentElement.clientWidth,
+  }));
+  console.log(`   ${JSON.stringify(phoneAgain)}`);
+  assert.deepEqual(phoneAgain.open, ["study-panel", "calib-panel"]);
+  assert.ok(phoneAgain.scrollWidth <= phoneAgain.clientWidth, `the page scrolls sideways: ${phoneAgain.scrollWidth} > ${phoneAgain.clientWidth}`);
+
   assert.deepEqual(errors, [], "errors in the page");
   console.log("e2e: all checks passed");
 } catch (e) {
