@@ -90,13 +90,6 @@ try {
     const p = document.getElementById("run-progress");
     return p.value > 0 && p.value < p.max && Number(document.getElementById("plot-volume").dataset.points) > 0;
   }, null, { polling: "raf" });
-  // For the screenshot only: a third of the way in, if the run has not ended by then.
-  await page.waitForFunction(() => {
-    const p = document.getElementById("run-progress");
-    return p.value >= p.max / 3 || !document.getElementById("run-status").textContent.startsWith("running");
-  }, null, { polling: "raf" });
-  console.log(`   during the run: ${await page.$eval("#run-status", (el) => el.textContent)}`);
-  await page.screenshot({ path: path.join(shots, "during-run.png"), fullPage: true });
 
   step("the run ends; the final plots hold data");
   await page.waitForFunction(() => document.getElementById("run-status").textContent.startsWith("succeeded"), null, { timeout: 600_000 });
@@ -474,8 +467,13 @@ try {
   page.once("dialog", (d) => d.accept());
   await queued.locator("button.delete").click();
   await page.waitForFunction((n) => document.querySelectorAll("#jobs tbody tr").length === n - 1, withQueued);
-  // Some cycles done before the cancel, so that there is a partial result to see.
+  // Some cycles done before the cancel, so that there is a partial result to see; the
+  // long run is also the one the screenshot of a run in progress shows.
   await page.waitForFunction(() => document.querySelector("#jobs tbody tr progress").value > 0);
+  await page.locator("#jobs tbody tr").first().locator("button.view").click();
+  await page.waitForFunction(() => document.getElementById("run-status").textContent.startsWith("running") && Number(document.getElementById("plot-volume").dataset.points) > 20);
+  console.log(`   during the run: ${await page.$eval("#run-status", (el) => el.textContent)}`);
+  await page.screenshot({ path: path.join(shots, "during-run.png"), fullPage: true });
   const newest = page.locator("#jobs tbody tr").first();
   let question = "";
   page.once("dialog", (d) => { question = d.message(); d.accept(); });
