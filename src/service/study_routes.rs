@@ -11,8 +11,8 @@ use uuid::Uuid;
 
 use super::AppState;
 use super::error::ApiError;
-use super::registry::SubmitError;
 use super::extract::{cut, is_json, read_body};
+use super::registry::SubmitError;
 use super::store::is_disk_full;
 use super::studies::{StudyDeletion, StudySubmitError};
 use crate::json::JsonError;
@@ -94,7 +94,9 @@ fn refused(error: StudySubmitError) -> ApiError {
             ),
             retry_after_s,
         ),
-        StudySubmitError::Submit(SubmitError::DiskFull) => ApiError::disk_full("the study was not accepted"),
+        StudySubmitError::Submit(SubmitError::DiskFull) => {
+            ApiError::disk_full("the study was not accepted")
+        }
         StudySubmitError::Submit(SubmitError::Storage(e)) => {
             ApiError::internal("storing the study", &e)
         }
