@@ -1,6 +1,6 @@
 //! What a job carries besides its run, against the real `tribosim serve` binary: measured
 //! points attached to it (stored, checked, kept across a restart, deleted with the job),
-//! the scene as run, and the place of a queued job.
+//! the scene as run, the place of a queued job, and what a cancelled run computed.
 
 mod common;
 
@@ -200,4 +200,55 @@ async fn queued_jobs_show_their_place_in_the_queue() {
         .send()
         .await
         .expect("DELETE");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_cancelled_run_keeps_its_cycles_across_a_restart() {
+    let dir = TempDir::new("partial-result");
+    let client = reqwest::Client::new();
+    let mut server = ServerProcess::start(dir.path());
+    let job = submit(&client, &server.base, &long_scene(3000)).await;
+    let id = job["id"].as_str().expect("id").to_owned();
+    wait_for_job(&client, &server.base, &id, |job| {
+        job["cycles_done"].as_u64() >= Some(3)
+    })
+    .await;
+    let job_url = server.url(&format!("/api/v1/jobs/{id}"));
+    let response = client.delete(&job_url).send().await.expect("DELETE");
+    assert_eq!(response.status(), 202);
+    let job = wait_for_job(&client, &server.base, &id, is_final).await;
+    assert_eq!(job["status"], "cancelled");
+
+    let result_url = format!("{job_url}/result");
+    let partial = get_json(&client, &result_url).await;
+    assert_eq!(partial["complete"], false);
+    let cycles = partial["cycles"].as_array().expect("cycles");
+    // `long_scene` solves every cycle, so the log holds cycles 1 to cycles_done.
+    assert_eq!(
+        cycles.len() as u64,
+        job["cycles_done"].as_u64().expect("done")
+    );
+    assert_eq!(partial["summary"]["cycles"], job["cycles_done"]);
+    assert_eq!(
+        partial["summary"]["max_depth_um"],
+        cycles.last().expect("a cycle")["max_depth_um"]
+    );
+    assert_eq!(partial["scene"]["test"]["cycles"], 3000);
+    let csv = client
+        .get(format!("{job_url}/result.csv"))
+        .send()
+        .await
+        .expect("CSV")
+        .text()
+        .await
+        .expect("text");
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(rows.len(), cycles.len() + 1);
+    assert!(rows[0].ends_with(",cycles_stepped_over"), "{}", rows[0]);
+    assert!(rows[1..].iter().all(|row| row.ends_with(",0")), "{csv}");
+
+    server.kill_9();
+    let server = ServerProcess::start(dir.path());
+    let again = get_json(&client, &server.url(&format!("/api/v1/jobs/{id}/result"))).await;
+    assert_eq!(again, partial);
 }
