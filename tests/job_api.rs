@@ -1,7 +1,7 @@
 //! What a job carries besides its run, against the real `tribosim serve` binary: measured
 //! points attached to it (stored, checked, kept across a restart, damage found by their
-//! checksum, deleted with the job),
-//! the scene as run, the place of a queued job, and what a cancelled run computed.
+//! checksum, deleted with the job), the scene as run, the place of a queued job, and what a
+//! cancelled run computed.
 
 mod common;
 
