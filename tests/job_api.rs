@@ -1,6 +1,7 @@
 //! What a job carries besides its run, against the real `tribosim serve` binary: measured
-//! points attached to it (stored, checked, kept across a restart, deleted with the job),
-//! the scene as run, and the place of a queued job.
+//! points attached to it (stored, checked, kept across a restart, damage found by their
+//! checksum, deleted with the job), the scene as run, the place of a queued job, and what a
+//! cancelled run computed.
 
 mod common;
 
@@ -200,4 +201,99 @@ async fn queued_jobs_show_their_place_in_the_queue() {
         .send()
         .await
         .expect("DELETE");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_cancelled_run_keeps_its_cycles_across_a_restart() {
+    let dir = TempDir::new("partial-result");
+    let client = reqwest::Client::new();
+    let mut server = ServerProcess::start(dir.path());
+    let job = submit(&client, &server.base, &long_scene(3000)).await;
+    let id = job["id"].as_str().expect("id").to_owned();
+    wait_for_job(&client, &server.base, &id, |job| {
+        job["cycles_done"].as_u64() >= Some(3)
+    })
+    .await;
+    let job_url = server.url(&format!("/api/v1/jobs/{id}"));
+    let response = client.delete(&job_url).send().await.expect("DELETE");
+    assert_eq!(response.status(), 202);
+    let job = wait_for_job(&client, &server.base, &id, is_final).await;
+    assert_eq!(job["status"], "cancelled");
+
+    let result_url = format!("{job_url}/result");
+    let partial = get_json(&client, &result_url).await;
+    assert_eq!(partial["complete"], false);
+    let cycles = partial["cycles"].as_array().expect("cycles");
+    // `long_scene` solves every cycle, so the log holds cycles 1 to cycles_done.
+    assert_eq!(
+        cycles.len() as u64,
+        job["cycles_done"].as_u64().expect("done")
+    );
+    assert_eq!(partial["summary"]["cycles"], job["cycles_done"]);
+    assert_eq!(
+        partial["summary"]["max_depth_um"],
+        cycles.last().expect("a cycle")["max_depth_um"]
+    );
+    assert_eq!(partial["scene"]["test"]["cycles"], 3000);
+    let csv = client
+        .get(format!("{job_url}/result.csv"))
+        .send()
+        .await
+        .expect("CSV")
+        .text()
+        .await
+        .expect("text");
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(rows.len(), cycles.len() + 1);
+    assert!(rows[0].ends_with(",cycles_stepped_over"), "{}", rows[0]);
+    assert!(rows[1..].iter().all(|row| row.ends_with(",0")), "{csv}");
+
+    server.kill_9();
+    let server = ServerProcess::start(dir.path());
+    let again = get_json(&client, &server.url(&format!("/api/v1/jobs/{id}/result"))).await;
+    assert_eq!(again, partial);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_measured_table_changed_on_disk_is_found_and_mended_by_a_put() {
+    let dir = TempDir::new("measurement-damage");
+    let client = reqwest::Client::new();
+    let mut server = ServerProcess::start(dir.path());
+    let job = submit(&client, &server.base, &small_scene(3)).await;
+    let id = job["id"].as_str().expect("id").to_owned();
+    let csv = "cycles,volume_mm3\n10,0.0042\n60,0.0071\n";
+    let put_url = server.url(&format!("/api/v1/jobs/{id}/measurements/wear_volume"));
+    let (status, stored) = put_table(&client, &put_url, "text/csv", csv).await;
+    assert_eq!(status, 200, "{stored}");
+    wait_for_job(&client, &server.base, &id, is_final).await;
+    server.kill_9();
+
+    // One digit changed: still valid JSON of the same length, so only the checksum tells.
+    let file = dir
+        .path()
+        .join("jobs")
+        .join(&id)
+        .join("measured_wear_volume.json");
+    let text = std::fs::read_to_string(&file).expect("stored table");
+    assert!(text.contains("0.0042"), "{text}");
+    std::fs::write(&file, text.replace("0.0042", "0.0043")).expect("write");
+
+    let server = ServerProcess::start(dir.path());
+    let url = server.url(&format!("/api/v1/jobs/{id}/measurements"));
+    let response = client.get(&url).send().await.expect("GET");
+    assert_eq!(response.status(), 409);
+    let error: Value = response.json().await.expect("JSON");
+    let message = error["error"].as_str().expect("message");
+    assert!(message.contains("measured_wear_volume.json"), "{message}");
+    // The job itself is untouched.
+    let result = client
+        .get(server.url(&format!("/api/v1/jobs/{id}/result")))
+        .send()
+        .await
+        .expect("result");
+    assert_eq!(result.status(), 200);
+    let put_url = format!("{url}/wear_volume");
+    let (status, mended) = put_table(&client, &put_url, "text/csv", csv).await;
+    assert_eq!(status, 200, "{mended}");
+    assert_eq!(get_json(&client, &url).await, stored);
 }
