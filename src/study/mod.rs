@@ -9,6 +9,7 @@ pub mod command;
 
 mod expand;
 mod run;
+pub mod slurm;
 mod summary;
 
 use serde_json::Value;
