@@ -123,7 +123,7 @@ fn collect_gives_the_local_summary_and_marks_a_member_without_result() {
         "a missing member fails the command"
     );
     assert!(
-        stderr(&collected).contains("1 of 4 members"),
+        stderr(&collected).contains("1 of 4 members have no result"),
         "{}",
         stderr(&collected)
     );

@@ -8,7 +8,7 @@ use std::time::SystemTime;
 use serde::Deserialize;
 
 use crate::simulation::Summary;
-use crate::study::command::report;
+use crate::study::command::{CommandError, report};
 use crate::study::{Study, StudySummary};
 
 use super::{
@@ -71,11 +71,13 @@ pub fn collect(args: &CollectArgs) -> Result<StudySummary, SlurmError> {
         .collect();
     let (workers, wall_s) = concurrency(&spans);
     let summary = StudySummary::from_results(&members, results, workers, wall_s);
-    Ok(report(
-        summary,
-        args.output.as_deref(),
-        args.csv.as_deref(),
-    )?)
+    report(summary, args.output.as_deref(), args.csv.as_deref()).map_err(|e| match e {
+        CommandError::MembersFailed { failed, members } => SlurmError::Unfinished {
+            missing: failed,
+            members,
+        },
+        other => SlurmError::Command(other),
+    })
 }
 
 fn read_manifest(dir: &Path) -> Result<Manifest, SlurmError> {

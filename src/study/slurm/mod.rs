@@ -76,9 +76,9 @@ fn log_path(index: usize) -> String {
 /// Why a study directory could not be written, submitted or collected.
 #[derive(Debug, Error)]
 pub enum SlurmError {
-    /// The study file was unreadable or refused.
+    /// The study file was unreadable or refused, or the summary could not be written.
     #[error(transparent)]
-    Study(#[from] CommandError),
+    Command(#[from] CommandError),
     /// The directory already holds files, which writing would mix with another study's.
     #[error("{0} exists and is not empty; give a new directory")]
     NotEmpty(PathBuf),
@@ -109,6 +109,16 @@ pub enum SlurmError {
         dir: PathBuf,
         /// What is missing or wrong.
         reason: String,
+    },
+    /// Some members have no readable result yet; the summary was written with them marked.
+    #[error(
+        "{missing} of {members} members have no result; the summary marks them with their logs' last lines"
+    )]
+    Unfinished {
+        /// Members without a result.
+        missing: usize,
+        /// Members in the study.
+        members: usize,
     },
     /// The directory was written by another version, whose members may not run as this
     /// one's would.
