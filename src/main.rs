@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use tribosim::bench::{self, BenchTarget};
@@ -15,6 +15,7 @@ use tribosim::calibration::{CommandOptions, FitKind, calibrate_files};
 use tribosim::scene::{Scene, presets};
 use tribosim::simulation::{first_contact, parse_scene_str, run};
 use tribosim::study::command::StudyArgs;
+use tribosim::study::slurm::{CollectArgs, SlurmOptions, collect, write_dir};
 
 #[derive(Parser)]
 #[command(
@@ -71,10 +72,15 @@ enum Command {
         #[arg(long, value_name = "V", allow_hyphen_values = true)]
         e_corr: Option<f64>,
     },
-    /// Run a study (a base scene and axes, `docs/study.md`) and write its summary JSON.
+    /// Run a study (a base scene and axes, `docs/study.md`) and write its summary JSON; or
+    /// write it as a Slurm job array (`--slurm DIR`) and `collect` it (`docs/cluster.md`).
+    #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
     Study {
+        #[command(subcommand)]
+        action: Option<StudyAction>,
         /// The study file (JSON).
-        study: PathBuf,
+        #[arg(required = true)]
+        study: Option<PathBuf>,
         /// Worker threads; one per available core by default.
         #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
         workers: Option<u64>,
@@ -87,6 +93,8 @@ enum Command {
         /// Also write the summary table as CSV here.
         #[arg(long, value_name = "PATH")]
         csv: Option<PathBuf>,
+        #[command(flatten)]
+        slurm: SlurmCli,
     },
     /// Print the speed-against-error tables.
     Bench {
@@ -101,6 +109,81 @@ enum Command {
         #[arg(long, value_name = "PATH")]
         markdown: Option<PathBuf>,
     },
+}
+
+/// `tribosim study --slurm`: the study written as a job array instead of run here.
+#[derive(Args)]
+struct SlurmCli {
+    /// Write the members' scenes and a Slurm job-array script to this new directory instead
+    /// of running the study, and print the `sbatch` command.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["workers", "output", "csv"])]
+    slurm: Option<PathBuf>,
+    /// The tribosim the cluster's tasks run, at a path every node reaches; this binary by
+    /// default.
+    #[arg(long, value_name = "PATH", requires = "slurm")]
+    tribosim: Option<PathBuf>,
+    /// `#SBATCH --partition` for the tasks.
+    #[arg(long, requires = "slurm")]
+    partition: Option<String>,
+    /// `#SBATCH --time` for each task, in Slurm's format (`30:00`, `1-00:00:00`).
+    #[arg(long, requires = "slurm")]
+    time: Option<String>,
+    /// `#SBATCH --cpus-per-task` (a run uses one core).
+    #[arg(long, requires = "slurm", value_parser = clap::value_parser!(u32).range(1..))]
+    cpus_per_task: Option<u32>,
+    /// Run `sbatch` once written and print the array job's id.
+    #[arg(long, requires = "slurm")]
+    submit: bool,
+}
+
+#[derive(Subcommand)]
+enum StudyAction {
+    /// Gather the results in a `--slurm` study directory into the study's summary JSON.
+    Collect {
+        /// The study directory.
+        dir: PathBuf,
+        /// Where to write the summary; standard output if absent.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Also write the summary table as CSV here.
+        #[arg(long, value_name = "PATH")]
+        csv: Option<PathBuf>,
+    },
+}
+
+/// `tribosim study`: run the study here, write it for Slurm, or collect it.
+fn study(
+    action: Option<StudyAction>,
+    study: Option<PathBuf>,
+    args: StudyArgs,
+    slurm: SlurmCli,
+) -> Result<(), String> {
+    if let Some(StudyAction::Collect { dir, output, csv }) = action {
+        return collect(&CollectArgs { dir, output, csv })
+            .map(drop)
+            .map_err(|e| e.to_string());
+    }
+    let study = study.unwrap_or_default();
+    let Some(dir) = slurm.slurm else {
+        return tribosim::study::command::study(&StudyArgs { study, ..args })
+            .map(drop)
+            .map_err(|e| e.to_string());
+    };
+    let tribosim = match slurm.tribosim {
+        Some(path) => std::path::absolute(&path),
+        None => std::env::current_exe(),
+    }
+    .map_err(|e| format!("cannot find the tribosim binary's path: {e}"))?;
+    let options = SlurmOptions {
+        dir,
+        tribosim,
+        partition: slurm.partition,
+        time: slurm.time,
+        cpus_per_task: slurm.cpus_per_task,
+        max_members: args.max_members,
+        submit: slurm.submit,
+    };
+    write_dir(&study, &options).map_err(|e| e.to_string())
 }
 
 fn read_scene(path: &Path) -> Result<Scene, String> {
@@ -119,10 +202,21 @@ fn read_scene(path: &Path) -> Result<Scene, String> {
 fn write_json(value: &impl serde::Serialize, output: Option<&Path>) -> Result<(), String> {
     let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())?;
     match output {
-        Some(path) => std::fs::write(path, text + "\n")
+        Some(path) => write_whole(path, &(text + "\n"))
             .map_err(|e| format!("cannot write {}: {e}", path.display())),
         None => writeln!(std::io::stdout(), "{text}").map_err(|e| e.to_string()),
     }
+}
+
+/// Writes `text` to a temporary file beside `path`, then renames it into place: a reader
+/// (`tribosim study collect` while a cluster's tasks still run) sees the whole file or none.
+fn write_whole(path: &Path, text: &str) -> std::io::Result<()> {
+    let mut temporary = path.as_os_str().to_owned();
+    temporary.push(format!(".{}.tmp", std::process::id()));
+    std::fs::write(&temporary, text)?;
+    std::fs::rename(&temporary, path).inspect_err(|_| {
+        let _ = std::fs::remove_file(&temporary);
+    })
 }
 
 fn run_scene(path: &Path, output: Option<&Path>) -> Result<(), String> {
@@ -175,20 +269,23 @@ fn main() -> ExitCode {
                 .map_err(|e| e.to_string())
         }
         Command::Study {
-            study,
+            action,
+            study: path,
             workers,
             max_members,
             output,
             csv,
-        } => tribosim::study::command::study(&StudyArgs {
-            study,
-            workers: workers.map(|n| usize::try_from(n).unwrap_or(usize::MAX)),
-            max_members,
-            output,
-            csv,
-        })
-        .map(drop)
-        .map_err(|e| e.to_string()),
+            slurm,
+        } => {
+            let args = StudyArgs {
+                study: PathBuf::new(),
+                workers: workers.map(|n| usize::try_from(n).unwrap_or(usize::MAX)),
+                max_members,
+                output,
+                csv,
+            };
+            study(action, path, args, slurm)
+        }
         Command::Bench {
             target,
             json,

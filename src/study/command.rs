@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use thiserror::Error;
 
-use super::{MemberOutcome, Study, StudyError, StudySummary, describe_values, run_members};
+use super::{Member, MemberOutcome, Study, StudyError, StudySummary, describe_values, run_members};
 
 /// What `tribosim study` was asked to do.
 #[derive(Debug, Clone)]
@@ -73,27 +73,37 @@ pub enum CommandError {
     },
 }
 
-/// Runs the study `args` names: one line on standard error as each member ends, the
-/// summary JSON to `args.output` (or standard output), the markdown table to standard
-/// error. Members that fail leave the others running and make the command fail at the end.
-pub fn study(args: &StudyArgs) -> Result<StudySummary, CommandError> {
-    let text = std::fs::read_to_string(&args.study).map_err(|source| CommandError::Read {
-        path: args.study.clone(),
+/// Reads the study file at `path` and expands its members, refusing a study over
+/// `max_members`; gives the file's text with them.
+pub fn read_members(
+    path: &Path,
+    max_members: usize,
+) -> Result<(String, Vec<Member>), CommandError> {
+    let text = std::fs::read_to_string(path).map_err(|source| CommandError::Read {
+        path: path.to_owned(),
         source,
     })?;
     let refused = |source| match source {
         StudyError::TooManyMembers { .. } => CommandError::OverLimit {
-            path: args.study.clone(),
+            path: path.to_owned(),
             source,
         },
         _ => CommandError::Study {
-            path: args.study.clone(),
+            path: path.to_owned(),
             source,
         },
     };
     let members = Study::parse(&text)
-        .and_then(|study| study.members(args.max_members))
+        .and_then(|study| study.members(max_members))
         .map_err(refused)?;
+    Ok((text, members))
+}
+
+/// Runs the study `args` names: one line on standard error as each member ends, the
+/// summary JSON to `args.output` (or standard output), the markdown table to standard
+/// error. Members that fail leave the others running and make the command fail at the end.
+pub fn study(args: &StudyArgs) -> Result<StudySummary, CommandError> {
+    let (_, members) = read_members(&args.study, args.max_members)?;
     let workers = args.workers.unwrap_or_else(|| {
         std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
     });
@@ -125,31 +135,36 @@ pub fn study(args: &StudyArgs) -> Result<StudySummary, CommandError> {
         workers,
         started.elapsed().as_secs_f64(),
     );
-    write_outputs(&summary, args)?;
+    report(summary, args.output.as_deref(), args.csv.as_deref())
+}
+
+/// Writes `summary` as JSON to `output` (or standard output) and as CSV to `csv`, and the
+/// markdown table to standard error; fails, after writing, when any member did not finish.
+pub fn report(
+    summary: StudySummary,
+    output: Option<&Path>,
+    csv: Option<&Path>,
+) -> Result<StudySummary, CommandError> {
+    let json = serde_json::to_string_pretty(&summary).map_err(|e| CommandError::Write {
+        path: output.map_or_else(|| "-".into(), Path::to_owned),
+        source: e.into(),
+    })? + "\n";
+    match output {
+        Some(path) => write(path, &json)?,
+        None => print!("{json}"),
+    }
+    if let Some(path) = csv {
+        write(path, &summary.to_csv())?;
+    }
     eprint!("{}", summary.to_markdown());
     eprintln!("study wall time {:.1} s", summary.wall_s);
     match summary.failed() {
         0 => Ok(summary),
         failed => Err(CommandError::MembersFailed {
             failed,
-            members: total,
+            members: summary.members.len(),
         }),
     }
-}
-
-fn write_outputs(summary: &StudySummary, args: &StudyArgs) -> Result<(), CommandError> {
-    let json = serde_json::to_string_pretty(summary).map_err(|e| CommandError::Write {
-        path: args.output.clone().unwrap_or_else(|| "-".into()),
-        source: e.into(),
-    })? + "\n";
-    match &args.output {
-        Some(path) => write(path, &json)?,
-        None => print!("{json}"),
-    }
-    if let Some(path) = &args.csv {
-        write(path, &summary.to_csv())?;
-    }
-    Ok(())
 }
 
 fn write(path: &Path, text: &str) -> Result<(), CommandError> {

@@ -2,13 +2,15 @@
 //! load were 2, 5 or 10 N at 30 or 60 rpm"). A study expands to one ordinary scene per
 //! combination ([`Study::members`]), runs them on worker threads ([`run_members`]) and
 //! gathers one row per member ([`StudySummary`]). Plain synchronous code over
-//! [`crate::simulation`]; the command line drives it through [`command`].
+//! [`crate::simulation`]; the command line drives it through [`command`], and through
+//! [`slurm`] writes it as a Slurm job array and collects the results.
 
 mod axes;
 pub mod command;
 
 mod expand;
 mod run;
+pub mod slurm;
 mod summary;
 
 use serde_json::Value;

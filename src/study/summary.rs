@@ -81,19 +81,44 @@ impl StudySummary {
         workers: usize,
         wall_s: f64,
     ) -> Self {
+        let results = outcomes
+            .iter()
+            .map(|outcome| match &outcome.result {
+                Ok(result) => Ok(result.summary.clone()),
+                Err(error) => Err(error.to_string()),
+            })
+            .collect();
+        Self::from_results(members, results, workers, wall_s)
+    }
+
+    /// Gathers each member's run summary, or why it has none, in the members' order: a
+    /// study whose members ran elsewhere (a cluster's job array) is summarised by this same
+    /// path.
+    pub fn from_results(
+        members: &[Member],
+        results: Vec<Result<Summary, String>>,
+        workers: usize,
+        wall_s: f64,
+    ) -> Self {
         let axes = members
             .first()
             .map(|m| m.values.iter().map(|(path, _)| path.clone()).collect())
             .unwrap_or_default();
         let members = members
             .iter()
-            .zip(outcomes)
-            .map(|(member, outcome)| MemberRow {
-                index: member.index,
-                values: member.values.iter().cloned().collect(),
-                summary: outcome.result.as_ref().ok().map(|r| r.summary.clone()),
-                error: outcome.result.as_ref().err().map(ToString::to_string),
-                pending: None,
+            .zip(results)
+            .map(|(member, result)| {
+                let (summary, error) = match result {
+                    Ok(summary) => (Some(summary), None),
+                    Err(error) => (None, Some(error)),
+                };
+                MemberRow {
+                    index: member.index,
+                    values: member.values.iter().cloned().collect(),
+                    summary,
+                    error,
+                    pending: None,
+                }
             })
             .collect();
         Self {
