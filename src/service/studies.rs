@@ -112,7 +112,10 @@ impl Studies {
         let dir = data_dir.join(STUDIES_DIR);
         fs::create_dir_all(&dir)?;
         sync_dir(data_dir)?;
-        sweep_temporaries(&dir)?;
+        if let Err(e) = sweep_temporaries(&dir) {
+            // Leftover temporary files are harmless: they are not named as studies.
+            tracing::warn!(dir = %dir.display(), "cannot sweep temporary files: {e}");
+        }
         let studies = Self {
             dir,
             quarantine_dir: quarantine_dir.to_owned(),

@@ -8,6 +8,12 @@ use serde_json::{Number, Value};
 
 use super::StudyError;
 
+/// The most intervals a range may have. A range's values are built when the study is read,
+/// before the member limit is checked, so this bounds the memory a study file can ask for
+/// (a million values, 32 MB) whatever the member limit; a study of a million runs is years
+/// of a workstation's time.
+pub const MAX_RANGE_STEPS: u64 = 1_000_000;
+
 /// One axis: the path of a scene field and its values, in the order given.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Axis {
@@ -112,6 +118,11 @@ fn range(json: &Value) -> Result<AxisValues, String> {
     if steps == 0 {
         return Err("a range needs at least 1 step (steps + 1 values, both ends included); for one value give a list".into());
     }
+    if steps > MAX_RANGE_STEPS {
+        return Err(format!(
+            "a range has at most {MAX_RANGE_STEPS} steps, got {steps}"
+        ));
+    }
     Ok(AxisValues::Range { from, to, steps })
 }
 
@@ -135,5 +146,21 @@ impl<'de> Deserialize<'de> for OrderedAxes {
             }
         }
         deserializer.deserialize_map(InOrder)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_range_with_too_many_steps_is_refused_before_its_values_are_built() {
+        let huge = serde_json::json!({"from": 2, "to": 4, "steps": 331_526_042_580_u64});
+        let err = Axis::from_json("test.load_n".into(), &huge).expect_err("too many steps");
+        assert!(err.to_string().contains("test.load_n"), "{err}");
+        assert!(err.to_string().contains("at most 1000000 steps"), "{err}");
+        let most = serde_json::json!({"from": 0, "to": 1, "steps": MAX_RANGE_STEPS});
+        let axis = Axis::from_json("test.load_n".into(), &most).expect("the largest range");
+        assert_eq!(axis.values.len() as u64, MAX_RANGE_STEPS + 1);
     }
 }

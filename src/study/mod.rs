@@ -19,7 +19,7 @@ use thiserror::Error;
 use crate::json::JsonError;
 use crate::scene::{Scene, SceneErrors};
 
-pub use axes::{Axis, AxisValues};
+pub use axes::{Axis, AxisValues, MAX_RANGE_STEPS};
 pub use run::{MemberOutcome, run_members};
 pub use summary::{MemberRow, Pending, StudySummary};
 
