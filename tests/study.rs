@@ -83,9 +83,11 @@ fn a_base_without_a_preset_is_set_at_the_path_itself() {
     let members = Study::parse(&text)
         .and_then(|s| s.members(MAX_MEMBERS))
         .expect("valid");
-    let direct =
+    let mut direct =
         parse_scene(&json!({"test": {"cycles": 20, "load_n": 3}, "numerics": {"grid": 32}}))
             .expect("valid scene");
+    // The member's name is the only difference: the base's name with the member's values.
+    direct.name = format!("{} [test.load_n = 3]", direct.name);
     assert_eq!(members[0].scene, direct);
 }
 

@@ -45,11 +45,15 @@ impl Study {
         for (path, value) in &values {
             set(&mut document, path, value.clone())?;
         }
-        let scene = parse_scene(&document).map_err(|source| StudyError::Member {
+        let described = describe_values(&values);
+        let mut scene = parse_scene(&document).map_err(|source| StudyError::Member {
             index,
-            values: describe_values(&values),
+            values: described.clone(),
             source,
         })?;
+        // Every member would otherwise carry the base's name, which for a member at another
+        // load names the wrong test in a job list or a result file.
+        scene.name = format!("{} [{described}]", scene.name);
         Ok(Member {
             index,
             values,
