@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 use super::{
-    ArchardOptions, CalibrationError, HardnessOptions, Table, TafelOptions, fit_archard,
-    fit_hardness, fit_ocp, fit_tafel,
+    ArchardOptions, CalibrationError, ChangeCycle, HardnessOptions, RegimeOptions, Table,
+    TafelOptions, fit_archard, fit_archard_regimes, fit_hardness, fit_ocp, fit_tafel,
 };
 use crate::scene::{DALMAU2018_316L, Scene, SceneErrors, presets};
 use crate::simulation::parse_scene_str;
@@ -33,6 +33,8 @@ pub struct CommandOptions {
     pub without_bulk: bool,
     /// Tafel: E_corr, V, instead of the potential of the smallest current.
     pub corrosion_potential_v: Option<f64>,
+    /// Archard: also fit a change of regime at this cycle (or the best one), against one k.
+    pub regime_change: Option<ChangeCycle>,
 }
 
 /// Why the command failed.
@@ -70,6 +72,14 @@ pub enum CommandError {
         /// Why.
         source: CalibrationError,
     },
+    /// An option given to a fit it does not apply to.
+    #[error("{option} applies to `calibrate {applies_to}` only")]
+    NotForThisFit {
+        /// The option.
+        option: &'static str,
+        /// The fit it applies to.
+        applies_to: &'static str,
+    },
     /// The fit could not be serialised.
     #[error("serialising the fit: {0}")]
     Json(#[from] serde_json::Error),
@@ -84,6 +94,12 @@ pub fn calibrate_files(
     output: Option<&Path>,
     options: CommandOptions,
 ) -> Result<(), CommandError> {
+    if options.regime_change.is_some() && kind != FitKind::Archard {
+        return Err(CommandError::NotForThisFit {
+            option: "--regime-change",
+            applies_to: "archard",
+        });
+    }
     let text = read(table)?;
     let fit_error = |source: CalibrationError| CommandError::Fit {
         path: table.to_owned(),
@@ -114,9 +130,20 @@ pub fn calibrate_files(
             serde_json::to_string_pretty(&fit_tafel(&parsed, &scene, options).map_err(fit_error)?)
         }
         FitKind::Ocp => serde_json::to_string_pretty(&fit_ocp(&parsed, &scene).map_err(fit_error)?),
-        FitKind::Archard => serde_json::to_string_pretty(
-            &fit_archard(&parsed, &scene, ArchardOptions::default()).map_err(fit_error)?,
-        ),
+        FitKind::Archard => match options.regime_change {
+            None => serde_json::to_string_pretty(
+                &fit_archard(&parsed, &scene, ArchardOptions::default()).map_err(fit_error)?,
+            ),
+            Some(change) => {
+                let options = RegimeOptions {
+                    change,
+                    archard: ArchardOptions::default(),
+                };
+                serde_json::to_string_pretty(
+                    &fit_archard_regimes(&parsed, &scene, options).map_err(fit_error)?,
+                )
+            }
+        },
     }?;
     match output {
         Some(path) => std::fs::write(path, json + "\n").map_err(|source| CommandError::Write {
