@@ -83,6 +83,10 @@ pub struct TwoRegimeFit {
     pub change_cycle: u64,
     /// Whether the fit chose it (`auto`) or it was given.
     pub change_cycle_fitted: bool,
+    /// Whether the fitted cycle is the first or the last one the search could try: the sum
+    /// of squares still fell towards that end, where the next cycle would leave a regime
+    /// fewer than [`MIN_POINTS_PER_REGIME`] points, so the table cannot place the change.
+    pub change_cycle_at_search_edge: bool,
     /// k up to and including the change cycle.
     pub archard_k_before: Estimate,
     /// k after it.
@@ -213,6 +217,7 @@ pub fn fit_archard_regimes(
         tolerance: options.archard.tolerance,
         start: [k, k],
         fits: BTreeMap::new(),
+        range: None,
     };
     let (cycle, fitted) = match options.change {
         ChangeCycle::At(cycle) => {
@@ -314,6 +319,8 @@ struct Search {
     start: [f64; 2],
     /// `None` where the fit did not converge.
     fits: BTreeMap<u64, Option<PairFit>>,
+    /// The first and last cycle an `auto` search may try.
+    range: Option<(u64, u64)>,
 }
 
 impl Search {
@@ -392,6 +399,7 @@ impl Search {
             let low = cycles[i].ceil() as u64;
             let high = (cycles[i + 1].ceil() as u64).saturating_sub(1);
             if low <= high {
+                self.range = Some(self.range.map_or((low, high), |(first, _)| (first, high)));
                 self.golden(low, high)?;
             }
         }
@@ -459,6 +467,9 @@ impl Search {
         Ok(TwoRegimeFit {
             change_cycle: cycle,
             change_cycle_fitted: fitted,
+            change_cycle_at_search_edge: self
+                .range
+                .is_some_and(|(first, last)| cycle == first || cycle == last),
             archard_k_before: Estimate {
                 value: fit.values[0],
                 standard_error: se[0],
