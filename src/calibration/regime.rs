@@ -228,8 +228,7 @@ pub fn fit_archard_regimes(
     };
     let best = search.best_at(cycle)?;
     let parameters = 2 + usize::from(fitted);
-    let two = search.summarise(scene, cycle, &best, fitted, points - parameters)?;
-    let model = search.volumes(cycle, two.archard_k_before.value, two.archard_k_after.value)?;
+    let (two, model) = search.summarise(scene, cycle, &best, fitted, points - parameters)?;
     let points_side_by_side = one
         .residuals
         .iter()
@@ -440,7 +439,7 @@ impl Search {
     }
 
     /// The `fit` at `cycle` with its standard errors (`freedom` degrees of freedom) and
-    /// scene.
+    /// scene; with the model's volumes at the measured cycles.
     fn summarise(
         &mut self,
         scene: &Scene,
@@ -448,7 +447,7 @@ impl Search {
         fit: &PairFit,
         fitted: bool,
         freedom: usize,
-    ) -> Result<TwoRegimeFit, CalibrationError> {
+    ) -> Result<(TwoRegimeFit, Vec<f64>), CalibrationError> {
         let se = standard_errors(fit.values, &fit.residuals, ERROR_STEP, freedom, &mut |k| {
             self.residuals(cycle, k)
         })?;
@@ -464,7 +463,8 @@ impl Search {
         if filled.test.cycles <= cycle {
             filled.test.cycles = self.problem.scene.test.cycles;
         }
-        Ok(TwoRegimeFit {
+        let rms_residual_mm3 = self.problem.rms(&model);
+        let two = TwoRegimeFit {
             change_cycle: cycle,
             change_cycle_fitted: fitted,
             change_cycle_at_search_edge: self
@@ -479,9 +479,10 @@ impl Search {
                 standard_error: se[1],
             },
             rss: sum_of_squares(&fit.residuals),
-            rms_residual_mm3: self.problem.rms(&model),
+            rms_residual_mm3,
             scene: filled,
-        })
+        };
+        Ok((two, model))
     }
 
     /// Every cycle tried, in order.
