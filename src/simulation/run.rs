@@ -144,6 +144,15 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             .filter(|&r| r > cycle)
             .min()
             .unwrap_or(setup.scene.test.cycles);
+        // The step controller's rate of change was measured at the old k: it starts afresh
+        // (solving every cycle, then doubling) at the first cycle of a new regime.
+        if setup
+            .archard_regime_change
+            .is_some_and(|change| cycle == change.cycle + 1)
+        {
+            let numerics = &setup.scene.numerics;
+            self.stepper = Stepper::new(numerics.cycle_step, numerics.cycle_step_bound);
+        }
         let step = self
             .stepper
             .next(cycle, stop, plastic.iter().any(|&d| d > 0.0), &pass);
