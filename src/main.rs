@@ -11,7 +11,7 @@ use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use tribosim::bench::{self, BenchTarget};
-use tribosim::calibration::{CommandOptions, FitKind, calibrate_files};
+use tribosim::calibration::{ChangeCycle, CommandOptions, FitKind, calibrate_files};
 use tribosim::scene::{Scene, presets};
 use tribosim::simulation::{first_contact, parse_scene_str, run};
 use tribosim::study::command::StudyArgs;
@@ -71,6 +71,10 @@ enum Command {
         /// Tafel: E_corr in V, instead of the potential of the smallest current.
         #[arg(long, value_name = "V", allow_hyphen_values = true)]
         e_corr: Option<f64>,
+        /// Archard: also fit a k up to this cycle and another after it (`auto`: the cycle
+        /// too), and compare with one k; the scene gets the better model.
+        #[arg(long, value_name = "CYCLE|auto")]
+        regime_change: Option<ChangeCycle>,
     },
     /// Run a study (a base scene and axes, `docs/study.md`) and write its summary JSON; or
     /// write it as a Slurm job array (`--slurm DIR`) and `collect` it (`docs/cluster.md`).
@@ -260,10 +264,12 @@ fn main() -> ExitCode {
             output,
             no_bulk,
             e_corr,
+            regime_change,
         } => {
             let options = CommandOptions {
                 without_bulk: no_bulk,
                 corrosion_potential_v: e_corr,
+                regime_change,
             };
             calibrate_files(fit, &table, scene.as_deref(), output.as_deref(), options)
                 .map_err(|e| e.to_string())

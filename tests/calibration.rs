@@ -1,5 +1,6 @@
 //! `tribosim calibrate` end to end: the example tables of `docs/calibration/` through the
-//! binary, the fit JSON it writes, and a bad table refused with the column named.
+//! binary, the fit JSON it writes, a change of regime fitted back, and bad tables and change
+//! cycles refused with the column or the cycle named.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -51,4 +52,76 @@ fn a_bad_table_is_refused_naming_the_column() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!output.status.success());
     assert!(stderr.contains("`potential_v`"), "{stderr}");
+}
+
+/// A table made by a two-regime run of the library, fitted back through the command line.
+#[test]
+fn a_change_of_regime_through_the_command_line() {
+    use std::sync::atomic::AtomicBool;
+    use tribosim::simulation::{parse_scene_str, run};
+
+    let small = r#"{"preset": "dalmau2018-316l", "overrides": {
+        "test": {"cycles": 200}, "numerics": {"grid": 16, "cycle_step": 1}}}"#;
+    let scene_path = scratch("regime_scene.json");
+    std::fs::write(&scene_path, small).expect("written");
+    let mut scene = parse_scene_str(small).expect("valid");
+    scene.wear.archard_k = Some(1e-4);
+    scene.wear.archard_calibration = None;
+    scene.wear.archard_regime_change = Some(tribosim::scene::ArchardRegimeChange {
+        cycle: 85,
+        archard_k_before: 2e-5,
+    });
+    let result = run(&scene, &mut |_| {}, &AtomicBool::new(false)).expect("runs");
+    let mut csv = "cycles,volume_mm3\n".to_owned();
+    for record in result
+        .cycles
+        .iter()
+        .filter(|r| [10, 40, 70, 100, 140, 200].contains(&r.cycle))
+    {
+        csv.push_str(&format!("{},{:e}\n", record.cycle, record.wear_volume_mm3));
+    }
+    let table = scratch("regime_table.csv");
+    std::fs::write(&table, csv).expect("written");
+    let out = scratch("regime_fit.json");
+    let path = |p: &PathBuf| p.to_str().expect("utf-8 path").to_owned();
+    let output = calibrate(&[
+        "archard",
+        &path(&table),
+        "--scene",
+        &path(&scene_path),
+        "--regime-change",
+        "85",
+        "-o",
+        &path(&out),
+    ]);
+    assert!(output.status.success(), "{output:?}");
+    let fit: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).expect("written")).expect("JSON");
+    // The default tolerance stops Gauss-Newton at a step below 1e-3 of each k, and what is
+    // left after that step is smaller than it (see calibration::regime's tests).
+    let k = |name: &str| fit["two_regimes"][name]["value"].as_f64().expect(name);
+    assert!((k("archard_k_before") / 2e-5 - 1.0).abs() < 1e-3, "{fit}");
+    assert!((k("archard_k_after") / 1e-4 - 1.0).abs() < 1e-3, "{fit}");
+    assert_eq!(fit["comparison"]["better"], "two_regimes");
+    assert_eq!(fit["scene"]["wear"]["archard_regime_change"]["cycle"], 85);
+    assert_eq!(fit["points"].as_array().map(Vec::len), Some(6));
+}
+
+#[test]
+fn bad_change_cycles_are_refused_by_the_command_line() {
+    let table = "docs/calibration/table3_wear.csv";
+    let refused = |args: &[&str]| {
+        let output = calibrate(args);
+        assert!(!output.status.success());
+        String::from_utf8_lossy(&output.stderr).into_owned()
+    };
+    let stderr = refused(&["archard", table, "--regime-change", "5000"]);
+    assert!(stderr.contains("outside the table's cycles"), "{stderr}");
+    let stderr = refused(&["archard", table, "--regime-change", "30"]);
+    assert!(stderr.contains("1 point(s) up to it"), "{stderr}");
+    let stderr = refused(&["archard", table, "--regime-change", "soon"]);
+    assert!(stderr.contains("`auto`"), "{stderr}");
+    let hardness = "docs/calibration/table3_hardness.csv";
+    let stderr = refused(&["hardness", hardness, "--regime-change", "300"]);
+    assert!(stderr.contains("`calibrate archard` only"), "{stderr}");
 }

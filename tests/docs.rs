@@ -213,10 +213,12 @@ fn assert_documented(paths: &BTreeSet<String>, part: &str, what: &str) {
     );
 }
 
-/// The paper's preset on a small grid with corrosion, so that every optional field appears.
+/// The paper's preset on a small grid with corrosion and a change of Archard regime, so that
+/// every optional field appears.
 fn tiny_scene() -> tribosim::scene::Scene {
     let scene = json!({"preset": "dalmau2018-316l", "overrides": {
-        "numerics": {"grid": 32, "domain_um": 256}, "test": {"cycles": 3}
+        "numerics": {"grid": 32, "domain_um": 256}, "test": {"cycles": 3},
+        "wear": {"archard_regime_change": {"cycle": 1, "archard_k_before": 2e-5}}
     }});
     simulation::parse_scene(&scene).expect("the tiny scene is valid")
 }

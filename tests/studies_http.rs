@@ -348,4 +348,23 @@ async fn a_hardness_calibration_over_http_gives_the_numbers_of_tribosim_calibrat
         message.contains("`time_s`") && message.contains("row 2"),
         "{message}"
     );
+
+    // A change of regime is refused before any run: on another fit, as no cycle, and at a
+    // cycle outside Table 3's 10 to 3600 cycles.
+    let wear = std::fs::read_to_string(root.join("docs/calibration/table3_wear.csv"))
+        .expect("read the wear table");
+    for (kind, table, change) in [
+        ("hardness", &table, json!(300)),
+        ("archard", &wear, json!("soon")),
+        ("archard", &wear, json!(5000)),
+    ] {
+        let request = json!({"kind": kind, "table": table, "options": {"regime_change": change}});
+        let (code, error) = post(&client, &url, &request).await;
+        assert_eq!(code, 422, "{kind} {change}: {error}");
+        let field = &error["fields"][0]["path"];
+        assert!(
+            field == "options.regime_change" || field == "table",
+            "{kind} {change}: {error}"
+        );
+    }
 }

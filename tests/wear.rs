@@ -295,3 +295,62 @@ fn coarse_cycle_steps_still_converge() {
     );
     assert!(solves < 400, "it stepped: {solves} solves");
 }
+
+/// A change of regime: the cycles up to the change wear at `archard_k_before`, the later ones
+/// at `archard_k`, and the result says which applied when.
+#[test]
+fn a_change_of_regime_wears_each_cycle_at_its_own_k() {
+    let every_cycle = |wear: &str| {
+        scene(&format!(
+            r#"{{"preset": "dalmau2018-316l", "overrides": {{"wear": {wear},
+                "test": {{"cycles": 120}}, "numerics": {{"grid": 32, "cycle_step": 1}}}}}}"#
+        ))
+    };
+    let none = simulate(&every_cycle(r#"{"archard_k": 0}"#));
+    let changed = simulate(&every_cycle(
+        r#"{"archard_k": 1e-4, "archard_regime_change": {"cycle": 90, "archard_k_before": 0}}"#,
+    ));
+    // Up to the change both runs do the same operations: the volumes are equal bit for bit.
+    for (a, b) in none.cycles.iter().zip(&changed.cycles).take(90) {
+        assert_eq!(a.wear_volume_mm3.to_bits(), b.wear_volume_mm3.to_bits());
+    }
+    // After it, each elastic pass removes k F L / H(n) (see ARCHARD_EXACT).
+    for pair in changed.cycles[90..].windows(2) {
+        if pair[1].plastic_area_mm2 > 0.0 {
+            continue;
+        }
+        let lap = archard_lap_mm3(&every_cycle("{}"), 1e-4, pair[1].hardness_mpa * 1e6);
+        let worn = pair[1].wear_volume_mm3 - pair[0].wear_volume_mm3;
+        assert!(
+            relative_error(worn, lap) < ARCHARD_EXACT,
+            "cycle {}",
+            pair[1].cycle
+        );
+    }
+    let change = changed
+        .summary
+        .archard_regime_change
+        .expect("in the summary");
+    assert_eq!((change.cycle, change.archard_k_before), (90, 0.0));
+    let archard = changed
+        .models
+        .iter()
+        .find(|m| m.name == Model::Archard)
+        .expect("reported");
+    assert!(
+        archard.reason.starts_with("cycles 1 to 90: k = 0.0000e0")
+            && archard.reason.contains("from cycle 91: k = 1.0000e-4"),
+        "{}",
+        archard.reason
+    );
+    // With automatic steps, the first cycle of the new regime is solved, and the controller,
+    // whose rate was measured at the old k, starts afresh there: one cycle, then doubling.
+    let stepped = simulate(&scene(
+        r#"{"preset": "dalmau2018-316l", "overrides": {"test": {"cycles": 400},
+            "wear": {"archard_regime_change": {"cycle": 217, "archard_k_before": 1e-5}},
+            "numerics": {"grid": 32}}}"#,
+    ));
+    let solved = |cycle: u64| stepped.cycles.iter().any(|r| r.cycle == cycle);
+    assert!(solved(218) && solved(219), "restarted at 218");
+    assert!(stepped.cycles.len() < 300, "it stepped elsewhere");
+}

@@ -18,7 +18,7 @@ use super::{
     require_increasing, require_points,
 };
 use crate::hardness::archard_k_from_measurement;
-use crate::scene::Scene;
+use crate::scene::{ArchardRegimeChange, Scene};
 use crate::simulation::run;
 
 /// Settings of the Archard fit.
@@ -69,6 +69,8 @@ pub struct ArchardFit {
     pub weighted: bool,
     /// Each point.
     pub residuals: Vec<VolumeResidual>,
+    /// Residual sum of squares of the fitted run (weighted when `weighted`), mm^6 unweighted.
+    pub rss: f64,
     /// Root-mean-square residual of the fitted run, mm^3.
     pub rms_residual_mm3: f64,
     /// Root-mean-square residual of the run at eq. 14's k, mm^3.
@@ -86,23 +88,42 @@ pub struct ArchardFit {
 }
 
 /// The measurements, and the runs they are compared with.
-struct Problem {
-    cycles: Vec<f64>,
-    volumes: Vec<f64>,
-    spreads: Option<Vec<f64>>,
-    weights: Vec<f64>,
-    weighted: bool,
-    scene: Scene,
-    grid_cells: usize,
-    runs: usize,
+pub(super) struct Problem {
+    /// The measured cycles, increasing.
+    pub(super) cycles: Vec<f64>,
+    /// The measured volumes, mm^3.
+    pub(super) volumes: Vec<f64>,
+    /// The stated spreads, mm^3.
+    pub(super) spreads: Option<Vec<f64>>,
+    /// Each residual's weight.
+    pub(super) weights: Vec<f64>,
+    /// Whether the weights are 1 / spread.
+    pub(super) weighted: bool,
+    /// The scene of the runs: to the last measured cycle, on the calibration grid.
+    pub(super) scene: Scene,
+    /// Cells per side of the runs.
+    pub(super) grid_cells: usize,
+    /// Runs made so far.
+    pub(super) runs: usize,
 }
 
 impl Problem {
     /// The model's volumes at the measured cycles for `k`, mm^3.
     fn volumes_at(&mut self, k: f64) -> Result<Vec<f64>, CalibrationError> {
+        self.volumes_with(k, None)
+    }
+
+    /// The model's volumes at the measured cycles for `k` after `change` (throughout without
+    /// one), mm^3.
+    pub(super) fn volumes_with(
+        &mut self,
+        k: f64,
+        change: Option<ArchardRegimeChange>,
+    ) -> Result<Vec<f64>, CalibrationError> {
         let mut scene = self.scene.clone();
         scene.wear.archard_k = Some(k);
         scene.wear.archard_calibration = None;
+        scene.wear.archard_regime_change = change;
         let result = run(&scene, &mut |_| {}, &AtomicBool::new(false))?;
         self.runs += 1;
         let solved: Vec<f64> = result.cycles.iter().map(|r| r.cycle as f64).collect();
@@ -117,13 +138,28 @@ impl Problem {
     /// Weighted residuals, measured minus model.
     fn residuals_at(&mut self, k: f64) -> Result<Vec<f64>, CalibrationError> {
         let model = self.volumes_at(k)?;
-        Ok(self
-            .volumes
+        Ok(self.weighted_residuals(&model))
+    }
+
+    /// Weighted residuals of the model's volumes `model`, measured minus model.
+    pub(super) fn weighted_residuals(&self, model: &[f64]) -> Vec<f64> {
+        self.volumes
             .iter()
-            .zip(&model)
+            .zip(model)
             .zip(&self.weights)
             .map(|((v, m), w)| (v - m) * w)
-            .collect())
+            .collect()
+    }
+
+    /// Root-mean-square of the unweighted residuals of `model`, mm^3.
+    pub(super) fn rms(&self, model: &[f64]) -> f64 {
+        let sum: f64 = self
+            .volumes
+            .iter()
+            .zip(model)
+            .map(|(v, m)| (v - m).powi(2))
+            .sum();
+        (sum / model.len() as f64).sqrt()
     }
 }
 
@@ -156,15 +192,6 @@ pub fn fit_archard(
             eq14_model_volume_mm3: at_eq14[j],
         })
         .collect();
-    let rms = |model: &[f64]| {
-        let sum: f64 = problem
-            .volumes
-            .iter()
-            .zip(model)
-            .map(|(v, m)| (v - m).powi(2))
-            .sum();
-        (sum / model.len() as f64).sqrt()
-    };
     let mut filled = scene.clone();
     filled.wear.archard_k = Some(k);
     filled.wear.archard_calibration = None;
@@ -175,8 +202,9 @@ pub fn fit_archard(
         },
         eq14_archard_k: eq14,
         weighted: problem.weighted,
-        rms_residual_mm3: rms(&fitted),
-        eq14_rms_residual_mm3: rms(&at_eq14),
+        rss: best.iter().map(|r| r * r).sum(),
+        rms_residual_mm3: problem.rms(&fitted),
+        eq14_rms_residual_mm3: problem.rms(&at_eq14),
         residuals,
         tried,
         grid_cells: problem.grid_cells,
@@ -215,7 +243,7 @@ fn eq14_k(problem: &Problem, scene: &Scene) -> Result<f64, CalibrationError> {
 }
 
 /// The checked measurements and the scene the runs use.
-fn problem(table: &Table, scene: &Scene) -> Result<Problem, CalibrationError> {
+pub(super) fn problem(table: &Table, scene: &Scene) -> Result<Problem, CalibrationError> {
     let (cycles, cycle_column) = cycles_of(table, scene)?;
     let volumes = table.column("volume_mm3")?.to_vec();
     // One parameter and at least one degree of freedom for the scatter.

@@ -45,6 +45,14 @@ pub enum CommandError {
         /// Why.
         source: CalibrationError,
     },
+    /// An option given to a fit it does not apply to.
+    #[error("{option} applies to `calibrate {applies_to}` only")]
+    NotForThisFit {
+        /// The option.
+        option: &'static str,
+        /// The fit it applies to.
+        applies_to: &'static str,
+    },
     /// The fit could not be serialised.
     #[error("serialising the fit: {0}")]
     Json(#[from] serde_json::Error),
@@ -59,6 +67,12 @@ pub fn calibrate_files(
     output: Option<&Path>,
     options: CommandOptions,
 ) -> Result<(), CommandError> {
+    if options.regime_change.is_some() && kind != FitKind::Archard {
+        return Err(CommandError::NotForThisFit {
+            option: "--regime-change",
+            applies_to: "archard",
+        });
+    }
     let text = read(table)?;
     let fit_error = |source: CalibrationError| CommandError::Fit {
         path: table.to_owned(),

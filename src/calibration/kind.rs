@@ -5,8 +5,9 @@
 use serde::{Deserialize, Serialize};
 
 use super::{
-    ArchardFit, ArchardOptions, CalibrationError, HardnessFit, HardnessOptions, OcpFit, Table,
-    TafelFit, TafelOptions, archard, fit_archard, fit_hardness, fit_ocp, fit_tafel, ocp,
+    ArchardFit, ArchardOptions, CalibrationError, ChangeCycle, HardnessFit, HardnessOptions,
+    OcpFit, RegimeFit, RegimeOptions, Table, TafelFit, TafelOptions, archard, fit_archard,
+    fit_archard_regimes, fit_hardness, fit_ocp, fit_tafel, ocp, regime,
 };
 use crate::scene::{DALMAU2018_316L, Scene, presets};
 
@@ -31,6 +32,8 @@ pub struct CommandOptions {
     pub without_bulk: bool,
     /// Tafel: E_corr, V, instead of the potential of the smallest current.
     pub corrosion_potential_v: Option<f64>,
+    /// Archard: also fit a change of regime at this cycle (or the best one), against one k.
+    pub regime_change: Option<ChangeCycle>,
 }
 
 impl CommandOptions {
@@ -60,6 +63,8 @@ pub enum Fit {
     Ocp(OcpFit),
     /// Archard's k.
     Archard(ArchardFit),
+    /// Archard's k with a change of regime, beside one k.
+    Regimes(Box<RegimeFit>),
 }
 
 /// Fits `table` with `scene`. The Archard fit runs whole simulations (seconds to minutes),
@@ -74,7 +79,16 @@ pub fn calibrate(
         FitKind::Hardness => Fit::Hardness(fit_hardness(table, scene, options.hardness())?),
         FitKind::Tafel => Fit::Tafel(fit_tafel(table, scene, options.tafel())?),
         FitKind::Ocp => Fit::Ocp(fit_ocp(table, scene)?),
-        FitKind::Archard => Fit::Archard(fit_archard(table, scene, ArchardOptions::default())?),
+        FitKind::Archard => match options.regime_change {
+            None => Fit::Archard(fit_archard(table, scene, ArchardOptions::default())?),
+            Some(change) => {
+                let options = RegimeOptions {
+                    change,
+                    archard: ArchardOptions::default(),
+                };
+                Fit::Regimes(Box::new(fit_archard_regimes(table, scene, options)?))
+            }
+        },
     })
 }
 
@@ -90,7 +104,10 @@ pub fn check(
     match kind {
         FitKind::Hardness | FitKind::Tafel => calibrate(kind, table, scene, options).map(drop),
         FitKind::Ocp => ocp::checked(table, scene).map(drop),
-        FitKind::Archard => archard::check(table, scene),
+        FitKind::Archard => match options.regime_change {
+            None => archard::check(table, scene),
+            Some(change) => regime::check(table, scene, change),
+        },
     }
 }
 

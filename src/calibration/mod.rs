@@ -7,7 +7,8 @@
 //! - [`fit_tafel`]: a_c, b_c from a cathodic polarization curve (Table 2);
 //! - [`fit_ocp`]: the depassivated area from the potential during rubbing (eq. 18, Fig. 14)
 //!   and `corrosion.anodic_area_factor`;
-//! - [`fit_archard`]: Archard's k from wear volumes over whole simulated runs (Table 3).
+//! - [`fit_archard`]: Archard's k from wear volumes over whole simulated runs (Table 3);
+//! - [`fit_archard_regimes`]: the same with a change of regime, two k's, against one.
 //!
 //! Standard errors come from the least-squares covariance scaled by the residual variance,
 //! s^2 (J^T J)^-1 with s^2 = RSS / (points - parameters): they describe the scatter of the
@@ -20,6 +21,7 @@ mod kind;
 mod line;
 mod minimise;
 mod ocp;
+mod regime;
 mod table;
 mod tafel;
 
@@ -36,6 +38,10 @@ pub use hardness::{HardnessFit, HardnessOptions, HardnessResidual, fit_hardness}
 pub use kind::{CommandOptions, Fit, FitKind, calibrate, check, default_scene};
 pub use minimise::Trial;
 pub use ocp::{OcpFit, OcpPoint, fit_ocp};
+pub use regime::{
+    Candidate, ChangeCycle, ChangeCycleError, Comparison, MIN_POINTS_PER_REGIME, ModelScore,
+    RegimeFit, RegimeOptions, RegimePoint, Regimes, TwoRegimeFit, fit_archard_regimes,
+};
 pub use table::{Table, TableError};
 pub use tafel::{TafelDomain, TafelFit, TafelOptions, TafelResidual, fit_tafel};
 
@@ -102,6 +108,32 @@ pub enum CalibrationError {
     /// No part of a polarization curve is a straight Tafel line.
     #[error("column `potential_v`: no Tafel domain below E_corr: {0}")]
     NoTafelDomain(String),
+    /// A change of regime outside the measured cycles.
+    #[error(
+        "change of regime at cycle {cycle}: outside the table's cycles; it must be at least the first ({first}) and below the last ({last})"
+    )]
+    ChangeOutsideTable {
+        /// The cycle asked for.
+        cycle: u64,
+        /// The table's first cycle.
+        first: f64,
+        /// The table's last cycle.
+        last: f64,
+    },
+    /// A change of regime that leaves a regime too few points to fit its k.
+    #[error(
+        "change of regime at cycle {cycle}: {got} point(s) {regime}, each regime needs at least {needed}"
+    )]
+    TooFewInRegime {
+        /// The cycle asked for.
+        cycle: u64,
+        /// Which regime: "up to it" or "after it".
+        regime: &'static str,
+        /// Points each regime needs.
+        needed: usize,
+        /// Points the regime has.
+        got: usize,
+    },
     /// The scene lacks a section the fit needs.
     #[error("the scene has no `{0}` section, which this fit needs")]
     MissingSection(&'static str),

@@ -259,6 +259,41 @@ pub(super) const CALIBRATION_TRACK_RADIUS: Field = condition(
     "Wear track radius of the measured test; absent, the scene's `test.track_radius_mm`.",
 );
 
+/// `wear.archard_regime_change`.
+pub(super) const REGIME_CHANGE: Field = Field {
+    path: "wear.archard_regime_change",
+    unit: "",
+    range: Range::OptionalObject,
+    why: "",
+    meaning: "A change of wear regime, `{\"cycle\": 300, \"archard_k_before\": 2e-5}`: \
+              cycles 1 to `cycle` wear with `archard_k_before`, the later ones with \
+              `archard_k` (or the k of `archard_calibration`), as the paper's Section 5.2 reads \
+              Table 3 (a low-wear period before about 300 cycles, Archard wear after). The \
+              cycle stepping solves the first cycle after the change. Absent: one k \
+              throughout. `tribosim calibrate archard --regime-change` fits it.",
+    feeds: "k in Archard's law (eqs. 14-16), per cycle",
+};
+
+/// `wear.archard_regime_change.cycle`.
+pub(super) const REGIME_CHANGE_CYCLE: Field = Field {
+    path: "wear.archard_regime_change.cycle",
+    unit: "cycles",
+    range: Range::Whole(1, MAX_CYCLES - 1),
+    why: "and below `test.cycles`, so that the second regime is part of the run",
+    meaning: "The last cycle of the first regime.",
+    feeds: "where k changes",
+};
+
+/// `wear.archard_regime_change.archard_k_before`.
+pub(super) const REGIME_CHANGE_K_BEFORE: Field = Field {
+    path: "wear.archard_regime_change.archard_k_before",
+    unit: "",
+    range: Range::Closed(0.0, 1.0),
+    why: "0 is a first regime without Archard wear",
+    meaning: "k of cycles 1 to `cycle` (dimensionless).",
+    feeds: "k in Archard's law (eqs. 14-16) up to the change",
+};
+
 /// `wear.plasticity`.
 pub(super) const PLASTICITY: Field = Field {
     path: "wear.plasticity",
@@ -508,6 +543,9 @@ pub const FIELDS: &[Field] = &[
     CALIBRATION_LOAD,
     CALIBRATION_SPEED,
     CALIBRATION_TRACK_RADIUS,
+    REGIME_CHANGE,
+    REGIME_CHANGE_CYCLE,
+    REGIME_CHANGE_K_BEFORE,
     PLASTICITY,
     section(
         "corrosion",

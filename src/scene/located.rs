@@ -78,8 +78,8 @@ pub(super) fn deserialize_located(document: &Value, errors: &mut Vec<FieldError>
     }
 }
 
-/// `top` without the sections (and `wear.archard_calibration`) that are not objects, each
-/// recorded as an error. Serde's derived structs also accept a JSON array of the fields in
+/// `top` without the sections (and `wear.archard_calibration`, `wear.archard_regime_change`)
+/// that are not objects, each recorded as an error. Serde's derived structs also accept a JSON array of the fields in
 /// declaration order, so `"ball": [3]` would silently set the radius; the documented shape
 /// is an object, and this keeps it so.
 fn drop_non_objects(top: &Map<String, Value>, errors: &mut Vec<FieldError>) -> Map<String, Value> {
@@ -96,16 +96,25 @@ fn drop_non_objects(top: &Map<String, Value>, errors: &mut Vec<FieldError>) -> M
         }
     }
     if let Some(Value::Object(wear)) = kept.get_mut("wear") {
-        if let Some(calibration) = wear.get("archard_calibration") {
-            if !(calibration.is_object() || calibration.is_null()) {
-                errors.push(FieldError::new(
-                    "wear.archard_calibration",
-                    format!(
-                        "must be an object {{\"time_s\": ..., \"wear_volume_mm3\": ...}}, \
-                         got {calibration}"
-                    ),
-                ));
-                wear.remove("archard_calibration");
+        let shapes = [
+            (
+                "archard_calibration",
+                "{\"time_s\": ..., \"wear_volume_mm3\": ...}",
+            ),
+            (
+                "archard_regime_change",
+                "{\"cycle\": ..., \"archard_k_before\": ...}",
+            ),
+        ];
+        for (key, shape) in shapes {
+            if let Some(value) = wear.get(key) {
+                if !(value.is_object() || value.is_null()) {
+                    errors.push(FieldError::new(
+                        format!("wear.{key}"),
+                        format!("must be an object {shape}, got {value}"),
+                    ));
+                    wear.remove(key);
+                }
             }
         }
     }

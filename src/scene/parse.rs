@@ -373,6 +373,36 @@ mod tests {
     }
 
     #[test]
+    fn a_regime_change_is_a_cycle_of_the_run_and_a_k_in_range() {
+        let change = json!({"cycle": 300, "archard_k_before": 2e-5});
+        let scene =
+            parse_scene(&json!({"wear": {"archard_regime_change": change}})).expect("valid");
+        let parsed = scene.wear.archard_regime_change.expect("kept");
+        assert_eq!((parsed.cycle, parsed.archard_k_before), (300, 2e-5));
+        // The k after it still comes from the paper's calibration point.
+        assert!(scene.wear.archard_calibration.is_some());
+        let errors = errors_of(&json!({"test": {"cycles": 300}, "wear": {
+            "archard_regime_change": {"cycle": 300, "archard_k_before": 1.5}
+        }}));
+        assert_eq!(
+            paths(&errors),
+            [
+                "wear.archard_regime_change.archard_k_before",
+                "wear.archard_regime_change.cycle"
+            ]
+        );
+        let message = message_at(&errors, "wear.archard_regime_change.cycle");
+        assert!(
+            message.contains("below `test.cycles`") && message.contains("1..=299"),
+            "{message}"
+        );
+        let errors = errors_of(&json!({"wear": {"archard_regime_change": [300, 2e-5]}}));
+        assert_eq!(paths(&errors), ["wear.archard_regime_change"]);
+        let errors = errors_of(&json!({"wear": {"archard_regime_change": {"cycle": 300}}}));
+        assert!(message_at(&errors, "wear.archard_regime_change").contains("archard_k_before"));
+    }
+
+    #[test]
     fn preset_overrides_merge_and_null_removes_a_section() {
         let scene = parse_scene(&json!({
             "preset": "dalmau2018-316l",

@@ -189,6 +189,10 @@ pub struct Wear {
     /// A measured point from which k is derived, in place of `archard_k`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub archard_calibration: Option<ArchardCalibration>,
+    /// A change of wear regime: another k up to a cycle; `archard_k` (or the calibration)
+    /// gives k after it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub archard_regime_change: Option<ArchardRegimeChange>,
     /// Elastic-perfectly-plastic pressure cap.
     pub plasticity: Switch,
 }
@@ -198,6 +202,7 @@ impl Default for Wear {
         Self {
             archard_k: None,
             archard_calibration: Some(PAPER_ARCHARD_CALIBRATION),
+            archard_regime_change: None,
             plasticity: Switch::Auto,
         }
     }
@@ -223,6 +228,29 @@ pub struct ArchardCalibration {
     /// Wear track radius of the measured test, mm; absent, the scene's.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub track_radius_mm: Option<f64>,
+}
+
+/// A change of Archard regime (the paper's Section 5.2: a low-wear period before about 300
+/// cycles, Archard wear after it): cycles up to and including `cycle` wear with
+/// `archard_k_before`, the later ones with the scene's k.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ArchardRegimeChange {
+    /// The last cycle of the first regime.
+    pub cycle: u64,
+    /// k of the cycles up to and including `cycle`, dimensionless.
+    pub archard_k_before: f64,
+}
+
+impl ArchardRegimeChange {
+    /// k of `cycle` when `k_after` applies after the change.
+    pub fn k_at(&self, cycle: u64, k_after: f64) -> f64 {
+        if cycle <= self.cycle {
+            self.archard_k_before
+        } else {
+            k_after
+        }
+    }
 }
 
 /// The electrochemical cell (paper Section 5.1); units in the names.

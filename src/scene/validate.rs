@@ -9,7 +9,8 @@ use super::fields::{
     CALIBRATION_HARDNESS, CALIBRATION_LOAD, CALIBRATION_SPEED, CALIBRATION_TIME,
     CALIBRATION_TRACK_RADIUS, CALIBRATION_VOLUME, CORROSION_POTENTIAL, CYCLE_STEP_BOUND, CYCLES,
     DENSITY, DISC_HARDNESS, DISC_MODULUS, DISC_POISSON, DOMAIN, EXPOSED_AREA, FRICTION, GRID, LOAD,
-    MOLAR_MASS, SPEED, TAFEL_A, TAFEL_B, TOLERANCE, TRACK_RADIUS, VALENCE, YIELD_FACTOR,
+    MOLAR_MASS, REGIME_CHANGE_CYCLE, REGIME_CHANGE_K_BEFORE, SPEED, TAFEL_A, TAFEL_B, TOLERANCE,
+    TRACK_RADIUS, VALENCE, YIELD_FACTOR,
 };
 use super::format::num;
 use super::{DomainSize, FieldError, GridSize, MAX_RECORD_CYCLES, RecordCycles, Scene};
@@ -108,6 +109,7 @@ fn check_wear(c: &mut Checks, scene: &Scene) {
     if let Some(k) = wear.archard_k {
         c.number(&ARCHARD_K, k);
     }
+    check_regime_change(c, scene);
     let Some(calibration) = &wear.archard_calibration else {
         return;
     };
@@ -149,6 +151,23 @@ fn check_wear(c: &mut Checks, scene: &Scene) {
                 ),
             );
         }
+    }
+}
+
+fn check_regime_change(c: &mut Checks, scene: &Scene) {
+    let Some(change) = &scene.wear.archard_regime_change else {
+        return;
+    };
+    c.number(&REGIME_CHANGE_K_BEFORE, change.archard_k_before);
+    if !(REGIME_CHANGE_CYCLE.range.admits_whole(change.cycle) && change.cycle < scene.test.cycles) {
+        c.fail(
+            REGIME_CHANGE_CYCLE.path,
+            format!(
+                "{} (this run: 1..={})",
+                REGIME_CHANGE_CYCLE.message(&change.cycle.to_string()),
+                scene.test.cycles.saturating_sub(1)
+            ),
+        );
     }
 }
 

@@ -15,7 +15,10 @@ use super::AppState;
 use super::calibrations::StartError;
 use super::error::ApiError;
 use super::extract::{cut, is_json, read_body};
-use crate::calibration::{CalibrationError, CommandOptions, FitKind, Table, check, default_scene};
+use crate::calibration::{
+    CalibrationError, ChangeCycle, ChangeCycleError, CommandOptions, FitKind, Table, check,
+    default_scene,
+};
 use crate::json::{self, JsonError};
 use crate::scene::{FieldError, Scene};
 use crate::simulation::parse_scene;
@@ -60,6 +63,18 @@ struct RequestOptions {
     include_bulk: Option<bool>,
     /// Tafel: E_corr, V, instead of the potential of the smallest current.
     e_corr_v: Option<f64>,
+    /// Archard: also fit a change of regime at this cycle, or `"auto"` for the best one.
+    regime_change: Option<Value>,
+}
+
+/// The change cycle as the command line spells it: a whole number >= 1, or `auto`.
+fn change_cycle(value: &Value) -> Result<ChangeCycle, ApiError> {
+    let text = match value {
+        Value::String(text) => text.clone(),
+        other => other.to_string(),
+    };
+    text.parse()
+        .map_err(|e: ChangeCycleError| invalid("options.regime_change", e.to_string()))
 }
 
 fn invalid(path: &str, message: String) -> ApiError {
@@ -85,6 +100,17 @@ fn inputs(body: &[u8]) -> Result<(FitKind, Table, Scene, CommandOptions), ApiErr
             "applies to the hardness fit only".into(),
         ));
     }
+    if options.regime_change.is_some() && kind != FitKind::Archard {
+        return Err(invalid(
+            "options.regime_change",
+            "applies to the archard fit only".into(),
+        ));
+    }
+    let regime_change = options
+        .regime_change
+        .as_ref()
+        .map(change_cycle)
+        .transpose()?;
     if options.e_corr_v.is_some() && kind != FitKind::Tafel {
         return Err(invalid(
             "options.e_corr_v",
@@ -118,6 +144,7 @@ fn inputs(body: &[u8]) -> Result<(FitKind, Table, Scene, CommandOptions), ApiErr
     let options = CommandOptions {
         without_bulk: !options.include_bulk.unwrap_or(true),
         corrosion_potential_v: options.e_corr_v,
+        regime_change,
     };
     Ok((kind, table, scene, options))
 }

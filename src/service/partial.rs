@@ -84,6 +84,7 @@ fn partial(
         wac_volume_mm3: last.and_then(|c| c.wac_volume_mm3),
         potential_v: last.and_then(|c| c.potential_v),
         archard_k: setup.archard_k,
+        archard_regime_change: setup.archard_regime_change,
         wall_s,
         solves: cycles.len(),
         iterations: cycles.iter().map(|c| c.iterations).sum(),

@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::contact::{Grid, Window};
-use crate::scene::Scene;
+use crate::scene::{ArchardRegimeChange, Scene};
 use crate::wear::Groove;
 
 /// A whole run.
@@ -180,8 +180,12 @@ pub struct Summary {
     /// `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub potential_v: Option<f64>,
-    /// The Archard coefficient the run used (dimensionless), given or derived by eq. 14.
+    /// The Archard coefficient the run used (dimensionless), given or derived by eq. 14; the
+    /// one after the change when the regime changes.
     pub archard_k: f64,
+    /// The change of Archard regime: k up to and including its cycle; absent with one k.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub archard_regime_change: Option<ArchardRegimeChange>,
     /// Wall-clock time of the run, s.
     pub wall_s: f64,
     /// Contact solves performed.
@@ -206,7 +210,14 @@ impl std::fmt::Display for Summary {
         if let Some(potential) = self.potential_v {
             writeln!(f, "  final potential  {potential:.4} V vs Ag/AgCl")?;
         }
-        write!(f, "  Archard k        {:.4e}", self.archard_k)
+        match &self.archard_regime_change {
+            None => write!(f, "  Archard k        {:.4e}", self.archard_k),
+            Some(change) => write!(
+                f,
+                "  Archard k        {:.4e} to cycle {}, {:.4e} after",
+                change.archard_k_before, change.cycle, self.archard_k
+            ),
+        }
     }
 }
 
@@ -223,6 +234,7 @@ mod tests {
             wac_volume_mm3: Some(3.4e-4),
             potential_v: Some(-0.5432),
             archard_k: 1.0228e-4,
+            archard_regime_change: None,
             wall_s: 6.31,
             solves: 326,
             iterations: 3400,

@@ -134,20 +134,33 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         // (eqs. 15-16).
         let plastic = yield_depth(&self.grid, &solution, &separation, cap);
         let pass = pass_pressure_integral(&self.grid, &solution.pressure);
-        // A step never passes a record cycle, so that cycle is solved.
+        // A step never passes a record cycle, so that cycle is solved; nor the first cycle
+        // of a new Archard regime, whose wear rate the step was not chosen for.
         let stop = self
             .record_cycles
             .iter()
             .copied()
-            .find(|&r| r > cycle)
+            .chain(setup.archard_regime_change.map(|change| change.cycle + 1))
+            .filter(|&r| r > cycle)
+            .min()
             .unwrap_or(setup.scene.test.cycles);
+        // The step controller's rate of change was measured at the old k: it starts afresh
+        // (solving every cycle, then doubling) at the first cycle of a new regime.
+        if setup
+            .archard_regime_change
+            .is_some_and(|change| cycle == change.cycle + 1)
+        {
+            let numerics = &setup.scene.numerics;
+            self.stepper = Stepper::new(numerics.cycle_step, numerics.cycle_step_bound);
+        }
         let step = self
             .stepper
             .next(cycle, stop, plastic.iter().any(|&d| d > 0.0), &pass);
         self.max_step = self.max_step.max(step);
         // The profile update (eq. 17): yielding, then the pass at this cycle's hardness.
         self.groove.deepen(&plastic, 1.0);
-        self.groove.deepen(&pass, setup.archard_k / hardness_pa);
+        self.groove
+            .deepen(&pass, setup.archard_k_at(cycle) / hardness_pa);
         // Corrosion (eq. 18, Faraday), the record, then the cycles the solve stands for.
         let reading = self.corrode(cycle, &solution, hardness_pa)?;
         self.record(cycle, &solution, cap, reading, on_cycle);
@@ -253,7 +266,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
     fn wear_skipped(&mut self, cycle: u64, step: u64, pass: &[f64], reading: Option<&Reading>) {
         let setup = self.setup;
         let skipped = (cycle + 1..cycle + step)
-            .map(|j| setup.archard_k / setup.hardness.hardness_pa(j as f64));
+            .map(|j| setup.archard_k_at(j) / setup.hardness.hardness_pa(j as f64));
         self.groove.deepen(pass, skipped.sum());
         if let (Some(cell), Some(reading)) = (self.cell.as_mut(), reading) {
             cell.skipped(reading, (step - 1) as f64 * setup.scene.cycle_period_s());
@@ -318,6 +331,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             wac_volume_mm3: self.cell.as_ref().map(|c| c.wac_m3() * 1e9),
             potential_v: self.records.last().and_then(|r| r.potential_v),
             archard_k: setup.archard_k,
+            archard_regime_change: setup.archard_regime_change,
             wall_s: started.elapsed().as_secs_f64(),
             solves: self.solves,
             iterations: self.iterations,
@@ -362,14 +376,27 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 100.0 * self.window_fraction_sum / self.solves as f64
             ),
         });
+        let after = format!(
+            "k = {:.4e}, {}",
+            setup.archard_k,
+            setup.scene.archard_k_origin()
+        );
+        let (active, reason) = match &setup.archard_regime_change {
+            None => (setup.archard_k > 0.0, after),
+            Some(change) => (
+                setup.archard_k > 0.0 || change.archard_k_before > 0.0,
+                format!(
+                    "cycles 1 to {}: k = {:.4e}, given as wear.archard_regime_change; from cycle {}: {after}",
+                    change.cycle,
+                    change.archard_k_before,
+                    change.cycle + 1
+                ),
+            ),
+        };
         models.push(ModelChoice {
             name: Model::Archard,
-            active: setup.archard_k > 0.0,
-            reason: format!(
-                "k = {:.4e}, {}",
-                setup.archard_k,
-                setup.scene.archard_k_origin()
-            ),
+            active,
+            reason,
         });
         models.push(ModelChoice {
             name: Model::Corrosion,

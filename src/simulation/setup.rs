@@ -6,7 +6,7 @@ use crate::contact::{
     SolverOptions,
 };
 use crate::hardness::HardnessLaw;
-use crate::scene::{Scene, Switch};
+use crate::scene::{ArchardRegimeChange, Scene, Switch};
 
 use super::feasibility::check;
 use super::hardening::work_hardening_report;
@@ -33,8 +33,11 @@ pub struct Setup {
     pub hertz: Hertz,
     /// Disc hardness against cycles.
     pub hardness: HardnessLaw,
-    /// Archard's coefficient (given, or derived from a calibration point).
+    /// Archard's coefficient (given, or derived from a calibration point); after the change
+    /// of regime when there is one.
     pub archard_k: f64,
+    /// The scene's change of Archard regime, if any.
+    pub archard_regime_change: Option<ArchardRegimeChange>,
     /// Whether pressures are capped at Y (eq. 12).
     pub plasticity: bool,
     /// Whether the friction coupling term is modelled (eq. 7).
@@ -102,12 +105,21 @@ impl Setup {
             hertz,
             hardness,
             archard_k,
+            archard_regime_change: scene.wear.archard_regime_change,
             plasticity,
             coupling,
             options,
             models,
             warnings,
         })
+    }
+
+    /// Archard's k of `cycle`.
+    pub fn archard_k_at(&self, cycle: u64) -> f64 {
+        match &self.archard_regime_change {
+            Some(change) => change.k_at(cycle, self.archard_k),
+            None => self.archard_k,
+        }
     }
 
     /// The pressure cap at `cycle`: `H(n) / yield_factor`, or infinite without plasticity.
