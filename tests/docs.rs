@@ -216,7 +216,9 @@ fn assert_documented(paths: &BTreeSet<String>, part: &str, what: &str) {
 /// The paper's preset on a small grid with corrosion, so that every optional field appears.
 fn tiny_scene() -> tribosim::scene::Scene {
     let scene = json!({"preset": "dalmau2018-316l", "overrides": {
-        "numerics": {"grid": 32, "domain_um": 256}, "test": {"cycles": 3}
+        "numerics": {"grid": 32, "domain_um": 256}, "test": {"cycles": 3},
+        "disc": {"surface": {"kind": "synthetic", "rms_height_um": 0.05,
+                             "short_cutoff_um": 64, "long_cutoff_um": 200}}
     }});
     simulation::parse_scene(&scene).expect("the tiny scene is valid")
 }

@@ -20,6 +20,7 @@ mod preset;
 mod record;
 mod reference;
 mod sections;
+mod surface;
 mod validate;
 
 use std::f64::consts::PI;
@@ -40,6 +41,7 @@ pub use sections::{
     AnodicArea, ArchardCalibration, Ball, Corrosion, Disc, Numerics, PAPER_ARCHARD_CALIBRATION,
     PAPER_CYCLES, PAPER_HARDNESS_TABLE, STEP_CHANGE_BOUND, Switch, TestConditions, Wear,
 };
+pub use surface::{DEFAULT_HURST, SurfaceKind, SurfaceSpec};
 
 /// One ball-on-disc test, as the user describes it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

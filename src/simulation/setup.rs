@@ -7,9 +7,11 @@ use crate::contact::{
 };
 use crate::hardness::HardnessLaw;
 use crate::scene::{Scene, Switch};
+use crate::surface::HeightMap;
 
 use super::feasibility::check;
 use super::hardening::work_hardening_report;
+use super::roughness::{DiscSurface, build, wanted_cell_m};
 use super::sizing::{
     GridPlan, LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m,
 };
@@ -45,6 +47,8 @@ pub struct Setup {
     pub models: Vec<ModelChoice>,
     /// What in the scene looks wrong without being invalid, for the result's `warnings`.
     pub warnings: Vec<String>,
+    /// The disc's initial roughness on the first grid; `None` for a smooth disc.
+    pub surface: Option<DiscSurface>,
 }
 
 fn choice(name: Model, active: bool, reason: String) -> ModelChoice {
@@ -76,6 +80,14 @@ impl Setup {
     /// Checks the scene ([`check`]: its fields, and whether it can be simulated) and makes
     /// every decision.
     pub fn new(scene: &Scene) -> Result<Self, SimulationError> {
+        Self::with_surface(scene, None)
+    }
+
+    /// [`Self::new`] with the height map of a scene whose `disc.surface` is measured.
+    pub fn with_surface(
+        scene: &Scene,
+        supplied: Option<&HeightMap>,
+    ) -> Result<Self, SimulationError> {
         check(scene)?;
         let pair = elastic_pair(scene).map_err(SimulationError::Setup)?;
         let hardness = scene.hardness_law()?;
@@ -90,9 +102,15 @@ impl Setup {
         let plasticity = decide_plasticity(&mut models, scene, &hertz, &lowest);
         let coupling = decide_coupling(&mut models, scene, &pair, &options);
         let radius = sizing_radius_m(&hertz, lowest.yield_pa, plasticity);
-        let plan = plan_grid(&scene.numerics, radius);
+        let spec = scene.disc.surface.as_ref();
+        let surface_cell = spec.and_then(|s| wanted_cell_m(s, supplied));
+        let plan = plan_grid(&scene.numerics, radius, surface_cell);
         let grid = Grid::square(plan.cells, plan.domain_m).map_err(SimulationError::Setup)?;
         models.push(grid_choice(&grid, &plan, radius));
+        let surface = spec.map(|s| build(s, supplied, &grid)).transpose()?;
+        if let Some(surface) = &surface {
+            models.push(surface.model.clone());
+        }
         let (hardening, warnings) = work_hardening_report(&scene.disc, &hardness);
         models.push(hardening);
         Ok(Self {
@@ -107,6 +125,7 @@ impl Setup {
             options,
             models,
             warnings,
+            surface,
         })
     }
 
@@ -122,16 +141,19 @@ impl Setup {
 
     /// The unworn ball's height above its apex at each cell of `grid` (the exact sphere),
     /// `rho^2 / (r + sqrt(r^2 - rho^2))`: equal to `r - sqrt(r^2 - rho^2)`, which loses the
-    /// height to round-off once it nears `r` times machine epsilon (tiny contacts).
+    /// height to round-off once it nears `r` times machine epsilon (tiny contacts); less the
+    /// disc's roughness, which rises towards the ball.
     pub fn ball_separation(&self, grid: &Grid) -> Vec<f64> {
         let r = self.scene.ball_radius_m();
+        let roughness = self.surface.as_ref().map(|s| &s.map);
         grid.sample(|x, y| {
             let rho2 = x * x + y * y;
-            if rho2 >= r * r {
+            let ball = if rho2 >= r * r {
                 r
             } else {
                 rho2 / (r + (r * r - rho2).sqrt())
-            }
+            };
+            ball - roughness.map_or(0.0, |m| m.height_at(x, y))
         })
     }
 
