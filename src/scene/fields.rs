@@ -444,7 +444,9 @@ pub(super) const ANODIC_AREA: Field = Field {
     why: "",
     meaning: "Which area depassivates: `wear_track` (track width x track length, as in the \
               paper's Fig. 13), `real_contact` (F / H) or `bem_contact` (the solved contact \
-              area).",
+              area: on a rough disc, `disc.surface`, the real contact area at the asperity \
+              scale, so Fig. 14's depassivated-to-real ratio comes from the model rather \
+              than from F / H).",
     feeds: "A_a in eq. 18 and in Faraday's law",
 };
 

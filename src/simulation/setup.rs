@@ -107,8 +107,15 @@ impl Setup {
         let plan = plan_grid(&scene.numerics, radius, surface_cell);
         let grid = Grid::square(plan.cells, plan.domain_m).map_err(SimulationError::Setup)?;
         models.push(grid_choice(&grid, &plan, radius));
-        let surface = spec.map(|s| build(s, supplied, &grid)).transpose()?;
-        if let Some(surface) = &surface {
+        let mut surface = spec.map(|s| build(s, supplied, &grid)).transpose()?;
+        if let Some(surface) = &mut surface {
+            if plasticity {
+                surface.model.reason.push_str(
+                    "; yielding (eq. 13) deepens each row by its deepest capped cell, asperity \
+                     tops included, which overstates the early wear of a rough disc \
+                     (`wear.plasticity: \"off\"` leaves it out)",
+                );
+            }
             models.push(surface.model.clone());
         }
         let (hardening, warnings) = work_hardening_report(&scene.disc, &hardness);
