@@ -8,8 +8,6 @@ use crate::scene::Scene;
 use crate::surface::Statistics;
 use crate::wear::Groove;
 
-use super::DiscSurface;
-
 /// A whole run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SimulationResult {
@@ -121,16 +119,6 @@ pub struct SurfaceReport {
     /// removal when asked); absent for a synthetic surface.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub measured: Option<Statistics>,
-}
-
-impl SurfaceReport {
-    /// The report of `surface`.
-    pub fn of(surface: &DiscSurface) -> Self {
-        Self {
-            on_grid: surface.statistics.clone(),
-            measured: surface.source.clone(),
-        }
-    }
 }
 
 /// The groove depth across the track (y) at one cycle.

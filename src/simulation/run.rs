@@ -337,7 +337,10 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         };
         SimulationResult {
             scene: scene.clone(),
-            surface: setup.surface.as_ref().map(SurfaceReport::of),
+            surface: setup.surface.as_ref().map(|s| SurfaceReport {
+                on_grid: s.statistics.clone(),
+                measured: s.source.clone(),
+            }),
             models,
             warnings: setup.warnings.clone(),
             cycles: self.records,
