@@ -17,4 +17,5 @@ pub mod scene;
 pub mod service;
 pub mod simulation;
 pub mod study;
+pub mod surface;
 pub mod wear;

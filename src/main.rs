@@ -12,10 +12,11 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use tribosim::bench::{self, BenchTarget};
 use tribosim::calibration::{ChangeCycle, CommandOptions, FitKind, calibrate_files};
-use tribosim::scene::{Scene, presets};
-use tribosim::simulation::{first_contact, parse_scene_str, run};
+use tribosim::scene::{Scene, SurfaceSpec, presets};
+use tribosim::simulation::{first_contact, parse_scene_str, run_with_surface};
 use tribosim::study::command::StudyArgs;
 use tribosim::study::slurm::{CollectArgs, SlurmOptions, collect, write_dir};
+use tribosim::surface::{HeightMap, read_file as read_surface};
 
 #[derive(Parser)]
 #[command(
@@ -43,6 +44,16 @@ enum Command {
         /// Where to write the result; standard output if absent.
         #[arg(short, long)]
         output: Option<PathBuf>,
+        /// A measured height map for the disc: Gwyddion .gsf, three columns x y z in m, or
+        /// a text matrix of heights in m (with --pixel-um). Sets `disc.surface` to it.
+        #[arg(long, value_name = "FILE")]
+        surface: Option<PathBuf>,
+        /// The pixel size of a text-matrix surface, um.
+        #[arg(long, value_name = "UM", requires = "surface")]
+        pixel_um: Option<f64>,
+        /// Subtract the surface's least-squares plane (its tilt) before use.
+        #[arg(long, requires = "surface")]
+        remove_tilt: bool,
     },
     /// Solve the first cycle's contact alone and print it as JSON.
     Contact {
@@ -223,8 +234,38 @@ fn write_whole(path: &Path, text: &str) -> std::io::Result<()> {
     })
 }
 
-fn run_scene(path: &Path, output: Option<&Path>) -> Result<(), String> {
+/// A measured surface given on the command line.
+struct SurfaceFile<'a> {
+    path: &'a Path,
+    pixel_um: Option<f64>,
+    remove_tilt: bool,
+}
+
+/// The map of `file`, and `scene` with `disc.surface` naming it.
+fn with_surface(mut scene: Scene, file: &SurfaceFile) -> Result<(Scene, HeightMap), String> {
+    let (map, _) = read_surface(file.path, file.pixel_um.map(|um| um * 1e-6))
+        .map_err(|e| format!("surface {}: {e}", file.path.display()))?;
+    let id = file.path.file_name().map_or_else(
+        || file.path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    scene.disc.surface = Some(SurfaceSpec::measured(&id, file.remove_tilt));
+    Ok((scene, map))
+}
+
+fn run_scene(
+    path: &Path,
+    output: Option<&Path>,
+    surface: Option<&SurfaceFile>,
+) -> Result<(), String> {
     let scene = read_scene(path)?;
+    let (scene, map) = match surface {
+        Some(file) => {
+            let (scene, map) = with_surface(scene, file)?;
+            (scene, Some(map))
+        }
+        None => (scene, None),
+    };
     // indicatif draws nothing when standard error is not a terminal, so logs stay clean.
     let bar = ProgressBar::new(scene.test.cycles);
     bar.set_style(
@@ -237,7 +278,7 @@ fn run_scene(path: &Path, output: Option<&Path>) -> Result<(), String> {
         bar.set_position(record.cycle);
         bar.set_message(format!("V = {:.3e} mm3", record.wear_volume_mm3));
     };
-    let result = run(&scene, &mut on_cycle, &AtomicBool::new(false));
+    let result = run_with_surface(&scene, map.as_ref(), &mut on_cycle, &AtomicBool::new(false));
     bar.finish_and_clear();
     let result = result.map_err(|e| e.to_string())?;
     write_json(&result, output)?;
@@ -252,7 +293,20 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command.unwrap_or(Command::Serve(cli.serve)) {
         Command::Serve(args) => tribosim::service::serve(args).map_err(|e| e.to_string()),
-        Command::Run { scene, output } => run_scene(&scene, output.as_deref()),
+        Command::Run {
+            scene,
+            output,
+            surface,
+            pixel_um,
+            remove_tilt,
+        } => {
+            let file = surface.as_deref().map(|path| SurfaceFile {
+                path,
+                pixel_um,
+                remove_tilt,
+            });
+            run_scene(&scene, output.as_deref(), file.as_ref())
+        }
         Command::Contact { scene } => read_scene(&scene)
             .and_then(|s| first_contact(&s).map_err(|e| e.to_string()))
             .and_then(|c| write_json(&c, None)),

@@ -213,12 +213,14 @@ fn assert_documented(paths: &BTreeSet<String>, part: &str, what: &str) {
     );
 }
 
-/// The paper's preset on a small grid with corrosion and a change of Archard regime, so that
-/// every optional field appears.
+/// The paper's preset on a small grid with corrosion, a change of Archard regime and a rough
+/// disc, so that every optional field appears.
 fn tiny_scene() -> tribosim::scene::Scene {
     let scene = json!({"preset": "dalmau2018-316l", "overrides": {
         "numerics": {"grid": 32, "domain_um": 256}, "test": {"cycles": 3},
-        "wear": {"archard_regime_change": {"cycle": 1, "archard_k_before": 2e-5}}
+        "wear": {"archard_regime_change": {"cycle": 1, "archard_k_before": 2e-5}},
+        "disc": {"surface": {"kind": "synthetic", "rms_height_um": 0.05,
+                             "short_cutoff_um": 64, "long_cutoff_um": 200}}
     }});
     simulation::parse_scene(&scene).expect("the tiny scene is valid")
 }

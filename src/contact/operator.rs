@@ -19,6 +19,13 @@ pub trait Operator {
     fn preconditioner(&mut self) -> Option<&mut dyn Preconditioner> {
         None
     }
+
+    /// Whether the operator wraps around the grid's edges (a periodic surface), so a
+    /// contact on the edge cells is as valid as anywhere; `false` (the default) for the
+    /// half-space operators, whose edge cells stand for a domain that ends there.
+    fn is_periodic(&self) -> bool {
+        false
+    }
 }
 
 /// An approximate inverse `M^-1` of an operator, applied to the solver's gap on the free

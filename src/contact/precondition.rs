@@ -90,6 +90,40 @@ impl FourierInverse {
         inverse
     }
 
+    /// The multiplication by `symbol(qx, qy)` in Fourier space on an `nx` x `ny` grid of
+    /// `dx` x `dy` cells, the wavenumbers in rad/m; the zero wavenumber maps to zero. Used
+    /// with the inverse symbol as the periodic half-space operator and its exact inverse.
+    pub(crate) fn multiplier(
+        nx: usize,
+        ny: usize,
+        (dx, dy): (f64, f64),
+        symbol: impl Fn(f64, f64) -> f64,
+    ) -> Self {
+        let half = nx / 2 + 1;
+        let scale = 1.0 / (nx * ny) as f64;
+        let q = |k: usize, n: usize, d: f64| {
+            std::f64::consts::TAU * wrapped_offset(k, n) as f64 / (n as f64 * d)
+        };
+        let mut values = vec![0.0; half * ny];
+        for kx in 0..half {
+            for ky in 0..ny {
+                if kx + ky > 0 {
+                    values[kx * ny + ky] = scale * symbol(q(kx, nx, dx), q(ky, ny, dy));
+                }
+            }
+        }
+        Self {
+            nx,
+            ny,
+            half,
+            plans: Plans::new(nx, ny),
+            inverse_symbol: values,
+            columns: vec![Complex::default(); half * ny],
+            row_real: vec![0.0; nx],
+            row_spectrum: vec![Complex::default(); half],
+        }
+    }
+
     /// Row transforms then column transforms of `input` into `self.columns`.
     fn forward(&mut self, input: &[f64]) {
         let (nx, ny, half) = (self.nx, self.ny, self.half);

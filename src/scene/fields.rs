@@ -1,7 +1,15 @@
 //! Every field a scene accepts, one descriptor each: the one home of each field's unit and
 //! allowed range. The range checks (`validate.rs`, `located.rs`) word their messages from
 //! these, and `docs/scene.md`'s table is rendered from them (`reference.rs`); a test walks
-//! the parser's accepted keys and fails on any key without a descriptor here.
+//! the parser's accepted keys and fails on any key without a descriptor here. The
+//! descriptors of `disc.surface` are in `fields/surface.rs`, listed in [`FIELDS`] here.
+
+mod surface;
+
+pub(super) use surface::{
+    SURFACE, SURFACE_HURST, SURFACE_ID, SURFACE_KIND, SURFACE_LONG_CUTOFF, SURFACE_REMOVE_TILT,
+    SURFACE_RMS_HEIGHT, SURFACE_RMS_SLOPE, SURFACE_SEED, SURFACE_SHORT_CUTOFF,
+};
 
 use super::MAX_RECORD_CYCLES;
 use super::field::{Field, Range};
@@ -366,7 +374,9 @@ pub(super) const ANODIC_AREA: Field = Field {
     why: "",
     meaning: "Which area depassivates: `wear_track` (track width x track length, as in the \
               paper's Fig. 13), `real_contact` (F / H) or `bem_contact` (the solved contact \
-              area).",
+              area: on a rough disc, `disc.surface`, the real contact area at the asperity \
+              scale, so Fig. 14's depassivated-to-real ratio comes from the model rather \
+              than from F / H).",
     feeds: "A_a in eq. 18 and in Faraday's law",
 };
 
@@ -524,6 +534,16 @@ pub const FIELDS: &[Field] = &[
     HARDNESS_TABLE,
     HARDNESS_FIT_INCLUDES_BULK,
     YIELD_FACTOR,
+    SURFACE,
+    SURFACE_KIND,
+    SURFACE_RMS_HEIGHT,
+    SURFACE_RMS_SLOPE,
+    SURFACE_HURST,
+    SURFACE_SHORT_CUTOFF,
+    SURFACE_LONG_CUTOFF,
+    SURFACE_SEED,
+    SURFACE_ID,
+    SURFACE_REMOVE_TILT,
     section(
         "test",
         "Load, kinematics and length of the test.",

@@ -20,6 +20,7 @@ mod preset;
 mod record;
 mod reference;
 mod sections;
+mod surface;
 mod validate;
 
 use std::f64::consts::PI;
@@ -41,6 +42,7 @@ pub use sections::{
     PAPER_ARCHARD_CALIBRATION, PAPER_CYCLES, PAPER_HARDNESS_TABLE, STEP_CHANGE_BOUND, Switch,
     TestConditions, Wear,
 };
+pub use surface::{DEFAULT_HURST, SurfaceKind, SurfaceSpec};
 
 /// One ball-on-disc test, as the user describes it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use super::auto_or::{CycleStep, DomainSize, GridSize};
 use super::record::RecordCycles;
+use super::surface::SurfaceSpec;
 use crate::contact::SolverOptions;
 use crate::corrosion::CorrosionModel;
 use crate::hardness::{HardnessError, HardnessLaw};
@@ -91,6 +92,9 @@ pub struct Disc {
     pub hardness_fit_includes_bulk: bool,
     /// Y = H / `yield_factor` (2.8 after Johnson).
     pub yield_factor: f64,
+    /// The initial roughness; `None` for a smooth disc.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub surface: Option<SurfaceSpec>,
 }
 
 impl Default for Disc {
@@ -102,6 +106,7 @@ impl Default for Disc {
             hardness_table: Some(PAPER_HARDNESS_TABLE.to_vec()),
             hardness_fit_includes_bulk: true,
             yield_factor: 2.8,
+            surface: None,
         }
     }
 }

@@ -9,10 +9,12 @@ use super::fields::{
     CALIBRATION_HARDNESS, CALIBRATION_LOAD, CALIBRATION_SPEED, CALIBRATION_TIME,
     CALIBRATION_TRACK_RADIUS, CALIBRATION_VOLUME, CORROSION_POTENTIAL, CYCLE_STEP_BOUND, CYCLES,
     DENSITY, DISC_HARDNESS, DISC_MODULUS, DISC_POISSON, DOMAIN, EXPOSED_AREA, FRICTION, GRID, LOAD,
-    MOLAR_MASS, REGIME_CHANGE_CYCLE, REGIME_CHANGE_K_BEFORE, SPEED, TAFEL_A, TAFEL_B, TOLERANCE,
-    TRACK_RADIUS, VALENCE, YIELD_FACTOR,
+    MOLAR_MASS, REGIME_CHANGE_CYCLE, REGIME_CHANGE_K_BEFORE, SPEED, SURFACE_HURST,
+    SURFACE_LONG_CUTOFF, SURFACE_RMS_HEIGHT, SURFACE_RMS_SLOPE, SURFACE_SEED, SURFACE_SHORT_CUTOFF,
+    TAFEL_A, TAFEL_B, TOLERANCE, TRACK_RADIUS, VALENCE, YIELD_FACTOR,
 };
 use super::format::num;
+use super::surface::SurfaceKind;
 use super::{DomainSize, FieldError, GridSize, MAX_RECORD_CYCLES, RecordCycles, Scene};
 
 /// All problems with `scene`'s own fields, empty when each is valid.
@@ -37,6 +39,7 @@ pub(super) fn check(scene: &Scene) -> Vec<FieldError> {
     c.whole(&CYCLES, test.cycles);
 
     check_hardness_table(&mut c, scene);
+    check_surface(&mut c, scene);
     check_wear(&mut c, scene);
     check_numerics(&mut c, scene);
     check_corrosion(&mut c, scene);
@@ -100,6 +103,71 @@ fn check_hardness_table(c: &mut Checks, scene: &Scene) {
                     ),
                 );
             }
+        }
+    }
+}
+
+fn check_surface(c: &mut Checks, scene: &Scene) {
+    let Some(surface) = &scene.disc.surface else {
+        return;
+    };
+    let foreign = surface.foreign_keys();
+    if !foreign.is_empty() {
+        c.fail(
+            "disc.surface",
+            format!(
+                "{} not used by a {:?} surface",
+                foreign.join(", "),
+                surface.kind
+            )
+            .to_lowercase(),
+        );
+    }
+    match surface.kind {
+        SurfaceKind::Measured => {
+            if surface.id.as_deref().is_none_or(str::is_empty) {
+                c.fail("disc.surface.id", "a measured surface needs the map's id");
+            }
+        }
+        SurfaceKind::Synthetic => check_synthetic(c, surface),
+    }
+}
+
+fn check_synthetic(c: &mut Checks, surface: &super::SurfaceSpec) {
+    match (surface.rms_height_um, surface.rms_slope) {
+        (Some(h), None) => c.number(&SURFACE_RMS_HEIGHT, h),
+        (None, Some(s)) => c.number(&SURFACE_RMS_SLOPE, s),
+        _ => c.fail(
+            "disc.surface",
+            "a synthetic surface needs exactly one of `rms_height_um` and `rms_slope`",
+        ),
+    }
+    if let Some(h) = surface.hurst {
+        c.number(&SURFACE_HURST, h);
+    }
+    if let Some(seed) = surface.seed {
+        c.whole(&SURFACE_SEED, seed);
+    }
+    let cutoffs = [
+        (&SURFACE_SHORT_CUTOFF, surface.short_cutoff_um),
+        (&SURFACE_LONG_CUTOFF, surface.long_cutoff_um),
+    ];
+    for (field, value) in cutoffs {
+        match value {
+            Some(v) => c.number(field, v),
+            None => c.fail(field.path, "a synthetic surface needs both cut-offs"),
+        }
+    }
+    if let (Some(short), Some(long)) = (surface.short_cutoff_um, surface.long_cutoff_um) {
+        if short >= long {
+            c.fail(
+                "disc.surface.short_cutoff_um",
+                format!(
+                    "must be below `long_cutoff_um` ({}), got {}",
+                    num(long),
+                    num(short)
+                ),
+            );
         }
     }
 }

@@ -91,6 +91,7 @@ fn partial(
     };
     Ok(SimulationResult {
         complete: false,
+        surface: setup.surface_report(),
         scene: setup.scene,
         models: setup.models,
         warnings: setup.warnings,

@@ -91,7 +91,10 @@ impl<'a> Cell<'a> {
         let area = match self.settings.anodic_area {
             AnodicArea::WearTrack => "the wear track (worn width x track length)",
             AnodicArea::RealContact => "the real contact area F / H",
-            AnodicArea::BemContact => "the contact area of the solution",
+            AnodicArea::BemContact => {
+                "the contact area of the solution (on a rough disc the real contact area of \
+                 the asperities)"
+            }
         };
         format!(
             "eq. 18 galvanic coupling and Faraday's law; anodic area: {area}, times {}",

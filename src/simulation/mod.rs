@@ -8,6 +8,7 @@ mod first;
 mod growth;
 mod hardening;
 mod result;
+mod roughness;
 mod run;
 mod setup;
 mod sizing;
@@ -20,6 +21,7 @@ use crate::contact::ContactError;
 use crate::corrosion::CorrosionError;
 use crate::hardness::HardnessError;
 use crate::scene::SceneErrors;
+use crate::surface::SurfaceError;
 
 /// The default cycle-step bound, owned by the scene; here beside [`MAX_STEP`] for the
 /// callers that study the stepping (the benchmarks).
@@ -28,9 +30,10 @@ pub use feasibility::{check, parse_scene, parse_scene_str};
 pub use first::{FirstContact, first_contact};
 pub use hardening::FAR_OFF_FRACTION;
 pub use result::{
-    CycleRecord, Model, ModelChoice, PressureMap, Profile, SimulationResult, Summary,
+    CycleRecord, Model, ModelChoice, PressureMap, Profile, SimulationResult, Summary, SurfaceReport,
 };
-pub use run::run;
+pub use roughness::{CELLS_PER_SHORT_WAVELENGTH, DiscSurface};
+pub use run::{run, run_with_surface};
 pub use setup::{COUPLING_SENSITIVITY, Setup};
 pub use sizing::{CELLS_PER_CONTACT_RADIUS, DOMAIN_PER_CONTACT_RADIUS};
 pub use stepping::MAX_STEP;
@@ -67,6 +70,18 @@ pub enum SimulationError {
         #[source]
         source: CorrosionError,
     },
+    /// The scene names a measured surface the caller did not supply.
+    #[error(
+        "the measured surface `{id}` was not supplied (`tribosim run --surface FILE` supplies \
+         one)"
+    )]
+    SurfaceNotSupplied {
+        /// The scene's `disc.surface.id`.
+        id: String,
+    },
+    /// The disc's surface could not be generated on the grid.
+    #[error("disc surface: {0}")]
+    Surface(#[from] SurfaceError),
     /// The caller's cancel flag was set.
     #[error("cancelled after {cycles_done} cycles")]
     Cancelled {

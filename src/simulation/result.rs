@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::contact::{Grid, Window};
 use crate::scene::{ArchardRegimeChange, Scene};
+use crate::surface::Statistics;
 use crate::wear::Groove;
 
 /// A whole run.
@@ -15,6 +16,9 @@ pub struct SimulationResult {
     pub complete: bool,
     /// The scene as run, every default filled in.
     pub scene: Scene,
+    /// The disc's initial roughness; absent for a smooth disc.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub surface: Option<SurfaceReport>,
     /// Which physical and numerical models the run used, and why.
     pub models: Vec<ModelChoice>,
     /// What in the scene looks wrong without being invalid (e.g. a hardness point far off
@@ -65,6 +69,8 @@ pub enum Model {
     Archard,
     /// Wear-accelerated corrosion (eq. 18 and Faraday).
     Corrosion,
+    /// The disc's initial roughness and how the grid resolves it.
+    Surface,
 }
 
 /// The state after one solved cycle.
@@ -80,8 +86,13 @@ pub struct CycleRecord {
     pub max_depth_um: f64,
     /// Largest contact pressure, MPa.
     pub max_pressure_mpa: f64,
-    /// Area in contact, mm^2.
+    /// Area in contact (cells with p > 0), mm^2: on a rough disc the real contact area at
+    /// the asperity scale, resolved down to the cell.
     pub contact_area_mm2: f64,
+    /// Contact islands: 4-connected groups of cells in contact (1 for a smooth contact; 0
+    /// in results written before it was counted).
+    #[serde(default)]
+    pub contact_islands: usize,
     /// Area at the yield pressure, mm^2.
     pub plastic_area_mm2: f64,
     /// Disc hardness at this cycle, MPa.
@@ -100,6 +111,17 @@ pub struct CycleRecord {
     /// Wear-accelerated corrosion volume so far, mm^3; absent without `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wac_volume_mm3: Option<f64>,
+}
+
+/// The statistics of a rough disc's surface.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SurfaceReport {
+    /// The surface as the contact sees it, on the first grid's cells.
+    pub on_grid: Statistics,
+    /// A measured map's own statistics before it was sampled onto the grid (after tilt
+    /// removal when asked); absent for a synthetic surface.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub measured: Option<Statistics>,
 }
 
 /// The groove depth across the track (y) at one cycle.
@@ -266,6 +288,7 @@ mod tests {
             (Model::SolveWindow, "solve_window"),
             (Model::Archard, "archard"),
             (Model::Corrosion, "corrosion"),
+            (Model::Surface, "surface"),
         ];
         for (model, name) in names {
             let json = serde_json::to_value(model).expect("serialises");

@@ -22,6 +22,7 @@ use crate::contact::{
     WindowedSolver,
 };
 use crate::scene::{DomainSize, Scene};
+use crate::surface::{HeightMap, count_islands};
 use crate::wear::{Groove, pass_pressure_integral, yield_depth};
 
 use super::electrochemistry::{Cell, Reading, Surface};
@@ -46,8 +47,18 @@ pub fn run(
     on_cycle: &mut dyn FnMut(&CycleRecord),
     cancel: &AtomicBool,
 ) -> Result<SimulationResult, SimulationError> {
+    run_with_surface(scene, None, on_cycle, cancel)
+}
+
+/// [`run`] with the height map of a scene whose `disc.surface` is measured.
+pub fn run_with_surface(
+    scene: &Scene,
+    surface: Option<&HeightMap>,
+    on_cycle: &mut dyn FnMut(&CycleRecord),
+    cancel: &AtomicBool,
+) -> Result<SimulationResult, SimulationError> {
     let started = Instant::now();
-    let setup = Setup::new(scene)?;
+    let setup = Setup::with_surface(scene, surface)?;
     let mut state = Run::new(&setup, |grid: &Grid| setup.solver(grid));
     let total = setup.scene.test.cycles;
     let mut cycle = 1;
@@ -232,6 +243,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let (setup, grid) = (self.setup, &self.grid);
         let n = cycle as f64;
         let track_length = setup.scene.track_length_m();
+        let contact: Vec<bool> = solution.pressure.iter().map(|&p| p > 0.0).collect();
         let record = CycleRecord {
             cycle,
             time_s: n * setup.scene.cycle_period_s(),
@@ -239,6 +251,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             max_depth_um: self.groove.max_depth_m() * 1e6,
             max_pressure_mpa: solution.max_pressure_pa() / 1e6,
             contact_area_mm2: solution.contact_area_m2(grid) * 1e6,
+            contact_islands: count_islands(&contact, grid.nx),
             plastic_area_mm2: solution.plastic_area_m2(grid, cap) * 1e6,
             hardness_mpa: setup.hardness.hardness_pa(n) / 1e6,
             approach_um: solution.approach_m * 1e6,
@@ -339,6 +352,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         SimulationResult {
             complete: true,
             scene: scene.clone(),
+            surface: setup.surface_report(),
             models,
             warnings: setup.warnings.clone(),
             cycles: self.records,

@@ -7,9 +7,12 @@ use crate::contact::{
 };
 use crate::hardness::HardnessLaw;
 use crate::scene::{ArchardRegimeChange, Scene, Switch};
+use crate::surface::HeightMap;
 
 use super::feasibility::check;
 use super::hardening::work_hardening_report;
+use super::result::SurfaceReport;
+use super::roughness::{DiscSurface, build, wanted_cell_m};
 use super::sizing::{
     GridPlan, LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m,
 };
@@ -48,6 +51,8 @@ pub struct Setup {
     pub models: Vec<ModelChoice>,
     /// What in the scene looks wrong without being invalid, for the result's `warnings`.
     pub warnings: Vec<String>,
+    /// The disc's initial roughness on the first grid; `None` for a smooth disc.
+    pub surface: Option<DiscSurface>,
 }
 
 fn choice(name: Model, active: bool, reason: String) -> ModelChoice {
@@ -76,9 +81,25 @@ fn decide(
 }
 
 impl Setup {
+    /// What a result reports of the disc's initial roughness; `None` for a smooth disc.
+    pub fn surface_report(&self) -> Option<SurfaceReport> {
+        self.surface.as_ref().map(|s| SurfaceReport {
+            on_grid: s.statistics.clone(),
+            measured: s.source.clone(),
+        })
+    }
+
     /// Checks the scene ([`check`]: its fields, and whether it can be simulated) and makes
     /// every decision.
     pub fn new(scene: &Scene) -> Result<Self, SimulationError> {
+        Self::with_surface(scene, None)
+    }
+
+    /// [`Self::new`] with the height map of a scene whose `disc.surface` is measured.
+    pub fn with_surface(
+        scene: &Scene,
+        supplied: Option<&HeightMap>,
+    ) -> Result<Self, SimulationError> {
         check(scene)?;
         let pair = elastic_pair(scene).map_err(SimulationError::Setup)?;
         let hardness = scene.hardness_law()?;
@@ -93,9 +114,22 @@ impl Setup {
         let plasticity = decide_plasticity(&mut models, scene, &hertz, &lowest);
         let coupling = decide_coupling(&mut models, scene, &pair, &options);
         let radius = sizing_radius_m(&hertz, lowest.yield_pa, plasticity);
-        let plan = plan_grid(&scene.numerics, radius);
+        let spec = scene.disc.surface.as_ref();
+        let surface_cell = spec.and_then(|s| wanted_cell_m(s, supplied));
+        let plan = plan_grid(&scene.numerics, radius, surface_cell);
         let grid = Grid::square(plan.cells, plan.domain_m).map_err(SimulationError::Setup)?;
         models.push(grid_choice(&grid, &plan, radius));
+        let mut surface = spec.map(|s| build(s, supplied, &grid)).transpose()?;
+        if let Some(surface) = &mut surface {
+            if plasticity {
+                surface.model.reason.push_str(
+                    "; yielding (eq. 13) deepens each row by its deepest capped cell, asperity \
+                     tops included, which overstates the early wear of a rough disc \
+                     (`wear.plasticity: \"off\"` leaves it out)",
+                );
+            }
+            models.push(surface.model.clone());
+        }
         let (hardening, warnings) = work_hardening_report(&scene.disc, &hardness);
         models.push(hardening);
         Ok(Self {
@@ -111,6 +145,7 @@ impl Setup {
             options,
             models,
             warnings,
+            surface,
         })
     }
 
@@ -134,16 +169,19 @@ impl Setup {
 
     /// The unworn ball's height above its apex at each cell of `grid` (the exact sphere),
     /// `rho^2 / (r + sqrt(r^2 - rho^2))`: equal to `r - sqrt(r^2 - rho^2)`, which loses the
-    /// height to round-off once it nears `r` times machine epsilon (tiny contacts).
+    /// height to round-off once it nears `r` times machine epsilon (tiny contacts); less the
+    /// disc's roughness, which rises towards the ball.
     pub fn ball_separation(&self, grid: &Grid) -> Vec<f64> {
         let r = self.scene.ball_radius_m();
+        let roughness = self.surface.as_ref().map(|s| &s.map);
         grid.sample(|x, y| {
             let rho2 = x * x + y * y;
-            if rho2 >= r * r {
+            let ball = if rho2 >= r * r {
                 r
             } else {
                 rho2 / (r + (r * r - rho2).sqrt())
-            }
+            };
+            ball - roughness.map_or(0.0, |m| m.height_at(x, y))
         })
     }
 

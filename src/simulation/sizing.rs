@@ -114,9 +114,16 @@ pub struct GridPlan {
 }
 
 /// The grid `numerics` asks for, with what it leaves to the simulation sized by the contact
-/// radius `radius_m`.
-pub fn plan_grid(numerics: &Numerics, radius_m: f64) -> GridPlan {
-    let cell = auto_cell_m(radius_m);
+/// radius `radius_m` and, on a rough disc, by the finest cell its surface asks for
+/// (`surface_cell_m`, see [`super::roughness::wanted_cell_m`]).
+pub fn plan_grid(numerics: &Numerics, radius_m: f64, surface_cell_m: Option<f64>) -> GridPlan {
+    let contact_cell = auto_cell_m(radius_m);
+    let cell = surface_cell_m.map_or(contact_cell, |c| c.min(contact_cell));
+    let density = if cell < contact_cell {
+        "cells auto, the surface's".to_owned()
+    } else {
+        format!("cells auto, {CELLS_PER_CONTACT_RADIUS} per contact radius")
+    };
     let fitted = |side: f64| fitted_cells((side / cell).ceil() as usize);
     let (cells, domain_m, how) = match (numerics.grid, numerics.domain_m()) {
         (GridSize::Cells(n), Some(domain)) => (n, domain, "as requested".to_owned()),
@@ -128,19 +135,17 @@ pub fn plan_grid(numerics: &Numerics, radius_m: f64) -> GridPlan {
         (GridSize::Auto, Some(domain)) => (
             fitted(domain),
             domain,
-            format!(
-                "domain as requested; cells auto, {CELLS_PER_CONTACT_RADIUS} per contact radius"
-            ),
+            format!("domain as requested; {density}"),
         ),
         (GridSize::Auto, None) => {
-            // Keep the cell size; the side grows to the next fast FFT size.
+            // Keep the cell size; the side grows to the next fast FFT size (cut at the
+            // grid limit, where the cells grow instead).
             let n = fitted(auto_domain_m(radius_m));
+            let side = (n as f64 * cell).max(auto_domain_m(radius_m));
             (
                 n,
-                n as f64 * cell,
-                format!(
-                    "auto: {CELLS_PER_CONTACT_RADIUS} cells per contact radius, at least {DOMAIN_PER_CONTACT_RADIUS} radii"
-                ),
+                side,
+                format!("auto: {density}, at least {DOMAIN_PER_CONTACT_RADIUS} radii"),
             )
         }
     };
@@ -197,7 +202,7 @@ mod tests {
     #[test]
     fn auto_grids_keep_the_cell_and_round_the_side_up() {
         let radius = 44.2e-6;
-        let plan = plan_grid(&Numerics::default(), radius);
+        let plan = plan_grid(&Numerics::default(), radius, None);
         // 3 radii in cells of radius / 44 is 133 cells, rounded up to 2^4 x 3^2 = 144.
         assert_eq!(plan.cells, 144);
         assert!((plan.domain_m / (144.0 * auto_cell_m(radius)) - 1.0).abs() < 1e-15);
@@ -205,6 +210,18 @@ mod tests {
             domain_um: crate::scene::DomainSize::Micrometres(100_000.0),
             ..Numerics::default()
         };
-        assert_eq!(plan_grid(&huge, radius).cells, Grid::MAX_CELLS_PER_SIDE);
+        assert_eq!(
+            plan_grid(&huge, radius, None).cells,
+            Grid::MAX_CELLS_PER_SIDE
+        );
+        // A surface asking for cells four times finer: 3 radii in cells of radius / 176 is
+        // 528 cells, rounded up to 2^6 x 3^2 = 576.
+        let rough = plan_grid(
+            &Numerics::default(),
+            radius,
+            Some(auto_cell_m(radius) / 4.0),
+        );
+        assert_eq!(rough.cells, 576);
+        assert!(rough.domain_m >= auto_domain_m(radius));
     }
 }
