@@ -505,7 +505,7 @@ async fn bad_input_gets_a_4xx_json_error_never_a_5xx() {
     };
 
     // Invalid scenes: 422 with the field paths at fault.
-    let invalid: [(Value, &[&str]); 7] = [
+    let invalid: [(Value, &[&str]); 8] = [
         (json!({"test": {"load_n": "five"}}), &["test.load_n"]),
         (json!({"test": {"load_n": "NaN"}}), &["test.load_n"]),
         (
@@ -519,6 +519,11 @@ async fn bad_input_gets_a_4xx_json_error_never_a_5xx() {
             &["ball.radius_mm", "test"],
         ),
         (json!([1, 2, 3]), &[""]),
+        // Valid for `tribosim run --surface`, but the service has no height map to give it.
+        (
+            json!({"disc": {"surface": {"kind": "measured", "id": "disc.gsf"}}}),
+            &["disc.surface.kind"],
+        ),
     ];
     for (scene, paths) in invalid {
         let response = post(serde_json::to_vec(&scene).expect("json"))

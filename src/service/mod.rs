@@ -28,6 +28,7 @@ mod partial;
 mod queue;
 mod registry;
 mod routes;
+mod servable;
 mod store;
 mod studies;
 mod study_record;

@@ -23,6 +23,7 @@ use super::job::{Job, JobStatus};
 use super::job_routes;
 use super::partial::{self, PartialError};
 use super::registry::{Deletion, SubmitError};
+use super::servable::servable;
 use super::store::is_disk_full;
 use super::{calibration_routes, study_routes};
 use crate::json::{self, JsonError};
@@ -364,6 +365,7 @@ async fn submit(State(app): State<AppState>, request: Request) -> Result<Respons
         }
     })?;
     let scene = parse_scene(&document).map_err(ApiError::invalid_scene)?;
+    servable(&scene).map_err(ApiError::invalid_scene)?;
     let jobs = Arc::clone(&app.jobs);
     let record = tokio::task::spawn_blocking(move || jobs.submit(scene))
         .await

@@ -21,10 +21,11 @@ use uuid::Uuid;
 
 use super::job::JobStatus;
 use super::registry::{Deletion, Jobs, SubmitError};
+use super::servable::servable;
 use super::store::{quarantine, sweep_temporaries, sync_dir, to_json, write_atomic};
 use super::study_record::{AxisRecord, StudyRecord, record_of};
 use crate::simulation::Summary;
-use crate::study::{MemberRow, Pending, Study, StudyError, StudySummary};
+use crate::study::{MemberRow, Pending, Study, StudyError, StudySummary, describe_values};
 
 /// Where study files live, under the data directory.
 const STUDIES_DIR: &str = "studies";
@@ -186,6 +187,15 @@ impl Studies {
         let members = study
             .members(self.max_members)
             .map_err(StudySubmitError::Invalid)?;
+        for member in &members {
+            servable(&member.scene).map_err(|source| {
+                StudySubmitError::Invalid(StudyError::Member {
+                    index: member.index,
+                    values: describe_values(&member.values),
+                    source,
+                })
+            })?;
+        }
         let capacity = jobs.queue.capacity();
         if members.len() > capacity {
             return Err(StudySubmitError::OverCapacity {
