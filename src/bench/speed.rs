@@ -21,6 +21,9 @@ use crate::scene::{DEFAULT_TOLERANCE, Scene};
 /// The scene default's tolerance before it was set by what the error needs.
 pub const PREVIOUS_TOLERANCE: f64 = 1e-8;
 
+/// Runs of each tolerance in the warm-solve study, alternating.
+pub const WARM_ROUNDS: usize = 3;
+
 /// Grid sides of the coarse-to-fine study.
 pub const COARSE_STUDY_SIZES: [usize; 3] = [256, 1024, 2048];
 
@@ -57,8 +60,10 @@ pub struct WarmRow {
     pub iterations: usize,
     /// Iterations per solve.
     pub iterations_per_solve: f64,
-    /// Wall time of the run, s.
+    /// Wall time of the run, s (median over the rounds).
     pub wall_s: f64,
+    /// CPU time of the run, s (median over the rounds; `None` where it cannot be read).
+    pub cpu_s: Option<f64>,
     /// Wear volume relative to the [`PREVIOUS_TOLERANCE`] run's, minus 1.
     pub err_volume: f64,
     /// Deepest point relative to the [`PREVIOUS_TOLERANCE`] run's, minus 1.
@@ -93,28 +98,42 @@ pub struct CoarseRow {
 }
 
 /// The warm-solve study: the default scene at the previous and the current default
-/// tolerance.
+/// tolerance, run alternately [`WARM_ROUNDS`] times; times are the medians.
 pub fn warm_rows() -> Result<Vec<WarmRow>, BenchError> {
-    let run = |tolerance: f64| {
-        let mut scene = Scene::default();
-        scene.numerics.tolerance = tolerance;
-        simulate(&scene)
+    let tolerances = [PREVIOUS_TOLERANCE, DEFAULT_TOLERANCE];
+    let mut runs = Vec::new();
+    for _ in 0..WARM_ROUNDS {
+        for tolerance in tolerances {
+            let mut scene = Scene::default();
+            scene.numerics.tolerance = tolerance;
+            let cpu = thread_cpu_s();
+            let result = simulate(&scene)?;
+            let cpu_s = thread_cpu_s()
+                .zip(cpu)
+                .map(|(after, before)| after - before);
+            runs.push((result.summary, cpu_s));
+        }
+    }
+    let median = |values: Vec<f64>| {
+        let mut v = values;
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied()
     };
-    let reference = run(PREVIOUS_TOLERANCE)?;
-    let current = run(DEFAULT_TOLERANCE)?;
-    let base = &reference.summary;
-    Ok([&reference, &current]
+    let base = runs[0].0.clone();
+    Ok(tolerances
         .into_iter()
-        .zip([PREVIOUS_TOLERANCE, DEFAULT_TOLERANCE])
-        .map(|(result, tolerance)| {
-            let s = &result.summary;
+        .enumerate()
+        .map(|(k, tolerance)| {
+            let s = &runs[k].0;
+            let mine = runs.iter().skip(k).step_by(tolerances.len());
             WarmRow {
                 study: "speed_warm",
                 tolerance,
                 solves: s.solves,
                 iterations: s.iterations,
                 iterations_per_solve: s.iterations as f64 / s.solves as f64,
-                wall_s: s.wall_s,
+                wall_s: median(mine.clone().map(|r| r.0.wall_s).collect()).unwrap_or(s.wall_s),
+                cpu_s: median(mine.filter_map(|r| r.1).collect()),
                 err_volume: s.wear_volume_mm3 / base.wear_volume_mm3 - 1.0,
                 err_depth: s.max_depth_um / base.max_depth_um - 1.0,
                 potential_change_mv: 1e3
@@ -122,6 +141,14 @@ pub fn warm_rows() -> Result<Vec<WarmRow>, BenchError> {
             }
         })
         .collect())
+}
+
+/// CPU time of the calling thread so far, s (Linux's `schedstat`; `None` elsewhere): the
+/// run's own work, whatever else the machine is doing.
+fn thread_cpu_s() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let nanoseconds: f64 = stat.split_whitespace().next()?.parse().ok()?;
+    Some(nanoseconds * 1e-9)
 }
 
 /// The Hertz case on an `n`-cell grid: the grid and the separation.
