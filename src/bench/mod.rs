@@ -8,6 +8,7 @@ mod error;
 mod fft_pair;
 mod plot;
 mod report;
+mod speed;
 mod wear;
 
 use std::path::Path;
@@ -27,7 +28,10 @@ pub enum BenchTarget {
     Wear,
     /// The measurements behind the auto choices: coupling, domain, plasticity.
     Auto,
-    /// All three.
+    /// The solver's speed levers: warm solves of the default scene, the coarse-to-fine
+    /// start, and the peak memory up to N = 2048.
+    Speed,
+    /// All four.
     All,
 }
 
@@ -76,6 +80,18 @@ pub fn print(target: BenchTarget, json: bool, markdown: Option<&Path>) -> Result
         }
         measured.auto = Some(studies);
     }
+    if wanted(BenchTarget::Speed) {
+        let studies = speed::SpeedStudies {
+            warm: speed::warm_rows()?,
+            coarse: speed::coarse_rows()?,
+        };
+        if json {
+            speed::print_json(&studies)?;
+        } else {
+            print!("{}", report::speed_tables(&studies));
+        }
+        measured.speed = Some(studies);
+    }
     if let Some(path) = markdown {
         let name = clap::ValueEnum::to_possible_value(&target)
             .map_or_else(|| "all".to_owned(), |v| v.get_name().to_owned());
@@ -83,8 +99,17 @@ pub fn print(target: BenchTarget, json: bool, markdown: Option<&Path>) -> Result
             "cargo run --release -- bench {name} --markdown {}",
             path.display()
         );
-        let plots = report::write(path, &measured, &Machine::detect(path), &command)?;
-        eprintln!("wrote {} and {plots} plots", path.display());
+        let machine = Machine::detect(path);
+        match (&measured.speed, target) {
+            (Some(studies), BenchTarget::Speed) => {
+                report::write_speed_section(path, studies, &machine, &command)?;
+                eprintln!("rewrote the speed section of {}", path.display());
+            }
+            _ => {
+                let plots = report::write(path, &measured, &machine, &command)?;
+                eprintln!("wrote {} and {plots} plots", path.display());
+            }
+        }
     }
     Ok(())
 }

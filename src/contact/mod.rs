@@ -10,6 +10,7 @@
 //! meet, and [`verify`] checks a solution against them independently.
 
 pub mod check;
+mod coarse;
 pub mod coupled;
 mod error;
 mod fft;
@@ -27,6 +28,7 @@ pub mod solver;
 mod window;
 
 pub use check::{Verification, verify};
+pub use coarse::{COARSE_TOLERANCE, COARSEST_CELLS, coarse_start};
 pub use coupled::{CoupledSolver, solve_coupled};
 pub use error::{ContactError, ElasticConstant};
 pub use fft::DcFft;

@@ -38,9 +38,9 @@ pub use preset::{DALMAU2018_316L, Preset, presets};
 pub use record::{MAX_RECORD_CYCLES, RecordCycles, TABLE3_TIMES_S};
 pub use reference::{FIELDS_BEGIN, FIELDS_END, field_table};
 pub use sections::{
-    AnodicArea, ArchardCalibration, ArchardRegimeChange, Ball, Corrosion, Disc, Numerics,
-    PAPER_ARCHARD_CALIBRATION, PAPER_CYCLES, PAPER_HARDNESS_TABLE, STEP_CHANGE_BOUND, Switch,
-    TestConditions, Wear,
+    AnodicArea, ArchardCalibration, ArchardRegimeChange, Ball, Corrosion, DEFAULT_TOLERANCE, Disc,
+    Numerics, PAPER_ARCHARD_CALIBRATION, PAPER_CYCLES, PAPER_HARDNESS_TABLE, STEP_CHANGE_BOUND,
+    Switch, TestConditions, Wear,
 };
 pub use surface::{DEFAULT_HURST, SurfaceKind, SurfaceSpec};
 

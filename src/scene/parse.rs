@@ -106,7 +106,7 @@ mod tests {
         "anodic_area": "wear_track", "anodic_area_factor": 1.0,
         "molar_mass_g_mol": 55.85, "valence": 2.0, "density_g_cm3": 7.9
       },
-      "numerics": { "grid": "auto", "domain_um": "auto", "tolerance": 1e-8,
+      "numerics": { "grid": "auto", "domain_um": "auto", "tolerance": 1e-6,
                     "cycle_step": "auto", "coupling": "auto" }
     }"#;
 

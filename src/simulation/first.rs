@@ -4,7 +4,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::contact::ContactProblem;
+use crate::contact::{ContactProblem, coarse_start};
 use crate::scene::Scene;
 
 use super::{ModelChoice, Setup, SimulationError};
@@ -53,9 +53,13 @@ pub fn first_contact(scene: &Scene) -> Result<FirstContact, SimulationError> {
         load_n: setup.scene.load_n(),
         yield_pressure_pa: cap,
     };
+    // A failed coarse solve only loses the starting guess: the solve starts cold then.
+    let start = coarse_start(&problem, &setup.pair, &setup.options)
+        .ok()
+        .flatten();
     let solution = setup
         .solver(&grid)
-        .solve(&problem, &setup.options, None)
+        .solve(&problem, &setup.options, start.as_deref())
         .map_err(|source| SimulationError::Contact { cycle: 1, source })?;
     Ok(FirstContact {
         max_pressure_mpa: solution.max_pressure_pa() / 1e6,

@@ -19,7 +19,7 @@ use std::time::Instant;
 
 use crate::contact::{
     ContactProblem, ContactSolution, ContactSolver, Grid, MARGIN_FRACTION, MIN_MARGIN, Window,
-    WindowedSolver,
+    WindowedSolver, coarse_start,
 };
 use crate::scene::{DomainSize, Scene};
 use crate::surface::{HeightMap, count_islands};
@@ -180,8 +180,8 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         Ok(step)
     }
 
-    /// The contact on the current surface, warm-started from the last pressures; with the
-    /// separation it was solved on.
+    /// The contact on the current surface, warm-started from the last pressures (the first
+    /// from the coarse-to-fine start); with the separation it was solved on.
     fn solve_contact(
         &mut self,
         cycle: u64,
@@ -194,13 +194,15 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             load_n: self.setup.scene.load_n(),
             yield_pressure_pa: cap,
         };
+        // A failed coarse solve only loses the starting guess: the solve starts cold then.
+        let start = self.history.guess(cycle, cap).or_else(|| {
+            coarse_start(&problem, &self.setup.pair, &self.setup.options)
+                .ok()
+                .flatten()
+        });
         let solution = self
             .solver
-            .solve(
-                &problem,
-                &self.setup.options,
-                self.history.guess(cycle, cap).as_deref(),
-            )
+            .solve(&problem, &self.setup.options, start.as_deref())
             .map_err(|source| SimulationError::Contact { cycle, source })?;
         self.solves += 1;
         self.iterations += solution.iterations;

@@ -10,6 +10,7 @@ mod contact;
 mod coupling;
 mod format;
 mod machine;
+mod speed;
 mod wear;
 
 use std::path::{Path, PathBuf};
@@ -20,6 +21,7 @@ use super::BenchError;
 use super::auto::AutoStudies;
 use super::contact::{ContactRow, ToleranceRow};
 use super::plot::{LogLogPlot, Series};
+use super::speed::SpeedStudies;
 use super::wear::WearRow;
 
 use self::wear::wear_series;
@@ -35,6 +37,8 @@ pub struct Measurements {
     pub wear: Vec<WearRow>,
     /// The studies behind the auto choices.
     pub auto: Option<AutoStudies>,
+    /// The solver's speed levers.
+    pub speed: Option<SpeedStudies>,
 }
 
 /// The report being written: markdown text and the plots written so far.
@@ -134,6 +138,41 @@ pub fn write(
     Ok(report.plots)
 }
 
+/// The speed studies' tables with their words, for the terminal.
+pub fn speed_tables(studies: &SpeedStudies) -> String {
+    let mut report = Report {
+        text: String::new(),
+        plot_dir: PathBuf::new(),
+        link_dir: String::new(),
+        plots: 0,
+    };
+    speed::body(&mut report, studies);
+    report.text
+}
+
+/// Rewrites the speed section of the report at `path` alone (the file's other sections are
+/// kept as another run wrote them); writes a report of that section alone if there is none.
+pub fn write_speed_section(
+    path: &Path,
+    studies: &SpeedStudies,
+    machine: &Machine,
+    command: &str,
+) -> Result<(), BenchError> {
+    let existing = std::fs::read_to_string(path).unwrap_or_default();
+    let mut report = Report {
+        text: String::new(),
+        plot_dir: PathBuf::new(),
+        link_dir: String::new(),
+        plots: 0,
+    };
+    speed::section(&mut report, studies, machine, command);
+    let text = speed::splice(&existing, &report.text);
+    std::fs::write(path, text).map_err(|source| BenchError::Write {
+        path: path.to_owned(),
+        source,
+    })
+}
+
 fn render(
     report: &mut Report,
     measured: &Measurements,
@@ -150,6 +189,9 @@ fn render(
     }
     if let Some(auto) = &measured.auto {
         auto::section(report, auto, measured)?;
+    }
+    if let Some(studies) = &measured.speed {
+        speed::section(report, studies, machine, command);
     }
     if let Some(peers) = peers {
         // The fragment's own heading, if it has one, heads the section.
@@ -209,6 +251,7 @@ mod tests {
                 wear_row(WearStudy::Table3, "300 s: measured", 0.2, false),
             ],
             auto: None,
+            speed: None,
         };
         let machine = Machine {
             date: "2026-11-22".into(),

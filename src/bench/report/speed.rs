@@ -1,0 +1,185 @@
+//! The speed section: each lever of the solver against the code without it, measured in one
+//! run. `tribosim bench speed --markdown PATH` rewrites only this section of an existing
+//! report ([`splice`]), so it can be regenerated without the other studies.
+
+use crate::bench::speed::{
+    COARSE_STUDY_SIZES, CoarseRow, PREVIOUS_TOLERANCE, SpeedStudies, WARM_ROUNDS, WarmRow,
+};
+use crate::contact::{COARSE_TOLERANCE, COARSEST_CELLS};
+use crate::scene::DEFAULT_TOLERANCE;
+
+use super::format::{error, sig, table};
+use super::{Machine, Report};
+
+/// The section's heading: where [`splice`] finds it.
+pub(super) const HEADING: &str = "## Solver speed";
+
+/// The section's opening words: what it measures, and which run measured it (the section
+/// may be regenerated alone, so it names its own command, date and commit).
+pub(super) fn intro(machine: &Machine, command: &str) -> String {
+    let commit = machine
+        .commit
+        .as_ref()
+        .map_or(String::new(), |c| format!(", commit `{c}`"));
+    format!(
+        "{HEADING}\n\n\
+         Each lever of the solver against the code without it, timed in the same run: \
+         `{command}` on {}, on {} ({} cores){commit}. The machine may be shared with other \
+         work: compare the rows of one table with each other.\n",
+        machine.date, machine.cpu, machine.cores
+    )
+}
+
+fn warm_cells(r: &WarmRow) -> Vec<String> {
+    let reference = r.tolerance == PREVIOUS_TOLERANCE;
+    let change = |v: f64| {
+        if reference {
+            "reference".to_owned()
+        } else {
+            error(v)
+        }
+    };
+    vec![
+        format!("{:.0e}", r.tolerance),
+        r.solves.to_string(),
+        r.iterations.to_string(),
+        format!("{:.2}", r.iterations_per_solve),
+        sig(r.wall_s, 3),
+        r.cpu_s.map_or("n/a".to_owned(), |c| sig(c, 3)),
+        change(r.err_volume),
+        change(r.err_depth),
+        if reference {
+            "reference".to_owned()
+        } else {
+            format!("{:+.4}", r.potential_change_mv)
+        },
+    ]
+}
+
+fn coarse_cells(r: &CoarseRow) -> Vec<String> {
+    vec![
+        r.n.to_string(),
+        r.cold_iterations.to_string(),
+        sig(r.cold_s, 3),
+        r.fine_iterations.to_string(),
+        sig(r.coarse_to_fine_s, 3),
+        format!("{:.2}", r.speedup),
+        format!("{:.1e}", r.difference),
+        r.peak_rss_bytes.map_or("n/a".to_owned(), |b| {
+            format!("{:.0}", b as f64 / (r.n * r.n) as f64)
+        }),
+    ]
+}
+
+/// Appends the section.
+pub(super) fn section(
+    report: &mut Report,
+    studies: &SpeedStudies,
+    machine: &Machine,
+    command: &str,
+) {
+    report.push(&intro(machine, command));
+    body(report, studies);
+}
+
+/// The section's studies, each with its words and table.
+pub(super) fn body(report: &mut Report, studies: &SpeedStudies) {
+    report.push(&format!(
+        "### Warm solves: the tolerance the error needs\n\n\
+         The paper's 3600-cycle scene `{{}}` at the default tolerance ({DEFAULT_TOLERANCE:.0e}) \
+         against the previous default ({PREVIOUS_TOLERANCE:.0e}), run alternately \
+         {WARM_ROUNDS} times each; wall and CPU time (the run's thread alone, which other work \
+         on the machine does not inflate as much) are the medians. The changes are those of \
+         the final wear volume, deepest point and potential against the previous default's \
+         run. Extrapolating the pressure of the last two solves is kept as it was.\n"
+    ));
+    report.push(&table(
+        &[
+            "tolerance",
+            "solves",
+            "iterations",
+            "iterations per solve",
+            "wall s",
+            "CPU s",
+            "volume change",
+            "depth change",
+            "potential change mV",
+        ],
+        &studies.warm.iter().map(warm_cells).collect::<Vec<_>>(),
+    ));
+    let sizes: Vec<String> = COARSE_STUDY_SIZES.iter().map(usize::to_string).collect();
+    report.push(&format!(
+        "### Cold solves: a coarse-to-fine start\n\n\
+         The Hertz case of the contact study at N = {}, at its tolerance, from the uniform \
+         pressure (cold) and from the pressure of the same contact on half the cells per side \
+         (solved to {COARSE_TOLERANCE:.0e}, itself started from the grid of half its cells, \
+         down to {COARSEST_CELLS} cells), interpolated bilinearly. The coarse-to-fine time \
+         includes the coarse operators and solves; \"difference\" is max |p - p_cold| / \
+         max p_cold; \"peak bytes per cell\" is the process's peak resident memory after the \
+         grid's solves over N^2 (the grids run smallest first, so each row's peak is its own \
+         grid's, the last one the memory per cell at N = 2048).\n",
+        sizes.join(", ")
+    ));
+    report.push(&table(
+        &[
+            "N",
+            "cold iterations",
+            "cold s",
+            "fine iterations",
+            "coarse-to-fine s",
+            "speed-up",
+            "difference",
+            "peak bytes per cell",
+        ],
+        &studies.coarse.iter().map(coarse_cells).collect::<Vec<_>>(),
+    ));
+}
+
+/// Rewrites only this section of the report `text` (the rest is another run's): replaced
+/// where it is, or put before the peers' section (or at the end) when it is missing.
+pub(super) fn splice(text: &str, section: &str) -> String {
+    let (before, after) = match text.find(&format!("\n{HEADING}\n")) {
+        Some(start) => {
+            let body = start + 1 + HEADING.len();
+            let end = text[body..]
+                .find("\n## ")
+                .map_or(text.len(), |e| body + e + 1);
+            (&text[..start + 1], &text[end..])
+        }
+        None => match text.find("\n## Peers") {
+            Some(start) => (&text[..start + 1], &text[start + 1..]),
+            None => (text, ""),
+        },
+    };
+    let before = before.trim_end();
+    let separator = if before.is_empty() { "" } else { "\n\n" };
+    format!("{before}{separator}{}\n\n{after}", section.trim_end())
+        .trim_end()
+        .to_owned()
+        + "\n"
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_section_is_replaced_where_it_is_or_put_before_the_peers() {
+        let new = format!("{HEADING}\n\nnew words\n");
+        let with = format!("# R\n\nhead\n\n## Wear\n\nw\n\n{HEADING}\n\nold\n\n## Peers\n\np\n");
+        assert_eq!(
+            splice(&with, &new),
+            format!("# R\n\nhead\n\n## Wear\n\nw\n\n{HEADING}\n\nnew words\n\n## Peers\n\np\n")
+        );
+        let without = "# R\n\nhead\n\n## Peers\n\np\n";
+        assert_eq!(
+            splice(without, &new),
+            format!("# R\n\nhead\n\n{HEADING}\n\nnew words\n\n## Peers\n\np\n")
+        );
+        let last = format!("# R\n\n{HEADING}\n\nold\n");
+        assert_eq!(
+            splice(&last, &new),
+            format!("# R\n\n{HEADING}\n\nnew words\n")
+        );
+    }
+}
