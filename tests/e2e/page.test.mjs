@@ -452,6 +452,27 @@ try {
   await page.waitForFunction((ids) => state.selected && !ids.includes(state.selected), beforeFit);
   await page.waitForFunction(() => document.getElementById("run-status").textContent.startsWith("succeeded"), null, { timeout: 600_000 });
 
+  step("an Archard fit with a change of regime at 300 cycles: both k's and the better model shown");
+  await page.selectOption("#calib-kind", "archard");
+  await page.fill("#calib-regime", "300");
+  await page.setInputFiles("#calib-file", path.resolve("../../docs/calibration/table3_wear.csv"));
+  const previous = await page.evaluate(() => state.calibration.id);
+  await page.click("#calib-submit");
+  await page.waitForFunction((id) => document.getElementById("calib-errors").textContent
+    || (state.calibration.id !== id && document.getElementById("calib-status").textContent !== "running"), previous, { timeout: 300_000 });
+  assert.equal(await page.textContent("#calib-errors"), "");
+  const regimes = await page.evaluate(() => ({
+    status: document.getElementById("calib-status").textContent,
+    values: [...document.querySelectorAll("#calib-values tbody tr")].map((tr) => tr.cells[0].innerText.trim()),
+    note: document.getElementById("calib-note").textContent,
+    residuals: document.querySelectorAll("#calib-residuals tbody tr").length,
+  }));
+  console.log(`   regimes: ${JSON.stringify(regimes)}`);
+  assert.equal(regimes.status, "succeeded");
+  assert.equal(regimes.values.length, 3, "one k, k before and k after");
+  assert.match(regimes.note, /change cycle/i);
+  assert.equal(regimes.residuals, 5, "Table 3's five points");
+
   step("cancel a running job (after a confirmation), see why it stopped, then delete it; a job queued behind it shows its place");
   await page.fill("#f-test-cycles", "100000");
   await page.click("#submit");
