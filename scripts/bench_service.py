@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Service benchmark (issue 4's targets), against a running `tribosim serve`.
+"""Service benchmark (its latency and throughput targets), against a running `tribosim serve`.
 
     cargo build --release && ./target/release/tribosim serve --data-dir "$(mktemp -d)" &
     python3 scripts/bench_service.py [--base http://127.0.0.1:8080]

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Our contact solver beside Tamaas and ContactMechanics (issue 6): makes a venv with the
+# Our contact solver beside Tamaas and ContactMechanics: makes a venv with the
 # public PyPI packages under target/peers-venv if missing, builds the release binary, then
 # runs scripts/peers.py, which prints the table and rewrites docs/peers.md.
 # Usage: scripts/peers.sh [peers.py options, e.g. --sizes 64 128 --reps 5]

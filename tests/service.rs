@@ -1,4 +1,4 @@
-//! The HTTP service against a real server on a loopback port (issue 4): a run streamed and
+//! The HTTP service against a real server on a loopback port: a run streamed and
 //! downloaded equals the library's run, 50 jobs at once, the queue bound, cancel, restart after
 //! kill -9, bad input, and the OpenAPI description against the route table.
 

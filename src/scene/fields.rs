@@ -2,9 +2,16 @@
 //! allowed range. The range checks (`validate.rs`, `located.rs`) word their messages from
 //! these, and `docs/scene.md`'s table is rendered from them (`reference.rs`); a test walks
 //! the parser's accepted keys and fails on any key without a descriptor here. The
-//! descriptors of `disc.surface` are in `fields/surface.rs`, listed in [`FIELDS`] here.
+//! descriptors of `disc.surface` and of `corrosion` are in `fields/surface.rs` and
+//! `fields/corrosion.rs`, listed in [`FIELDS`] here.
 
+mod corrosion;
 mod surface;
+
+pub(super) use corrosion::{
+    ANODIC_AREA, ANODIC_AREA_FACTOR, ANODIC_CURRENT, CORROSION_POTENTIAL, DENSITY, EXPOSED_AREA,
+    MOLAR_MASS, TAFEL_A, TAFEL_B, VALENCE,
+};
 
 pub(super) use surface::{
     SURFACE, SURFACE_HURST, SURFACE_ID, SURFACE_KIND, SURFACE_LONG_CUTOFF, SURFACE_REMOVE_TILT,
@@ -21,7 +28,6 @@ pub(super) const MAX_CYCLES: u64 = 1_000_000;
 const POISSON_WHY: &str = "the bounds of an isotropic elastic solid";
 const ELASTIC_FEEDS: &str = "E*, G*, nu*, delta-nu (eqs. 6, 8) in the influence coefficients \
                              (eqs. 7, 9)";
-const FARADAY_FEEDS: &str = "Faraday's law: V_WAC = i_a A_a t M / (z F rho)";
 
 /// Free-form label.
 pub(super) const NAME: Field = Field {
@@ -311,114 +317,6 @@ pub(super) const PLASTICITY: Field = Field {
     meaning: "The elastic-perfectly-plastic pressure cap: `auto` turns it on only where \
               pressures can reach Y (the result's `models` says why).",
     feeds: "the cap p <= Y (eq. 12) and the groove by yielding (eq. 13)",
-};
-
-/// `corrosion.corrosion_potential_v`.
-pub(super) const CORROSION_POTENTIAL: Field = Field {
-    path: "corrosion.corrosion_potential_v",
-    unit: "V vs Ag/AgCl",
-    range: Range::Finite,
-    why: "",
-    meaning: "Free corrosion potential E_corr (the open-circuit potential before rubbing, \
-              Table 2).",
-    feeds: "E_corr in eq. 18",
-};
-
-/// `corrosion.tafel_a_c_v`.
-pub(super) const TAFEL_A: Field = Field {
-    path: "corrosion.tafel_a_c_v",
-    unit: "V",
-    range: Range::Finite,
-    why: "",
-    meaning: "Cathodic Tafel constant a_c, fitted with current densities in A/cm^2 (Table 2).",
-    feeds: "a_c in eq. 18",
-};
-
-/// `corrosion.tafel_b_c_v_per_decade`.
-pub(super) const TAFEL_B: Field = Field {
-    path: "corrosion.tafel_b_c_v_per_decade",
-    unit: "V/decade",
-    range: Range::Positive,
-    why: "",
-    meaning: "Cathodic Tafel slope b_c (Table 2).",
-    feeds: "b_c in eq. 18",
-};
-
-/// `corrosion.anodic_current_density_a_cm2`.
-pub(super) const ANODIC_CURRENT: Field = Field {
-    path: "corrosion.anodic_current_density_a_cm2",
-    unit: "A/cm^2",
-    range: Range::Positive,
-    why: "",
-    meaning: "Anodic current density i_a on depassivated metal (the paper's typical 10 \
-              mA/cm^2).",
-    feeds: "i_a in eq. 18 and in Faraday's law",
-};
-
-/// `corrosion.exposed_area_cm2`.
-pub(super) const EXPOSED_AREA: Field = Field {
-    path: "corrosion.exposed_area_cm2",
-    unit: "cm^2",
-    range: Range::Positive,
-    why: "",
-    meaning: "Electrode area exposed to the electrolyte; the cathodic area A_c is this less \
-              the anodic area.",
-    feeds: "A_c in eq. 18",
-};
-
-/// `corrosion.anodic_area`.
-pub(super) const ANODIC_AREA: Field = Field {
-    path: "corrosion.anodic_area",
-    unit: "",
-    range: Range::OneOf(&["wear_track", "real_contact", "bem_contact"]),
-    why: "",
-    meaning: "Which area depassivates: `wear_track` (track width x track length, as in the \
-              paper's Fig. 13), `real_contact` (F / H) or `bem_contact` (the solved contact \
-              area: on a rough disc, `disc.surface`, the real contact area at the asperity \
-              scale, so Fig. 14's depassivated-to-real ratio comes from the model rather \
-              than from F / H).",
-    feeds: "A_a in eq. 18 and in Faraday's law",
-};
-
-/// `corrosion.anodic_area_factor`.
-pub(super) const ANODIC_AREA_FACTOR: Field = Field {
-    path: "corrosion.anodic_area_factor",
-    unit: "",
-    range: Range::Positive,
-    why: "",
-    meaning: "Multiplier on the chosen anodic area (the paper finds the depassivated area \
-              about 50 times F / H).",
-    feeds: "A_a in eq. 18 and in Faraday's law",
-};
-
-/// `corrosion.molar_mass_g_mol`.
-pub(super) const MOLAR_MASS: Field = Field {
-    path: "corrosion.molar_mass_g_mol",
-    unit: "g/mol",
-    range: Range::Positive,
-    why: "",
-    meaning: "Molar mass M of the dissolving metal (iron).",
-    feeds: FARADAY_FEEDS,
-};
-
-/// `corrosion.valence`.
-pub(super) const VALENCE: Field = Field {
-    path: "corrosion.valence",
-    unit: "",
-    range: Range::Positive,
-    why: "",
-    meaning: "Charge number z of the dissolution reaction (Fe -> Fe2+ + 2e-).",
-    feeds: FARADAY_FEEDS,
-};
-
-/// `corrosion.density_g_cm3`.
-pub(super) const DENSITY: Field = Field {
-    path: "corrosion.density_g_cm3",
-    unit: "g/cm^3",
-    range: Range::Positive,
-    why: "",
-    meaning: "Density rho of the dissolving metal.",
-    feeds: FARADAY_FEEDS,
 };
 
 /// `numerics.grid`.
