@@ -14,7 +14,7 @@ use uuid::Uuid;
 use super::AppState;
 use super::calibrations::StartError;
 use super::error::ApiError;
-use super::extract::{cut, is_json, read_body};
+use super::extract::{is_json, parse_id, read_body};
 use crate::calibration::{
     CalibrationError, ChangeCycle, ChangeCycleError, CommandOptions, FitKind, Table, check,
     default_scene,
@@ -35,9 +35,7 @@ impl<S: Send + Sync> FromRequestParts<S> for CalibrationId {
 
     async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
         let Path(raw) = Path::<String>::from_request_parts(parts, state).await?;
-        Uuid::try_parse(&raw).map(CalibrationId).map_err(|_| {
-            ApiError::bad_request(format!("{:?} is not a calibration id (a UUID)", cut(&raw)))
-        })
+        parse_id(&raw, "calibration").map(CalibrationId)
     }
 }
 

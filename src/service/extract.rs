@@ -51,8 +51,14 @@ impl<S: Send + Sync> FromRequestParts<S> for JobMeasurement {
 }
 
 fn job_id(raw: &str) -> Result<Uuid, ApiError> {
+    parse_id(raw, "job")
+}
+
+/// The id of a `what` (job, study, calibration) from the path, parsed as a UUID before
+/// anything else looks at it; a 400 echoing at most [`ECHOED_ID_CHARS`] of it otherwise.
+pub(super) fn parse_id(raw: &str, what: &str) -> Result<Uuid, ApiError> {
     Uuid::try_parse(raw)
-        .map_err(|_| ApiError::bad_request(format!("{:?} is not a job id (a UUID)", cut(raw))))
+        .map_err(|_| ApiError::bad_request(format!("{:?} is not a {what} id (a UUID)", cut(raw))))
 }
 
 /// The first [`ECHOED_ID_CHARS`] characters of `raw`, with an ellipsis if there were more.

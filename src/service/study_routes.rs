@@ -11,7 +11,7 @@ use uuid::Uuid;
 
 use super::AppState;
 use super::error::ApiError;
-use super::extract::{cut, is_json, read_body};
+use super::extract::{is_json, parse_id, read_body};
 use super::registry::SubmitError;
 use super::store::is_disk_full;
 use super::studies::{StudyDeletion, StudySubmitError};
@@ -27,9 +27,7 @@ impl<S: Send + Sync> FromRequestParts<S> for StudyId {
 
     async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
         let Path(raw) = Path::<String>::from_request_parts(parts, state).await?;
-        Uuid::try_parse(&raw).map(StudyId).map_err(|_| {
-            ApiError::bad_request(format!("{:?} is not a study id (a UUID)", cut(&raw)))
-        })
+        parse_id(&raw, "study").map(StudyId)
     }
 }
 
