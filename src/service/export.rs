@@ -9,7 +9,7 @@ use crate::simulation::CycleRecord;
 /// The CSV columns: the cycle record's, in its order and with its names (units in the
 /// names), then the cycles stepped over since the previous row.
 const HEADER: &str = "cycle,time_s,wear_volume_mm3,max_depth_um,max_pressure_mpa,\
-                      contact_area_mm2,plastic_area_mm2,hardness_mpa,approach_um,iterations,\
+                      contact_area_mm2,plastic_area_mm2,contact_islands,hardness_mpa,approach_um,iterations,\
                       potential_v,anodic_area_mm2,wac_volume_mm3,cycles_stepped_over";
 
 /// Only the cycles of a result; the rest of the document is skipped unparsed.
@@ -36,7 +36,7 @@ pub fn cycles_csv(result_json: &[u8]) -> Result<String, serde_json::Error> {
         // Writing to a String cannot fail.
         let _ = write!(
             csv,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{}\r\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\r\n",
             c.cycle,
             c.time_s,
             c.wear_volume_mm3,
@@ -44,6 +44,7 @@ pub fn cycles_csv(result_json: &[u8]) -> Result<String, serde_json::Error> {
             c.max_pressure_mpa,
             c.contact_area_mm2,
             c.plastic_area_mm2,
+            c.contact_islands,
             c.hardness_mpa,
             c.approach_um,
             c.iterations,
@@ -68,18 +69,18 @@ mod tests {
              "hardness_mpa": 2473.0, "approach_um": 1.5, "iterations": 12},
             {"cycle": 3, "time_s": 3.0, "wear_volume_mm3": 1.5, "max_depth_um": 0.5,
              "max_pressure_mpa": 1100.0, "contact_area_mm2": 0.02, "plastic_area_mm2": 0.001,
-             "hardness_mpa": 2500.0, "approach_um": 1.6, "iterations": 9,
+             "hardness_mpa": 2500.0, "approach_um": 1.6, "iterations": 9, "contact_islands": 4,
              "potential_v": -0.2, "anodic_area_mm2": 0.3, "wac_volume_mm3": 1e-6}
         ]}"#;
         let csv = cycles_csv(json).expect("valid result");
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines.len(), 3);
-        assert_eq!(lines[0].split(',').count(), 14);
-        assert_eq!(lines[1], "1,1,0.5,0.25,1200,0.01,0,2473,1.5,12,,,,0");
+        assert_eq!(lines[0].split(',').count(), 15);
+        assert_eq!(lines[1], "1,1,0.5,0.25,1200,0.01,0,0,2473,1.5,12,,,,0");
         // Cycle 2 was stepped over: cycle 1's solve stood for it.
         assert_eq!(
             lines[2],
-            "3,3,1.5,0.5,1100,0.02,0.001,2500,1.6,9,-0.2,0.3,0.000001,1"
+            "3,3,1.5,0.5,1100,0.02,0.001,4,2500,1.6,9,-0.2,0.3,0.000001,1"
         );
     }
 }
