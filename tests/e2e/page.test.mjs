@@ -474,7 +474,7 @@ try {
   assert.equal(regimes.residuals, 5, "Table 3's five points");
 
   step("cancel a running job (after a confirmation), see why it stopped, then delete it; a job queued behind it shows its place");
-  await page.fill("#f-test-cycles", "100000");
+  await page.fill("#f-test-cycles", "1000000");
   await page.click("#submit");
   await page.waitForFunction(() => (document.querySelector("#jobs tbody tr .status") || {}).textContent === "running");
   await page.click("#submit");
@@ -501,7 +501,7 @@ try {
   await newest.locator("button.cancel").click();
   await newest.locator("td", { hasText: "cancelled" }).waitFor();
   assert.match(question, /^Cancel the run/);
-  await newest.locator(".reason", { hasText: /Cancelled on request after \d+ of 100000 cycles/ }).waitFor();
+  await newest.locator(".reason", { hasText: /Cancelled on request after \d+ of 1000000 cycles/ }).waitFor();
 
   step("the cancelled run keeps what it computed: drawn, and downloadable as CSV");
   await newest.locator("button.view").click();
