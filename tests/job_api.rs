@@ -155,7 +155,7 @@ async fn queued_jobs_show_their_place_in_the_queue() {
     let client = reqwest::Client::new();
     // One worker: the long job runs, the next three wait in the order they came.
     let server = ServerProcess::start(dir.path());
-    let busy = submit(&client, &server.base, &long_scene(3000)).await;
+    let busy = submit(&client, &server.base, &long_scene(300_000)).await;
     let busy = busy["id"].as_str().expect("id").to_owned();
     wait_for_job(&client, &server.base, &busy, |job| {
         job["status"] == "running"

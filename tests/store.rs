@@ -300,8 +300,9 @@ async fn concurrent_deletes_each_get_a_correct_answer() {
         assert_eq!(answers, [204, 404, 404, 404], "finished job {id}");
     }
 
-    // One worker, kept busy: the others wait in the queue.
-    let busy = submit(&client, base, &long_scene(3000)).await;
+    // One worker, kept busy for far longer than the test (it is cancelled at the end): the
+    // others wait in the queue.
+    let busy = submit(&client, base, &long_scene(300_000)).await;
     let busy = busy["id"].as_str().expect("id").to_owned();
     wait_for_job(&client, base, &busy, |job| job["status"] == "running").await;
     let mut queued = Vec::new();
