@@ -3,18 +3,16 @@
 //! the fit to [`super::calibrations`].
 
 use axum::Json;
-use axum::extract::{FromRequestParts, Path, Request, State};
-use axum::http::request::Parts;
+use axum::extract::{Request, State};
 use axum::http::{StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use serde::Deserialize;
 use serde_json::Value;
-use uuid::Uuid;
 
 use super::AppState;
 use super::calibrations::StartError;
 use super::error::ApiError;
-use super::extract::{is_json, parse_id, read_body};
+use super::extract::{is_json, path_id, read_body};
 use crate::calibration::{
     CalibrationError, ChangeCycle, ChangeCycleError, CommandOptions, FitKind, Table, check,
     default_scene,
@@ -27,17 +25,11 @@ use crate::simulation::parse_scene;
 /// Table 3 (7.5 s on a shared two-core machine, docs/calibration.md).
 const BUSY_RETRY_AFTER_S: u64 = 10;
 
-/// A calibration id from the path, parsed as a UUID before anything else looks at it.
-pub(super) struct CalibrationId(Uuid);
-
-impl<S: Send + Sync> FromRequestParts<S> for CalibrationId {
-    type Rejection = ApiError;
-
-    async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
-        let Path(raw) = Path::<String>::from_request_parts(parts, state).await?;
-        parse_id(&raw, "calibration").map(CalibrationId)
-    }
-}
+path_id!(
+    /// A calibration id from the path.
+    CalibrationId,
+    "calibration"
+);
 
 /// The request body.
 #[derive(Deserialize)]

@@ -1,4 +1,4 @@
-//! What handlers take from a request: the job id (and measurement kind) of the path, the
+//! What handlers take from a request: the ids (and measurement kind) of the path, the
 //! body within the body timeout, and what the body is declared to be.
 
 use std::time::Duration;
@@ -17,17 +17,34 @@ use super::measurements::{Format, MeasurementKind};
 /// How much of a malformed job id is echoed in an error: a UUID and a little more.
 const ECHOED_ID_CHARS: usize = 40;
 
-/// A job id from the path, parsed as a UUID before anything else looks at it.
-pub(super) struct JobId(pub(super) Uuid);
+/// Declares a path extractor for one kind of id: a newtype over the UUID, parsed by
+/// [`parse_id`] before any handler sees it, so every kind refuses a malformed id alike.
+macro_rules! path_id {
+    ($(#[$doc:meta])* $name:ident, $what:literal) => {
+        $(#[$doc])*
+        pub(super) struct $name(pub(super) uuid::Uuid);
 
-impl<S: Send + Sync> FromRequestParts<S> for JobId {
-    type Rejection = ApiError;
+        impl<S: Send + Sync> axum::extract::FromRequestParts<S> for $name {
+            type Rejection = $crate::service::error::ApiError;
 
-    async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
-        let Path(raw) = Path::<String>::from_request_parts(parts, state).await?;
-        job_id(&raw).map(JobId)
-    }
+            async fn from_request_parts(
+                parts: &mut axum::http::request::Parts,
+                state: &S,
+            ) -> Result<Self, Self::Rejection> {
+                let axum::extract::Path(raw) =
+                    axum::extract::Path::<String>::from_request_parts(parts, state).await?;
+                $crate::service::extract::parse_id(&raw, $what).map($name)
+            }
+        }
+    };
 }
+pub(super) use path_id;
+
+path_id!(
+    /// A job id from the path.
+    JobId,
+    "job"
+);
 
 /// A job id and a measurement kind from the path (`.../jobs/{id}/measurements/{kind}`).
 pub(super) struct JobMeasurement(pub(super) Uuid, pub(super) MeasurementKind);

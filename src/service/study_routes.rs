@@ -3,15 +3,14 @@
 use std::sync::Arc;
 
 use axum::Json;
-use axum::extract::{FromRequestParts, Path, Request, State};
-use axum::http::request::Parts;
+use axum::extract::{Request, State};
 use axum::http::{StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use uuid::Uuid;
 
 use super::AppState;
 use super::error::ApiError;
-use super::extract::{is_json, parse_id, read_body};
+use super::extract::{is_json, path_id, read_body};
 use super::registry::SubmitError;
 use super::store::is_disk_full;
 use super::studies::{StudyDeletion, StudySubmitError};
@@ -19,17 +18,11 @@ use crate::json::JsonError;
 use crate::scene::FieldError;
 use crate::study::StudyError;
 
-/// A study id from the path, parsed as a UUID before anything else looks at it.
-pub(super) struct StudyId(Uuid);
-
-impl<S: Send + Sync> FromRequestParts<S> for StudyId {
-    type Rejection = ApiError;
-
-    async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
-        let Path(raw) = Path::<String>::from_request_parts(parts, state).await?;
-        parse_id(&raw, "study").map(StudyId)
-    }
-}
+path_id!(
+    /// A study id from the path.
+    StudyId,
+    "study"
+);
 
 fn unknown_study(id: Uuid) -> ApiError {
     ApiError::not_found(format!("no study {id}"))
