@@ -10,6 +10,7 @@
 mod islands;
 mod read;
 mod spectrum;
+mod spikes;
 mod statistics;
 mod synthetic;
 
@@ -17,6 +18,7 @@ use thiserror::Error;
 
 pub use islands::count_islands;
 pub use read::{Format, read, read_file};
+pub use spikes::SPIKE_RMS;
 pub use statistics::{Statistics, psd_slope, rms_height, rms_slope};
 pub use synthetic::{Roughness, SelfAffine};
 
@@ -70,6 +72,30 @@ pub enum SurfaceError {
         /// Pixels along y.
         ny: usize,
     },
+    /// A single pixel standing far above or below all its neighbours: a measurement
+    /// artefact that would carry the ball alone.
+    #[error(
+        "height at column {column}, row {row} stands {excess:.3} um {side} every neighbour, \
+         {times:.0} times the map's rms height {rms:.4} um ({count} such pixels): a single-pixel \
+         spike is a measurement artefact and would carry the load alone; remove the spikes \
+         (e.g. Gwyddion's Correct Data > Remove Spots, or Mask of Outliers) and read the map again",
+        excess = excess_m.abs() * 1e6,
+        side = if *excess_m > 0.0 { "above" } else { "below" },
+        times = excess_m.abs() / rms_m,
+        rms = rms_m * 1e6
+    )]
+    Spike {
+        /// Column of the tallest spike, from 0.
+        column: usize,
+        /// Row, from 0.
+        row: usize,
+        /// How far it stands above its highest neighbour (below its lowest if negative), m.
+        excess_m: f64,
+        /// The map's rms height, m.
+        rms_m: f64,
+        /// Pixels that stand out as far.
+        count: usize,
+    },
     /// A pixel size or a generator setting out of range.
     #[error("{0}")]
     Invalid(String),
@@ -103,7 +129,7 @@ pub struct HeightMap {
 
 impl HeightMap {
     /// A map of `heights_m` (`nx * ny`, row-major), refusing sizes, pixels and heights the
-    /// simulation cannot use.
+    /// simulation cannot use, single-pixel spikes included (see [`SPIKE_RMS`]).
     pub fn new(
         nx: usize,
         ny: usize,
@@ -135,14 +161,16 @@ impl HeightMap {
                 value: heights_m[i].to_string(),
             });
         }
-        Ok(Self {
+        let map = Self {
             nx,
             ny,
             dx_m,
             dy_m,
             heights_m,
             periodic: false,
-        })
+        };
+        spikes::refuse_spikes(&map)?;
+        Ok(map)
     }
 
     /// Side along x, m.
