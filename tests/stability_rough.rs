@@ -283,7 +283,14 @@ fn a_measured_map_with_spikes_is_refused_naming_the_spike() {
                 excess_m,
                 rms_m,
             }) => {
-                println!("{times}x: {excess_m:e} m over rms {rms_m:e} m");
+                let message = SurfaceError::Spike {
+                    column: c,
+                    row: r,
+                    count,
+                    excess_m,
+                    rms_m,
+                };
+                println!("{times}x: {message}");
                 assert_eq!(count, 3);
                 // Each spike is the same height over its own neighbours: the tallest is
                 // the one whose neighbours lie lowest.
