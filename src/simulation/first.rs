@@ -4,10 +4,11 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::contact::{ContactProblem, coarse_start};
-use crate::scene::Scene;
+use crate::contact::{ContactError, ContactProblem, ContactSolution, Grid, coarse_start};
+use crate::scene::{DomainSize, Scene};
 
-use super::{ModelChoice, Setup, SimulationError};
+use super::growth::widen;
+use super::{Model, ModelChoice, Setup, SimulationError};
 
 /// The unworn contact at cycle 1, in the units of its names (`docs/result.md`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -40,27 +41,13 @@ pub struct FirstContact {
     pub models: Vec<ModelChoice>,
 }
 
-/// Solves the first cycle of `scene` (unworn surfaces, Y at cycle 1).
+/// Solves the first cycle of `scene` (unworn surfaces, Y at cycle 1). An auto domain grows
+/// when the contact reaches its edge, as the run's first cycle does.
 pub fn first_contact(scene: &Scene) -> Result<FirstContact, SimulationError> {
     let started = Instant::now();
-    let setup = Setup::new(scene)?;
-    let grid = setup.grid;
-    let separation = setup.ball_separation(&grid);
+    let mut setup = Setup::new(scene)?;
     let cap = setup.yield_pressure_pa(1.0);
-    let problem = ContactProblem {
-        grid,
-        separation: &separation,
-        load_n: setup.scene.load_n(),
-        yield_pressure_pa: cap,
-    };
-    // A failed coarse solve only loses the starting guess: the solve starts cold then.
-    let start = coarse_start(&problem, &setup.pair, &setup.options)
-        .ok()
-        .flatten();
-    let solution = setup
-        .solver(&grid)
-        .solve(&problem, &setup.options, start.as_deref())
-        .map_err(|source| SimulationError::Contact { cycle: 1, source })?;
+    let (grid, solution) = solve_growing(&mut setup, cap)?;
     Ok(FirstContact {
         max_pressure_mpa: solution.max_pressure_pa() / 1e6,
         contact_area_mm2: solution.contact_area_m2(&grid) * 1e6,
@@ -76,4 +63,51 @@ pub fn first_contact(scene: &Scene) -> Result<FirstContact, SimulationError> {
         hertz_contact_area_mm2: setup.hertz.contact_area_m2() * 1e6,
         models: setup.models,
     })
+}
+
+/// The first contact on the setup's grid, or, on an auto domain whose edge it reaches (a
+/// rough disc's can, `tests/stability_rough.rs`), on the grid grown along both axes until
+/// it fits or reaches the size limit; each growth is recorded in the setup's models.
+fn solve_growing(setup: &mut Setup, cap: f64) -> Result<(Grid, ContactSolution), SimulationError> {
+    let grows = setup.scene.numerics.domain_um == DomainSize::Auto;
+    let mut grid = setup.grid;
+    loop {
+        let separation = setup.ball_separation(&grid);
+        let problem = ContactProblem {
+            grid,
+            separation: &separation,
+            load_n: setup.scene.load_n(),
+            yield_pressure_pa: cap,
+        };
+        // A failed coarse solve only loses the starting guess: the solve starts cold then.
+        let start = coarse_start(&problem, &setup.pair, &setup.options)
+            .ok()
+            .flatten();
+        let solved = setup
+            .solver(&grid)
+            .solve(&problem, &setup.options, start.as_deref());
+        let wider = match &solved {
+            Err(ContactError::ContactAtEdge { .. }) if grows => widen(&grid, (true, true)),
+            _ => None,
+        };
+        let Some(wider) = wider else {
+            let solution =
+                solved.map_err(|source| SimulationError::Contact { cycle: 1, source })?;
+            return Ok((grid, solution));
+        };
+        setup.models.push(ModelChoice {
+            name: Model::DomainGrowth,
+            active: true,
+            reason: format!(
+                "the first contact reached the edge of {} x {} cells: grown to {} x {} cells \
+                 ({:.1} um)",
+                grid.nx,
+                grid.ny,
+                wider.nx,
+                wider.ny,
+                wider.nx as f64 * wider.dx * 1e6
+            ),
+        });
+        grid = wider;
+    }
 }
