@@ -76,9 +76,10 @@ pub enum SurfaceError {
     /// artefact that would carry the ball alone.
     #[error(
         "height at column {column}, row {row} stands {excess:.3} um {side} every neighbour, \
-         {times:.0} times the map's rms height {rms:.4} um ({count} such pixels): a single-pixel \
-         spike is a measurement artefact and would carry the load alone; remove the spikes \
-         (e.g. Gwyddion's Correct Data > Remove Spots, or Mask of Outliers) and read the map again",
+         {times:.0} times the map's rms height {rms:.4} um (pixels standing out that far: \
+         {count}): a single-pixel spike is a measurement artefact and would carry the load \
+         alone; remove the spikes (e.g. Gwyddion's Correct Data > Remove Spots, or Mask of \
+         Outliers) and read the map again",
         excess = excess_m.abs() * 1e6,
         side = if *excess_m > 0.0 { "above" } else { "below" },
         times = excess_m.abs() / rms_m,
