@@ -30,8 +30,7 @@ use super::growth::{GROW_AT_EDGE_CELLS, GROW_AT_FRACTION, near_edges, widen};
 use super::stepping::Stepper;
 use super::warm::WarmStart;
 use super::{
-    CycleRecord, Model, ModelChoice, PressureMap, Profile, Setup, SimulationError,
-    SimulationResult, Summary,
+    CycleRecord, Model, ModelChoice, PressureMap, Profile, Setup, SimulationError, SimulationResult,
 };
 
 /// Cycles at which the depth profile is kept when solved (paper Figs. 12 and 15 use 10 and
@@ -338,19 +337,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         }
         self.window_fraction_sum += self.solver.window_fraction_sum();
         let models = self.run_models();
-        let track_length = scene.track_length_m();
-        let summary = Summary {
-            cycles: scene.test.cycles,
-            wear_volume_mm3: self.groove.area_m2() * track_length * 1e9,
-            max_depth_um: self.groove.max_depth_m() * 1e6,
-            wac_volume_mm3: self.cell.as_ref().map(|c| c.wac_m3() * 1e9),
-            potential_v: self.records.last().and_then(|r| r.potential_v),
-            archard_k: setup.archard_k,
-            archard_regime_change: setup.archard_regime_change,
-            wall_s: started.elapsed().as_secs_f64(),
-            solves: self.solves,
-            iterations: self.iterations,
-        };
+        let summary = setup.summary(&self.records, started.elapsed().as_secs_f64());
         SimulationResult {
             complete: true,
             scene: scene.clone(),

@@ -11,7 +11,7 @@ use crate::surface::HeightMap;
 
 use super::feasibility::check;
 use super::hardening::work_hardening_report;
-use super::result::SurfaceReport;
+use super::result::{CycleRecord, Summary, SurfaceReport};
 use super::roughness::{DiscSurface, build, wanted_cell_m};
 use super::sizing::{
     GridPlan, LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m,
@@ -87,6 +87,24 @@ impl Setup {
             on_grid: s.statistics.clone(),
             measured: s.source.clone(),
         })
+    }
+
+    /// The totals of a run that recorded `cycles` (one record per solve) in `wall_s`: the
+    /// state at the last record, so a run stopped early sums up what it did like a full one.
+    pub fn summary(&self, cycles: &[CycleRecord], wall_s: f64) -> Summary {
+        let last = cycles.last();
+        Summary {
+            cycles: last.map_or(0, |c| c.cycle),
+            wear_volume_mm3: last.map_or(0.0, |c| c.wear_volume_mm3),
+            max_depth_um: last.map_or(0.0, |c| c.max_depth_um),
+            wac_volume_mm3: last.and_then(|c| c.wac_volume_mm3),
+            potential_v: last.and_then(|c| c.potential_v),
+            archard_k: self.archard_k,
+            archard_regime_change: self.archard_regime_change,
+            wall_s,
+            solves: cycles.len(),
+            iterations: cycles.iter().map(|c| c.iterations).sum(),
+        }
     }
 
     /// Checks the scene ([`check`]: its fields, and whether it can be simulated) and makes
