@@ -2,8 +2,9 @@
 //!
 //! 1. the hardness of the cycle gives the pressure cap (eq. 12, Section 4.5);
 //! 2. the contact is solved on the current surface (eqs. 2-12, [`crate::contact`]);
-//! 3. where the pressure sits at the cap the disc yields: the groove deepens by the
-//!    remaining interpenetration (eq. 13, [`crate::wear::yield_depth`]);
+//! 3. where the pressure sits at the cap the disc yields: each row under a capped cell is
+//!    cut to the level that cell was pressed to, which on a smooth disc deepens the row by
+//!    the remaining interpenetration (eq. 13, [`crate::wear::Groove::yield_under`]);
 //! 4. one pass of Archard wear removes `k / H` times the pressure integrated along the
 //!    sliding direction (eqs. 15-16, [`crate::wear::pass_pressure_integral`]);
 //! 5. the profile update: the groove moves the surface for the next solve (eq. 17,
@@ -23,7 +24,7 @@ use crate::contact::{
 };
 use crate::scene::{DomainSize, Scene};
 use crate::surface::{HeightMap, count_islands};
-use crate::wear::{Groove, pass_pressure_integral, yield_depth};
+use crate::wear::{Groove, pass_pressure_integral};
 
 use super::electrochemistry::{Cell, Reading, Surface};
 use super::growth::{GROW_AT_EDGE_CELLS, GROW_AT_FRACTION, near_edges, widen};
@@ -110,8 +111,8 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             factory,
             grid,
             solver: WindowedSolver::new(grid, factory),
-            ball: setup.ball_separation(&grid),
-            groove: Groove::new(&grid),
+            ball: setup.ball_height(&grid),
+            groove: setup.unworn_disc(),
             stepper: Stepper::new(scene.numerics.cycle_step, scene.numerics.cycle_step_bound),
             record_cycles: scene.record_cycles(),
             history: WarmStart::default(),
@@ -141,9 +142,11 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let hardness_pa = setup.hardness.hardness_pa(n);
         // The contact on the current surface (eqs. 2-12).
         let (solution, separation) = self.solve_contact(cycle, cap)?;
-        // The groove yielding cuts (eq. 13) and one Archard pass without its k / H
-        // (eqs. 15-16).
-        let plastic = yield_depth(&self.grid, &solution, &separation, cap);
+        // Yielding truncates the rows under capped cells (eq. 13); one Archard pass without
+        // its k / H (eqs. 15-16).
+        let yielded = self
+            .groove
+            .yield_under(&self.grid, &solution, &separation, cap);
         let pass = pass_pressure_integral(&self.grid, &solution.pressure);
         // A step never passes a record cycle, so that cycle is solved; nor the first cycle
         // of a new Archard regime, whose wear rate the step was not chosen for.
@@ -164,12 +167,9 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             let numerics = &setup.scene.numerics;
             self.stepper = Stepper::new(numerics.cycle_step, numerics.cycle_step_bound);
         }
-        let step = self
-            .stepper
-            .next(cycle, stop, plastic.iter().any(|&d| d > 0.0), &pass);
+        let step = self.stepper.next(cycle, stop, yielded, &pass);
         self.max_step = self.max_step.max(step);
-        // The profile update (eq. 17): yielding, then the pass at this cycle's hardness.
-        self.groove.deepen(&plastic, 1.0);
+        // The profile update (eq. 17): the pass at this cycle's hardness, after the yielding.
         self.groove
             .deepen(&pass, setup.archard_k_at(cycle) / hardness_pa);
         // Corrosion (eq. 18, Faraday), the record, then the cycles the solve stands for.
@@ -303,12 +303,12 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 ny: self.grid.ny,
             };
             pressure = old.embed(&wider, &pressure);
-            self.groove = self.groove.widened(old.y0);
+            self.groove = self.groove.widened(&wider);
             self.grid = wider;
             self.window_fraction_sum += self.solver.window_fraction_sum();
             self.solver = WindowedSolver::new(wider, self.factory);
             self.solver.focus_on(&pressure);
-            self.ball = self.setup.ball_separation(&wider);
+            self.ball = self.setup.ball_height(&wider);
             self.models.push(ModelChoice {
                 name: Model::DomainGrowth,
                 active: true,
