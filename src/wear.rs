@@ -310,6 +310,57 @@ mod tests {
     }
 
     #[test]
+    fn on_a_smooth_disc_a_row_deepens_by_its_largest_interpenetration() {
+        // The paper's rule (eq. 13): rows 0 and 1 already worn 0.1 and 0.2 um; at approach
+        // 0.5 um row 0's capped cells interpenetrate by 0.3 and 0.1 um, row 1's stays 0.3 um
+        // short of contact, row 2 has none.
+        let grid = Grid::new(4, 3, 1e-6, 1e-6).expect("valid");
+        let mut groove = Groove::new(&grid);
+        groove.deepen(&[0.1, 0.2, 0.0], 1e-6);
+        let ball = vec![0.0; grid.len()];
+        let press = |groove: &mut Groove, displacement_um: &[(usize, f64)]| {
+            let mut solution = ContactSolution {
+                pressure: vec![0.0; grid.len()],
+                displacement: vec![0.0; grid.len()],
+                approach_m: 0.5e-6,
+                iterations: 0,
+                operator_applies: 0,
+                residual: 0.0,
+            };
+            for &(i, u) in displacement_um {
+                solution.pressure[i] = 1e9;
+                solution.displacement[i] = u * 1e-6;
+            }
+            let separation = groove.separation(&ball, &grid);
+            groove.yield_under(&grid, &solution, &separation, 1e9)
+        };
+        assert!(press(&mut groove, &[(1, 0.1), (3, 0.3), (6, 0.6)]));
+        // Sums of a few sub-um lengths: within a few ulps (1e-22 m).
+        let close = |depth: &[f64], um: [f64; 3]| {
+            depth
+                .iter()
+                .zip(um)
+                .all(|(d, um)| (d - um * 1e-6).abs() < 1e-20)
+        };
+        assert!(
+            close(groove.depth_m(), [0.4, 0.2, 0.0]),
+            "{:?}",
+            groove.depth_m()
+        );
+        // The next cycle, 0.05 um further into row 0: it deepens by that much again.
+        assert!(press(&mut groove, &[(2, 0.05)]));
+        assert!(
+            close(groove.depth_m(), [0.45, 0.2, 0.0]),
+            "{:?}",
+            groove.depth_m()
+        );
+        assert!(
+            !press(&mut groove, &[(2, 0.2)]),
+            "short of contact: no yield"
+        );
+    }
+
+    #[test]
     fn widening_keeps_the_groove_centred() {
         let grid = Grid::square(4, 4e-6).expect("valid");
         let mut groove = Groove::new(&grid);
