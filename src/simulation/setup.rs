@@ -124,9 +124,8 @@ impl Setup {
         if let Some(surface) = &mut surface {
             if plasticity {
                 surface.model.reason.push_str(
-                    "; yielding (eq. 13) deepens each row by its deepest capped cell, asperity \
-                     tops included, which overstates the early wear of a rough disc \
-                     (`wear.plasticity: \"off\"` leaves it out)",
+                    "; yielding (eq. 13) truncates each row's asperities at the level its \
+                     most-pressed capped cell was pressed to, so they flatten",
                 );
             }
             models.push(surface.model.clone());
