@@ -1,6 +1,17 @@
-//! The wear track: the groove depth `D(y)` across the track, uniform along it (the ball passes
-//! over every point of the track once per cycle), and the two ways it deepens (paper
-//! Section 3.2): yielding while pressures sit at the cap (eq. 13) and Archard wear (eqs. 15-16).
+//! The disc's surface in the wear track and the two ways it wears (paper Section 3.2):
+//! yielding while pressures sit at the cap (eq. 13) and Archard wear (eqs. 15-16).
+//!
+//! The surface under the ball is `H(x, y) = min(r(x, y), c(y)) - D(y)`: `r` the initial
+//! roughness (zero on a smooth disc; heights on the first grid's cells, repeating beyond
+//! them), `D(y)` the Archard groove and `c(y)` the level yielding has truncated row `y` to
+//! (+inf until it yields). Both are uniform along the track, since the ball passes over
+//! every point of the track once per cycle: every asperity of a row passes under the
+//! row's most-pressed point. Yielding truncates a row at the lowest level a capped cell of
+//! it was pressed to; on a smooth disc this deepens the row by its largest interpenetration,
+//! the paper's rule, while on a rough one it flattens the asperity tops without sinking the
+//! valleys between them. The depth reported per row is the mean over one period of the
+//! roughness along the track of `r - H`, `D + mean(r - min(r, c))`: the worn volume per
+//! unit length of track.
 
 use crate::contact::{ContactSolution, Grid};
 
@@ -9,40 +20,164 @@ use crate::contact::{ContactSolution, Grid};
 /// full width, and a row the contact has only just reached stays below it.
 pub const EDGE_DEPTH_FRACTION: f64 = 0.01;
 
-/// Depth below the original disc surface for each grid row (each `y`), m.
+/// The disc's initial roughness: heights on the cells of the grid it was made on, repeating
+/// beyond them (a grid grown from that one, centred on the apex with the same cells, sees
+/// it periodically).
+#[derive(Debug, Clone, PartialEq)]
+struct Roughness {
+    heights_m: Vec<f64>,
+    nx: usize,
+    ny: usize,
+}
+
+impl Roughness {
+    /// One period along the track of the roughness under row `iy` of a grid of `ny` rows.
+    fn row(&self, iy: usize, ny: usize) -> &[f64] {
+        let start = periodic_index(iy, ny, self.ny) * self.nx;
+        &self.heights_m[start..start + self.nx]
+    }
+}
+
+/// The cell of a period of `period` cells under cell `i` of a grid of `n` cells, both
+/// centred on the apex with the same cells (grids grow by the same cells on both sides, so
+/// `n - period` is even).
+fn periodic_index(i: usize, n: usize, period: usize) -> usize {
+    let shift = (n as i64 - period as i64).div_euclid(2);
+    (i as i64 - shift).rem_euclid(period as i64) as usize
+}
+
+/// The disc surface in the track: the groove, the truncation of the asperities, and the
+/// depth per grid row (each `y`) they make together.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Groove {
+    /// Archard's groove `D(y)`, m.
+    worn_m: Vec<f64>,
+    /// The truncation level `c(y)`, m above the original surface's mean plane.
+    ceiling_m: Vec<f64>,
+    /// `D + mean(r - min(r, c))` per row, m.
     depth_m: Vec<f64>,
+    roughness: Option<Roughness>,
     dy: f64,
 }
 
 impl Groove {
-    /// An unworn disc on `grid`.
+    /// An unworn smooth disc on `grid`.
     pub fn new(grid: &Grid) -> Self {
         Self {
+            worn_m: vec![0.0; grid.ny],
+            ceiling_m: vec![f64::INFINITY; grid.ny],
             depth_m: vec![0.0; grid.ny],
+            roughness: None,
             dy: grid.dy,
         }
     }
 
-    /// Depth per row, m.
+    /// An unworn disc on `grid` whose surface rises `heights_m` above its mean plane at each
+    /// of `grid`'s cells (row by row), repeating beyond them.
+    pub fn rough(grid: &Grid, heights_m: Vec<f64>) -> Self {
+        debug_assert_eq!(heights_m.len(), grid.len(), "one height per cell");
+        Self {
+            roughness: Some(Roughness {
+                heights_m,
+                nx: grid.nx,
+                ny: grid.ny,
+            }),
+            ..Self::new(grid)
+        }
+    }
+
+    /// Depth per row, m: below the original surface, averaged along the track.
     pub fn depth_m(&self) -> &[f64] {
         &self.depth_m
     }
 
-    /// The separation of the undeformed surfaces: the ball's height plus the groove (removed
-    /// disc material widens the gap; eq. 17).
+    /// The roughness as yielding has left it, `min(r, c)`, at each cell of `grid` (the grid
+    /// the groove is on): m above the original mean plane, the groove `D` left out.
+    pub fn roughness_m(&self, grid: &Grid) -> Vec<f64> {
+        let mut heights = Vec::with_capacity(grid.len());
+        for (iy, &c) in self.ceiling_m.iter().enumerate() {
+            match &self.roughness {
+                Some(r) => {
+                    let row = r.row(iy, grid.ny);
+                    heights.extend(
+                        (0..grid.nx).map(|ix| row[periodic_index(ix, grid.nx, r.nx)].min(c)),
+                    );
+                }
+                None => heights.extend(std::iter::repeat_n(c.min(0.0), grid.nx)),
+            }
+        }
+        heights
+    }
+
+    /// The separation of the undeformed surfaces: the ball's height plus the disc's depth
+    /// below the original mean plane at each cell, `D - min(r, c)` (eq. 17; removed disc
+    /// material widens the gap, an asperity narrows it).
     pub fn separation(&self, ball: &[f64], grid: &Grid) -> Vec<f64> {
-        let mut h = ball.to_vec();
-        for (row, &d) in h.chunks_exact_mut(grid.nx).zip(&self.depth_m) {
-            row.iter_mut().for_each(|v| *v += d);
+        let mut h = self.roughness_m(grid);
+        for ((row, &d), ball) in h
+            .chunks_exact_mut(grid.nx)
+            .zip(&self.worn_m)
+            .zip(ball.chunks_exact(grid.nx))
+        {
+            for (v, &b) in row.iter_mut().zip(ball) {
+                *v = b + (d - *v);
+            }
         }
         h
     }
 
-    /// Adds `scale * increment` to the depth of every row.
+    /// Eq. 13: where the pressure sits at the cap the material yields by the interpenetration
+    /// that remains, `t = (delta - h) - u = -g`. The ball sweeps every `x` of a row, so every
+    /// point of the row passes under each capped cell and is cut to the lowest level one was
+    /// pressed to, `min(r, c) - t` on the scale of `c`. `separation` is the one the contact
+    /// was solved on. Returns whether any capped cell interpenetrated (the disc yielded).
+    pub fn yield_under(
+        &mut self,
+        grid: &Grid,
+        solution: &ContactSolution,
+        separation: &[f64],
+        cap: f64,
+    ) -> bool {
+        let surface = self.roughness_m(grid);
+        let mut ceiling = self.ceiling_m.clone();
+        let mut yielded = false;
+        for (i, &p) in solution.pressure.iter().enumerate() {
+            if p >= cap {
+                let gap = solution.displacement[i] + separation[i] - solution.approach_m;
+                yielded |= gap < 0.0;
+                // A capped cell the solver left a hair short of contact was pressed to its
+                // own surface.
+                let level = surface[i] + gap.min(0.0);
+                let row = &mut ceiling[i / grid.nx];
+                *row = row.min(level);
+            }
+        }
+        for (iy, level) in ceiling.into_iter().enumerate() {
+            if level < self.ceiling_m[iy] {
+                self.ceiling_m[iy] = level;
+                self.depth_m[iy] = self.worn_m[iy] + self.cut_m(iy);
+            }
+        }
+        yielded
+    }
+
+    /// The material yielding has cut from row `iy`, averaged along the track:
+    /// `mean(r - min(r, c))`, m.
+    fn cut_m(&self, iy: usize) -> f64 {
+        let c = self.ceiling_m[iy];
+        match &self.roughness {
+            Some(r) => {
+                let row = r.row(iy, self.depth_m.len());
+                row.iter().map(|&h| h - h.min(c)).sum::<f64>() / row.len() as f64
+            }
+            None => -c.min(0.0),
+        }
+    }
+
+    /// Adds `scale * increment` to the groove `D` of every row (Archard wear).
     pub fn deepen(&mut self, increment: &[f64], scale: f64) {
-        for (d, &i) in self.depth_m.iter_mut().zip(increment) {
+        for ((w, d), &i) in self.worn_m.iter_mut().zip(&mut self.depth_m).zip(increment) {
+            *w += scale * i;
             *d += scale * i;
         }
     }
@@ -86,36 +221,23 @@ impl Groove {
         (last - first) as f64 * self.dy + left + right
     }
 
-    /// The groove on a larger grid with the same cells, centred: the new outer rows are
-    /// unworn. `offset` rows are added on each side.
-    pub fn widened(&self, offset: usize) -> Self {
-        let mut depth_m = vec![0.0; self.depth_m.len() + 2 * offset];
-        depth_m[offset..offset + self.depth_m.len()].copy_from_slice(&self.depth_m);
+    /// The groove on `wider`, a grid grown from its own (the same cells, centred): the new
+    /// outer rows are unworn, and the roughness repeats into them.
+    pub fn widened(&self, wider: &Grid) -> Self {
+        let offset = wider.ny.saturating_sub(self.depth_m.len()) / 2;
+        let pad = |rows: &[f64], unworn: f64| {
+            let mut out = vec![unworn; wider.ny];
+            out[offset..offset + rows.len()].copy_from_slice(rows);
+            out
+        };
         Self {
-            depth_m,
+            worn_m: pad(&self.worn_m, 0.0),
+            ceiling_m: pad(&self.ceiling_m, f64::INFINITY),
+            depth_m: pad(&self.depth_m, 0.0),
+            roughness: self.roughness.clone(),
             dy: self.dy,
         }
     }
-}
-
-/// Eq. 13: where the pressure sits at the cap, the material yields by the interpenetration
-/// that remains, `(delta - h) - u = -g`; the ball sweeps every `x`, so each row deepens by the
-/// largest such value along it. Rows with no capped cell get 0.
-pub fn yield_depth(
-    grid: &Grid,
-    solution: &ContactSolution,
-    separation: &[f64],
-    cap: f64,
-) -> Vec<f64> {
-    let mut depth = vec![0.0f64; grid.ny];
-    for (i, &p) in solution.pressure.iter().enumerate() {
-        if p >= cap {
-            let gap = solution.displacement[i] + separation[i] - solution.approach_m;
-            let row = &mut depth[i / grid.nx];
-            *row = row.max(-gap);
-        }
-    }
-    depth
 }
 
 /// Eqs. 15-16: one pass of the ball removes `k / H` times the pressure integrated along the
@@ -188,13 +310,87 @@ mod tests {
     }
 
     #[test]
+    fn on_a_smooth_disc_a_row_deepens_by_its_largest_interpenetration() {
+        // The paper's rule (eq. 13): rows 0 and 1 already worn 0.1 and 0.2 um; at approach
+        // 0.5 um row 0's capped cells interpenetrate by 0.3 and 0.1 um, row 1's stays 0.3 um
+        // short of contact, row 2 has none.
+        let grid = Grid::new(4, 3, 1e-6, 1e-6).expect("valid");
+        let mut groove = Groove::new(&grid);
+        groove.deepen(&[0.1, 0.2, 0.0], 1e-6);
+        let ball = vec![0.0; grid.len()];
+        let press = |groove: &mut Groove, displacement_um: &[(usize, f64)]| {
+            let mut solution = ContactSolution {
+                pressure: vec![0.0; grid.len()],
+                displacement: vec![0.0; grid.len()],
+                approach_m: 0.5e-6,
+                iterations: 0,
+                operator_applies: 0,
+                residual: 0.0,
+            };
+            for &(i, u) in displacement_um {
+                solution.pressure[i] = 1e9;
+                solution.displacement[i] = u * 1e-6;
+            }
+            let separation = groove.separation(&ball, &grid);
+            groove.yield_under(&grid, &solution, &separation, 1e9)
+        };
+        assert!(press(&mut groove, &[(1, 0.1), (3, 0.3), (6, 0.6)]));
+        // Sums of a few sub-um lengths: within a few ulps (1e-22 m).
+        let close = |depth: &[f64], um: [f64; 3]| {
+            depth
+                .iter()
+                .zip(um)
+                .all(|(d, um)| (d - um * 1e-6).abs() < 1e-20)
+        };
+        assert!(
+            close(groove.depth_m(), [0.4, 0.2, 0.0]),
+            "{:?}",
+            groove.depth_m()
+        );
+        // The next cycle, 0.05 um further into row 0: it deepens by that much again.
+        assert!(press(&mut groove, &[(2, 0.05)]));
+        assert!(
+            close(groove.depth_m(), [0.45, 0.2, 0.0]),
+            "{:?}",
+            groove.depth_m()
+        );
+        assert!(
+            !press(&mut groove, &[(2, 0.2)]),
+            "short of contact: no yield"
+        );
+    }
+
+    #[test]
     fn widening_keeps_the_groove_centred() {
         let grid = Grid::square(4, 4e-6).expect("valid");
         let mut groove = Groove::new(&grid);
         groove.deepen(&[1.0, 2.0, 2.0, 1.0], 1e-6);
-        let wide = groove.widened(2);
+        let wider = Grid::new(4, 8, grid.dx, grid.dy).expect("valid");
+        let wide = groove.widened(&wider);
         assert_eq!(wide.depth_m().len(), 8);
         assert!((wide.area_m2() - groove.area_m2()).abs() < 1e-24);
         assert!((wide.depth_m()[3] - 2e-6).abs() < 1e-20);
+    }
+
+    #[test]
+    fn a_grown_grid_sees_the_roughness_repeat() {
+        // Heights numbered by cell on a 4 x 2 grid; grown to 8 x 6, two cells and two rows
+        // on each side, the grid's cell (ix, iy) lies over the original cell
+        // ((ix - 2) mod 4, (iy - 2) mod 2).
+        let grid = Grid::new(4, 2, 1e-6, 1e-6).expect("valid");
+        let heights: Vec<f64> = (0..8).map(f64::from).collect();
+        let groove = Groove::rough(&grid, heights.clone());
+        assert_eq!(groove.roughness_m(&grid), heights);
+        let wider = Grid::new(8, 6, 1e-6, 1e-6).expect("valid");
+        let seen = groove.widened(&wider).roughness_m(&wider);
+        for (i, &h) in seen.iter().enumerate() {
+            let (ix, iy) = (i % 8, i / 8);
+            let original = ((iy + 2) % 2) * 4 + (ix + 2) % 4;
+            assert_eq!(
+                h.to_bits(),
+                heights[original].to_bits(),
+                "cell ({ix}, {iy})"
+            );
+        }
     }
 }

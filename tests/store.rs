@@ -383,7 +383,7 @@ async fn a_full_disk_answers_507_and_leaves_nothing_behind() {
         return;
     }
     let dir = TempDir::new("full-disk");
-    let serve = serve_command(dir.path());
+    let serve = serve_command(dir.path(), 1);
     let mut command = Command::new("unshare");
     command
         .args(["--user", "--map-root-user", "--mount", "sh", "-c"])

@@ -28,24 +28,8 @@ fn two_by_two() -> Value {
 
 /// A one-worker server with `flags` added.
 fn server(data_dir: &Path, flags: &[&str]) -> ServerProcess {
-    let mut command = serve_command(data_dir);
+    let mut command = serve_command(data_dir, 1);
     command.args(flags);
-    ServerProcess::spawn(command)
-}
-
-/// A server with two workers, so that members run side by side.
-fn two_worker_server(data_dir: &Path) -> ServerProcess {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_tribosim"));
-    command
-        .args([
-            "serve",
-            "--addr",
-            "127.0.0.1:0",
-            "--workers",
-            "2",
-            "--data-dir",
-        ])
-        .arg(data_dir);
     ServerProcess::spawn(command)
 }
 
@@ -104,7 +88,7 @@ async fn a_study_over_http_summarises_as_tribosim_study_does() {
     let cli: Value =
         serde_json::from_slice(&std::fs::read(&cli_summary).expect("read")).expect("JSON");
 
-    let server = two_worker_server(&dir.path().join("data"));
+    let server = ServerProcess::spawn(serve_command(&dir.path().join("data"), 2));
     let client = reqwest::Client::new();
     let (code, study) = post(&client, &server.url("/api/v1/studies"), &two_by_two()).await;
     assert_eq!(code, 201, "{study}");

@@ -9,9 +9,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use common::physics::{relative_error, scene};
 
-use tribosim::contact::ContactError;
+use tribosim::contact::{ContactError, ContactSolution, Grid};
 use tribosim::scene::Scene;
 use tribosim::simulation::{CycleRecord, Model, SimulationError, SimulationResult, run};
+use tribosim::wear::Groove;
 
 fn simulate(scene: &Scene) -> SimulationResult {
     common::physics::simulate(scene).expect("runs")
@@ -353,4 +354,69 @@ fn a_change_of_regime_wears_each_cycle_at_its_own_k() {
     let solved = |cycle: u64| stepped.cycles.iter().any(|r| r.cycle == cycle);
     assert!(solved(218) && solved(219), "restarted at 218");
     assert!(stepped.cycles.len() < 300, "it stepped elsewhere");
+}
+
+/// A hand-built rough disc on 8 x 4 cells of 1 um, heights in um per row: row 1 flat, row 2
+/// one tall spike among lower asperities, row 3 asperities around a pit.
+const SPIKES_UM: [[f64; 8]; 4] = [
+    [0.0; 8],
+    [0.0; 8],
+    [0.0, 0.1, 0.5, 0.2, 0.0, -0.1, 0.3, 0.0],
+    [0.1, 0.4, -0.2, 0.0, 0.0, 0.0, 0.0, 0.0],
+];
+
+#[test]
+fn yielding_cuts_each_row_to_its_lowest_pressed_level_and_removes_what_it_cut() {
+    let grid = Grid::new(8, 4, 1e-6, 1e-6).expect("valid");
+    let heights: Vec<f64> = SPIKES_UM.iter().flatten().map(|h| h * 1e-6).collect();
+    let mut groove = Groove::rough(&grid, heights.clone());
+    // The ball's apex over row 3, 0.25 um below the mean plane (approach 0.25 um); over rows
+    // 0 to 2 its surface is 0.55 um higher, at 0.3 um. The spike (row 2, 0.5 um) then
+    // interpenetrates by 0.2 um and the 0.3 um asperity beside it by 0; the pit (row 3,
+    // -0.2 um) by 0.05 um; row 1's capped cell stays 0.3 um short of contact.
+    let ball: Vec<f64> = (0..grid.len())
+        .map(|i| if i / 8 == 3 { 0.0 } else { 0.55e-6 })
+        .collect();
+    let separation = groove.separation(&ball, &grid);
+    let cap = 1e9;
+    let mut pressure = vec![0.0; grid.len()];
+    for i in [2 * 8 + 2, 2 * 8 + 6, 3 * 8 + 2, 8 + 4] {
+        pressure[i] = cap;
+    }
+    let solution = ContactSolution {
+        pressure,
+        displacement: vec![0.0; grid.len()],
+        approach_m: 0.25e-6,
+        iterations: 0,
+        operator_applies: 0,
+        residual: 0.0,
+    };
+    assert!(groove.yield_under(&grid, &solution, &separation, cap));
+    // Row 2 is cut to 0.3 um, the pressed level of its most-pressed cell; row 3 to the pit's
+    // -0.25 um, sweeping away the asperities that pass the pit; rows 0 and 1 keep theirs.
+    let levels_um = [f64::INFINITY, f64::INFINITY, 0.3, -0.25];
+    let left = groove.roughness_m(&grid);
+    let mut cut_um3 = 0.0;
+    for (i, (&r, &h)) in heights.iter().zip(&left).enumerate() {
+        let level = levels_um[i / 8] * 1e-6;
+        // The levels come from a few additions of sub-um lengths: within a few ulps (1e-22 m).
+        assert!((h - r.min(level)).abs() < 1e-20, "cell {i}: {h} vs {r}");
+        cut_um3 += (r - h) * 1e6;
+    }
+    // By hand: 0.2 from the spike; 0.35 + 0.65 + 0.05 + 5 x 0.25 from row 3.
+    assert!((cut_um3 - 2.5).abs() < 1e-12, "{cut_um3} um^3");
+    // The groove's cross-section times one period of the roughness along the track (8 um)
+    // is the volume cut.
+    let removed_um3 = groove.area_m2() * 8e-6 * 1e18;
+    assert!((removed_um3 - cut_um3).abs() < 1e-12, "{removed_um3} um^3");
+    // The next solve sees the cut surface: the separation rises by what was cut.
+    let after = groove.separation(&ball, &grid);
+    for (i, ((&b, &a), (&r, &h))) in separation
+        .iter()
+        .zip(&after)
+        .zip(heights.iter().zip(&left))
+        .enumerate()
+    {
+        assert!((a - b - (r - h)).abs() < 1e-20, "cell {i}");
+    }
 }

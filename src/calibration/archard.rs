@@ -108,6 +108,22 @@ pub(super) struct Problem {
 }
 
 impl Problem {
+    /// A problem whose volumes are made by the model rather than measured: runs of `scene`
+    /// (on `grid_cells` cells) at `cycles`, unweighted; the volumes to fit start at 0.
+    #[cfg(test)]
+    pub(super) fn maker(cycles: &[f64], scene: Scene, grid_cells: usize) -> Self {
+        Self {
+            cycles: cycles.to_vec(),
+            volumes: vec![0.0; cycles.len()],
+            spreads: None,
+            weights: vec![1.0; cycles.len()],
+            weighted: false,
+            scene,
+            grid_cells,
+            runs: 0,
+        }
+    }
+
     /// The model's volumes at the measured cycles for `k`, mm^3.
     fn volumes_at(&mut self, k: f64) -> Result<Vec<f64>, CalibrationError> {
         self.volumes_with(k, None)

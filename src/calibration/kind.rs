@@ -9,7 +9,7 @@ use super::{
     OcpFit, RegimeFit, RegimeOptions, Table, TafelFit, TafelOptions, archard, fit_archard,
     fit_archard_regimes, fit_hardness, fit_ocp, fit_tafel, ocp, regime,
 };
-use crate::scene::{DALMAU2018_316L, Scene, presets};
+use crate::scene::{Scene, dalmau2018_316l};
 
 /// Which fit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize, Deserialize)]
@@ -113,9 +113,5 @@ pub fn check(
 
 /// The paper's scene, which a table is fitted with unless a scene is given.
 pub fn default_scene() -> Scene {
-    presets()
-        .into_iter()
-        .find(|p| p.name == DALMAU2018_316L)
-        .map(|p| p.scene)
-        .unwrap_or_default()
+    dalmau2018_316l()
 }

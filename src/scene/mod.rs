@@ -34,7 +34,7 @@ pub use error::{FieldError, SceneErrors};
 pub use field::{Field, Range};
 pub use fields::{FIELDS, field};
 pub use parse::{parse_scene, parse_scene_str, parse_scene_str_with, parse_scene_with};
-pub use preset::{DALMAU2018_316L, Preset, presets};
+pub use preset::{DALMAU2018_316L, Preset, dalmau2018_316l, presets};
 pub use record::{MAX_RECORD_CYCLES, RecordCycles, TABLE3_TIMES_S};
 pub use reference::{FIELDS_BEGIN, FIELDS_END, field_table};
 pub use sections::{

@@ -29,8 +29,8 @@ pub fn presets() -> Vec<Preset> {
     }]
 }
 
-/// The paper's test: the defaults under the paper's name.
-fn dalmau2018_316l() -> Scene {
+/// The paper's test, the [`DALMAU2018_316L`] preset: the defaults under the paper's name.
+pub fn dalmau2018_316l() -> Scene {
     Scene {
         name: "316L vs alumina, 5 N, 60 rpm".to_owned(),
         ..Scene::default()

@@ -11,7 +11,7 @@ use super::job::Job;
 use super::registry::Jobs;
 use super::store::Damage;
 use crate::scene::Scene;
-use crate::simulation::{CycleRecord, Setup, SimulationError, SimulationResult, Summary};
+use crate::simulation::{CycleRecord, Setup, SimulationError, SimulationResult};
 
 /// Why a stopped job's partial result cannot be given.
 #[derive(Debug, Error)]
@@ -76,19 +76,7 @@ fn partial(
     wall_s: f64,
 ) -> Result<SimulationResult, SimulationError> {
     let setup = Setup::new(scene)?;
-    let last = cycles.last();
-    let summary = Summary {
-        cycles: last.map_or(0, |c| c.cycle),
-        wear_volume_mm3: last.map_or(0.0, |c| c.wear_volume_mm3),
-        max_depth_um: last.map_or(0.0, |c| c.max_depth_um),
-        wac_volume_mm3: last.and_then(|c| c.wac_volume_mm3),
-        potential_v: last.and_then(|c| c.potential_v),
-        archard_k: setup.archard_k,
-        archard_regime_change: setup.archard_regime_change,
-        wall_s,
-        solves: cycles.len(),
-        iterations: cycles.iter().map(|c| c.iterations).sum(),
-    };
+    let summary = setup.summary(&cycles, wall_s);
     Ok(SimulationResult {
         complete: false,
         surface: setup.surface_report(),

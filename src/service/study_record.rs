@@ -1,7 +1,7 @@
 //! A study as the API shows it: the stored study with each member's status read from its
 //! job, the counts, and the study's status derived from them.
 
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Serialize, Serializer};
 use serde_json::{Map, Value};
 use time::OffsetDateTime;
 use uuid::Uuid;
@@ -20,37 +20,13 @@ pub struct AxisRecord {
 }
 
 /// Where a member is: its job's status, or `deleted` once its job has been removed on its
-/// own (DELETE on the job).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum MemberStatus {
-    /// Waiting for a worker.
-    Queued,
-    /// Running.
-    Running,
-    /// Finished with a result.
-    Succeeded,
-    /// Finished without a result.
-    Failed,
-    /// Cancelled.
-    Cancelled,
-    /// Its stored scene is damaged.
-    Damaged,
-    /// Its job was deleted.
-    Deleted,
-}
+/// own (DELETE on the job); `None` is that deleted job.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MemberStatus(pub Option<JobStatus>);
 
-impl From<Option<JobStatus>> for MemberStatus {
-    fn from(status: Option<JobStatus>) -> Self {
-        match status {
-            Some(JobStatus::Queued) => Self::Queued,
-            Some(JobStatus::Running) => Self::Running,
-            Some(JobStatus::Succeeded) => Self::Succeeded,
-            Some(JobStatus::Failed) => Self::Failed,
-            Some(JobStatus::Cancelled) => Self::Cancelled,
-            Some(JobStatus::Damaged) => Self::Damaged,
-            None => Self::Deleted,
-        }
+impl Serialize for MemberStatus {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.0.map_or("deleted", JobStatus::name))
     }
 }
 
@@ -93,14 +69,14 @@ pub struct Counts {
 
 impl Counts {
     fn add(&mut self, status: MemberStatus) {
-        let slot = match status {
-            MemberStatus::Queued => &mut self.queued,
-            MemberStatus::Running => &mut self.running,
-            MemberStatus::Succeeded => &mut self.succeeded,
-            MemberStatus::Failed => &mut self.failed,
-            MemberStatus::Cancelled => &mut self.cancelled,
-            MemberStatus::Damaged => &mut self.damaged,
-            MemberStatus::Deleted => &mut self.deleted,
+        let slot = match status.0 {
+            Some(JobStatus::Queued) => &mut self.queued,
+            Some(JobStatus::Running) => &mut self.running,
+            Some(JobStatus::Succeeded) => &mut self.succeeded,
+            Some(JobStatus::Failed) => &mut self.failed,
+            Some(JobStatus::Cancelled) => &mut self.cancelled,
+            Some(JobStatus::Damaged) => &mut self.damaged,
+            None => &mut self.deleted,
         };
         *slot += 1;
     }
@@ -162,7 +138,7 @@ pub(super) fn record_of(stored: &StoredStudy, jobs: &Jobs) -> StudyRecord {
         .members
         .iter()
         .map(|member| {
-            let status = MemberStatus::from(jobs.get(member.job_id).map(|job| job.record().status));
+            let status = MemberStatus(jobs.get(member.job_id).map(|job| job.record().status));
             counts.add(status);
             MemberRecord {
                 index: member.index,
@@ -180,5 +156,18 @@ pub(super) fn record_of(stored: &StoredStudy, jobs: &Jobs) -> StudyRecord {
         axes: stored.axes.clone(),
         members,
         counts,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_member_shows_its_jobs_status_or_deleted() {
+        let name = |status| serde_json::to_value(MemberStatus(status)).ok();
+        assert_eq!(name(Some(JobStatus::Running)), Some(Value::from("running")));
+        assert_eq!(name(Some(JobStatus::Damaged)), Some(Value::from("damaged")));
+        assert_eq!(name(None), Some(Value::from("deleted")));
     }
 }

@@ -81,11 +81,6 @@ impl<'a> Cell<'a> {
         self.wac_m3 += self.model.wac_volume_m3(reading.anodic_area_m2, duration_s);
     }
 
-    /// The WAC volume so far, m^3.
-    pub(super) fn wac_m3(&self) -> f64 {
-        self.wac_m3
-    }
-
     /// How the anodic area is chosen, for the `corrosion` model's reason.
     pub(super) fn describe(&self) -> String {
         let area = match self.settings.anodic_area {

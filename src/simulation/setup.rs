@@ -8,10 +8,11 @@ use crate::contact::{
 use crate::hardness::HardnessLaw;
 use crate::scene::{ArchardRegimeChange, Scene, Switch};
 use crate::surface::HeightMap;
+use crate::wear::Groove;
 
 use super::feasibility::check;
 use super::hardening::work_hardening_report;
-use super::result::SurfaceReport;
+use super::result::{CycleRecord, Summary, SurfaceReport};
 use super::roughness::{DiscSurface, build, wanted_cell_m};
 use super::sizing::{
     GridPlan, LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m,
@@ -89,6 +90,24 @@ impl Setup {
         })
     }
 
+    /// The totals of a run that recorded `cycles` (one record per solve) in `wall_s`: the
+    /// state at the last record, so a run stopped early sums up what it did like a full one.
+    pub fn summary(&self, cycles: &[CycleRecord], wall_s: f64) -> Summary {
+        let last = cycles.last();
+        Summary {
+            cycles: last.map_or(0, |c| c.cycle),
+            wear_volume_mm3: last.map_or(0.0, |c| c.wear_volume_mm3),
+            max_depth_um: last.map_or(0.0, |c| c.max_depth_um),
+            wac_volume_mm3: last.and_then(|c| c.wac_volume_mm3),
+            potential_v: last.and_then(|c| c.potential_v),
+            archard_k: self.archard_k,
+            archard_regime_change: self.archard_regime_change,
+            wall_s,
+            solves: cycles.len(),
+            iterations: cycles.iter().map(|c| c.iterations).sum(),
+        }
+    }
+
     /// Checks the scene ([`check`]: its fields, and whether it can be simulated) and makes
     /// every decision.
     pub fn new(scene: &Scene) -> Result<Self, SimulationError> {
@@ -123,9 +142,8 @@ impl Setup {
         if let Some(surface) = &mut surface {
             if plasticity {
                 surface.model.reason.push_str(
-                    "; yielding (eq. 13) deepens each row by its deepest capped cell, asperity \
-                     tops included, which overstates the early wear of a rough disc \
-                     (`wear.plasticity: \"off\"` leaves it out)",
+                    "; yielding (eq. 13) truncates each row's asperities at the level its \
+                     most-pressed capped cell was pressed to, so they flatten",
                 );
             }
             models.push(surface.model.clone());
@@ -169,20 +187,33 @@ impl Setup {
 
     /// The unworn ball's height above its apex at each cell of `grid` (the exact sphere),
     /// `rho^2 / (r + sqrt(r^2 - rho^2))`: equal to `r - sqrt(r^2 - rho^2)`, which loses the
-    /// height to round-off once it nears `r` times machine epsilon (tiny contacts); less the
-    /// disc's roughness, which rises towards the ball.
-    pub fn ball_separation(&self, grid: &Grid) -> Vec<f64> {
+    /// height to round-off once it nears `r` times machine epsilon (tiny contacts).
+    pub fn ball_height(&self, grid: &Grid) -> Vec<f64> {
         let r = self.scene.ball_radius_m();
-        let roughness = self.surface.as_ref().map(|s| &s.map);
         grid.sample(|x, y| {
             let rho2 = x * x + y * y;
-            let ball = if rho2 >= r * r {
+            if rho2 >= r * r {
                 r
             } else {
                 rho2 / (r + (r * r - rho2).sqrt())
-            };
-            ball - roughness.map_or(0.0, |m| m.height_at(x, y))
+            }
         })
+    }
+
+    /// The unworn disc on the first grid: smooth, or with its initial roughness.
+    pub fn unworn_disc(&self) -> Groove {
+        match &self.surface {
+            Some(surface) => Groove::rough(&self.grid, surface.map.heights_m.clone()),
+            None => Groove::new(&self.grid),
+        }
+    }
+
+    /// The separation of the ball and the unworn disc at each cell of `grid`, the first grid
+    /// or one grown from it: the ball's height less the roughness, which rises towards it.
+    pub fn ball_separation(&self, grid: &Grid) -> Vec<f64> {
+        self.unworn_disc()
+            .widened(grid)
+            .separation(&self.ball_height(grid), grid)
     }
 
     /// The contact solver of `grid`: the normal operator alone, or with the coupling term.

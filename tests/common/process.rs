@@ -20,26 +20,22 @@ pub struct ServerProcess {
     log: Arc<Mutex<Vec<String>>>,
 }
 
-/// The command that runs the binary as `serve` on a port of its choice, with one worker.
-pub fn serve_command(data_dir: &Path) -> Command {
+/// The command that runs the binary as `serve` on a port of its choice, with `workers`
+/// workers.
+pub fn serve_command(data_dir: &Path, workers: usize) -> Command {
     let mut command = Command::new(env!("CARGO_BIN_EXE_tribosim"));
     command
-        .args([
-            "serve",
-            "--addr",
-            "127.0.0.1:0",
-            "--workers",
-            "1",
-            "--data-dir",
-        ])
+        .args(["serve", "--addr", "127.0.0.1:0", "--workers"])
+        .arg(workers.to_string())
+        .arg("--data-dir")
         .arg(data_dir);
     command
 }
 
 impl ServerProcess {
-    /// Starts `tribosim serve` on `data_dir` and waits until it listens.
+    /// Starts `tribosim serve` with one worker on `data_dir` and waits until it listens.
     pub fn start(data_dir: &Path) -> Self {
-        Self::spawn(serve_command(data_dir))
+        Self::spawn(serve_command(data_dir, 1))
     }
 
     /// Runs `command` (which must end up running the server) and waits until it listens;

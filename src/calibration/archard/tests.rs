@@ -1,13 +1,5 @@
 use super::*;
-use crate::scene::{DALMAU2018_316L, presets};
-
-fn paper_scene() -> Scene {
-    presets()
-        .into_iter()
-        .find(|p| p.name == DALMAU2018_316L)
-        .expect("the paper preset")
-        .scene
-}
+use crate::scene::dalmau2018_316l;
 
 /// Table 3: rubbing time, total wear volume and its spread.
 fn table3() -> Table {
@@ -24,20 +16,11 @@ fn table3() -> Table {
 
 #[test]
 fn k_comes_back_from_volumes_the_model_made() {
-    let scene = paper_scene();
+    let scene = dalmau2018_316l();
     let k_true = 8e-5;
     let cycles = [10.0, 60.0, 300.0, 1800.0, 3600.0];
-    let (run_scene, _) = calibration_scene(&scene, 3600.0);
-    let mut maker = Problem {
-        cycles: cycles.to_vec(),
-        volumes: vec![0.0; 5],
-        spreads: None,
-        weights: vec![1.0; 5],
-        weighted: false,
-        scene: run_scene,
-        grid_cells: 0,
-        runs: 0,
-    };
+    let (run_scene, grid_cells) = calibration_scene(&scene, 3600.0);
+    let mut maker = Problem::maker(&cycles, run_scene, grid_cells);
     let volumes = maker.volumes_at(k_true).expect("runs");
     let table = Table::from_columns(&[("cycles", &cycles), ("volume_mm3", &volumes)])
         .expect("equal-length finite columns");
@@ -61,7 +44,7 @@ fn k_comes_back_from_volumes_the_model_made() {
 
 #[test]
 fn table_3_fitted_over_whole_runs_beats_eq_14_alone() {
-    let fit = fit_archard(&table3(), &paper_scene(), ArchardOptions::default()).expect("fits");
+    let fit = fit_archard(&table3(), &dalmau2018_316l(), ArchardOptions::default()).expect("fits");
     println!(
         "k = {:.4e} +- {:.2e} (eq. 14 from 3600 s: {:.4e}); rms {:.3e} mm3 (eq. 14: {:.3e}); {} runs on {} cells in {:.1} s",
         fit.archard_k.value,
@@ -93,7 +76,7 @@ fn table_3_fitted_over_whole_runs_beats_eq_14_alone() {
 
 #[test]
 fn bad_volume_tables_are_refused_naming_the_column() {
-    let scene = paper_scene();
+    let scene = dalmau2018_316l();
     let options = ArchardOptions::default();
     let negative = Table::parse("time_s,volume_mm3\n10,1e-3\n60,-1e-3\n").expect("valid");
     let err = fit_archard(&negative, &scene, options).expect_err("negative");

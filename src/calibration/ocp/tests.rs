@@ -3,16 +3,12 @@ use rand::rngs::StdRng;
 use rand_distr::{Distribution, Normal};
 
 use super::*;
-use crate::scene::{DALMAU2018_316L, presets};
+use crate::scene::dalmau2018_316l;
 
 /// The paper's scene (Table 2 cell, Table 3 hardness law) with the anode taken as the real
 /// contact area F / H, the area Fig. 14 compares the depassivated one with.
 fn paper_scene() -> Scene {
-    let mut scene = presets()
-        .into_iter()
-        .find(|p| p.name == DALMAU2018_316L)
-        .expect("the paper preset")
-        .scene;
+    let mut scene = dalmau2018_316l();
     if let Some(c) = scene.corrosion.as_mut() {
         c.anodic_area = AnodicArea::RealContact;
     }

@@ -1,19 +1,11 @@
 use super::*;
 use crate::calibration::calibration_scene;
-use crate::scene::{CycleStep, DALMAU2018_316L, GridSize, presets};
-
-fn paper_scene() -> Scene {
-    presets()
-        .into_iter()
-        .find(|p| p.name == DALMAU2018_316L)
-        .expect("the paper preset")
-        .scene
-}
+use crate::scene::{CycleStep, GridSize, dalmau2018_316l};
 
 /// The paper's scene on a small grid with every cycle solved: each run is then the same
 /// smooth function of the k's, with no step choices moving with them.
 fn small_scene() -> Scene {
-    let mut scene = paper_scene();
+    let mut scene = dalmau2018_316l();
     scene.numerics.grid = GridSize::Cells(16);
     scene.numerics.cycle_step = CycleStep::EveryCycle;
     scene
@@ -31,16 +23,7 @@ const CYCLES: [f64; 6] = [10.0, 40.0, 70.0, 100.0, 140.0, 200.0];
 /// The volumes of a run with [`TRUE_CHANGE`], as a table.
 fn synthetic_table() -> Table {
     let (scene, grid_cells) = calibration_scene(&small_scene(), CYCLES[5]);
-    let mut maker = Problem {
-        cycles: CYCLES.to_vec(),
-        volumes: vec![0.0; CYCLES.len()],
-        spreads: None,
-        weights: vec![1.0; CYCLES.len()],
-        weighted: false,
-        scene,
-        grid_cells,
-        runs: 0,
-    };
+    let mut maker = Problem::maker(&CYCLES, scene, grid_cells);
     let volumes = maker
         .volumes_with(TRUE_K_AFTER, Some(TRUE_CHANGE))
         .expect("runs");
