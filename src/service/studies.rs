@@ -187,8 +187,10 @@ impl Studies {
         let members = study
             .members(self.max_members)
             .map_err(StudySubmitError::Invalid)?;
+        // Held until the members are queued, so no surface they name is deleted meanwhile.
+        let _hold = jobs.surfaces.hold();
         for member in &members {
-            servable(&member.scene).map_err(|source| {
+            servable(&member.scene, &jobs.surfaces).map_err(|source| {
                 StudySubmitError::Invalid(StudyError::Member {
                     index: member.index,
                     values: describe_values(&member.values),
