@@ -17,7 +17,7 @@ use super::extract::{cut, is_map_body, path_id, read_body};
 use super::store::is_disk_full;
 use super::surfaces::SurfaceDeletion;
 use crate::scene::FieldError;
-use crate::surface::{Format, HeightMap, MAX_MAP_SIDE, SurfaceError, read, read_as};
+use crate::surface::{Format, HeightMap, Statistics, SurfaceError, read, read_as};
 
 /// Largest height-map body: a 2048 x 2048 map (the contact grid's largest side) as a text
 /// matrix at about 15 characters a height is 60 MiB; as a .gsf, 16 MiB.
@@ -83,8 +83,35 @@ fn upload_options(query: UploadQuery) -> Result<(Option<Format>, Option<f64>, St
     Ok((format, pixel_m, name))
 }
 
-/// The map of an upload's bytes: in the format given, or as the content tells.
+/// The map of an upload's bytes (in the format given, or as the content tells) and its
+/// statistics, which must be finite numbers: JSON has none for the others, and a map too
+/// small or too flat to have them gives a run nothing to report.
 fn parse(
+    bytes: &[u8],
+    format: Option<Format>,
+    pixel_m: Option<f64>,
+) -> Result<(HeightMap, Format, Statistics), ApiError> {
+    let (map, format) = read_map(bytes, format, pixel_m)?;
+    let statistics = Statistics::of_measured(&map);
+    let numbers = [
+        ("rms_height_um", statistics.rms_height_um),
+        ("rms_slope", statistics.rms_slope),
+        ("psd_slope", statistics.psd_slope),
+    ];
+    if let Some((name, value)) = numbers.iter().find(|(_, value)| !value.is_finite()) {
+        return Err(refused(
+            "body",
+            format!(
+                "the map's {name} is {value}, not a finite number: its heights must vary, \
+                 and it needs more than 8 pixels per side (its spectrum is fitted from half \
+                 its side down to four pixels)"
+            ),
+        ));
+    }
+    Ok((map, format, statistics))
+}
+
+fn read_map(
     bytes: &[u8],
     format: Option<Format>,
     pixel_m: Option<f64>,
@@ -94,9 +121,7 @@ fn parse(
         None => read(bytes, pixel_m),
     };
     parsed.map_err(|e| match e {
-        SurfaceError::TooLarge { .. } => ApiError::too_large(format!(
-            "{e}: a map beyond {MAX_MAP_SIDE} pixels per side is refused"
-        )),
+        SurfaceError::TooLarge { .. } => ApiError::too_large(e.to_string()),
         SurfaceError::Invalid(_) if pixel_m.is_none() && format == Some(Format::Matrix) => {
             refused("pixel_um", e.to_string())
         }
@@ -125,14 +150,16 @@ pub(super) async fn upload_surface(
     })?;
     let jobs = Arc::clone(&app.jobs);
     let record = tokio::task::spawn_blocking(move || {
-        let (map, format) = parse(&body, format, pixel_m)?;
-        jobs.surfaces.create(name, format, &map).map_err(|e| {
-            if is_disk_full(&e) {
-                ApiError::disk_full("the surface was not stored")
-            } else {
-                ApiError::internal("storing a surface", &e)
-            }
-        })
+        let (map, format, statistics) = parse(&body, format, pixel_m)?;
+        jobs.surfaces
+            .create(name, format, &map, statistics)
+            .map_err(|e| {
+                if is_disk_full(&e) {
+                    ApiError::disk_full("the surface was not stored")
+                } else {
+                    ApiError::internal("storing a surface", &e)
+                }
+            })
     })
     .await
     .map_err(|e| ApiError::internal("storing a surface", &e))??;

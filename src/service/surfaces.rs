@@ -186,6 +186,7 @@ impl Surfaces {
         name: String,
         format: Format,
         map: &HeightMap,
+        statistics: Statistics,
     ) -> io::Result<SurfaceRecord> {
         let id = Uuid::new_v4();
         let heights: Vec<u8> = map.heights_m.iter().flat_map(|h| h.to_le_bytes()).collect();
@@ -197,7 +198,7 @@ impl Surfaces {
             ny: map.ny,
             pixel_x_um: map.dx_m * 1e6,
             pixel_y_um: map.dy_m * 1e6,
-            statistics: Statistics::of_measured(map),
+            statistics,
             created_at: OffsetDateTime::now_utc(),
         };
         let stored = Stored {
