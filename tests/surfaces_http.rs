@@ -259,6 +259,30 @@ async fn a_measured_scene_runs_on_its_stored_surface_which_survives_a_restart() 
     let answer: Value = response.json().await.expect("JSON");
     assert_eq!(answer["fields"][0]["path"], "disc.surface.id", "{answer}");
 
+    let study = |base: Value| json!({"base": base, "axes": {"test.load_n": [2, 5]}});
+    let response = client
+        .post(format!("{base}/api/v1/studies"))
+        .json(&study(unknown.clone()))
+        .send()
+        .await
+        .expect("POST study");
+    assert_eq!(response.status(), 422);
+    let answer: Value = response.json().await.expect("JSON");
+    assert_eq!(answer["fields"][0]["path"], "base.disc.surface.id", "{answer}");
+    let response = client
+        .post(format!("{base}/api/v1/studies"))
+        .json(&study(measured_scene(&id, 2)))
+        .send()
+        .await
+        .expect("POST study");
+    assert_eq!(response.status(), 201);
+    let members: Value = response.json().await.expect("JSON");
+    for member in members["members"].as_array().expect("members") {
+        let member_id = member["job_id"].as_str().expect("job id");
+        let done = wait_for_job(&client, &base, member_id, is_final).await;
+        assert_eq!(done["status"], "succeeded", "{done}");
+    }
+
     // The one worker is busy, so the measured job waits, and its surface cannot go.
     let busy = submit(&client, &base, &long_scene(300_000)).await;
     let busy_id = busy["id"].as_str().expect("id");
