@@ -268,7 +268,10 @@ async fn a_measured_scene_runs_on_its_stored_surface_which_survives_a_restart() 
         .expect("POST study");
     assert_eq!(response.status(), 422);
     let answer: Value = response.json().await.expect("JSON");
-    assert_eq!(answer["fields"][0]["path"], "base.disc.surface.id", "{answer}");
+    assert_eq!(
+        answer["fields"][0]["path"], "base.disc.surface.id",
+        "{answer}"
+    );
     let response = client
         .post(format!("{base}/api/v1/studies"))
         .json(&study(measured_scene(&id, 2)))

@@ -383,6 +383,35 @@ mod tests {
     }
 
     #[test]
+    fn a_format_given_is_held_to() {
+        let map = sample();
+        let gsf = gsf_bytes(&map);
+        assert_eq!(
+            read_as(&gsf, Format::Gsf, None),
+            read(&gsf, None).map(|r| r.0)
+        );
+        assert!(matches!(
+            read_as(b"0 0\n0 0\n", Format::Gsf, None),
+            Err(SurfaceError::Malformed { line: 1, .. })
+        ));
+        assert!(matches!(
+            read_as(b"0 0\n0 0\n", Format::Matrix, None),
+            Err(SurfaceError::Invalid(_))
+        ));
+        // Three columns read as a matrix when it is said to be one.
+        let matrix = read_as(
+            b"1e-7 2e-7 3e-7\n4e-7 5e-7 6e-7\n",
+            Format::Matrix,
+            Some(1e-6),
+        );
+        assert_eq!(matrix.map(|m| (m.nx, m.ny)), Ok((3, 2)));
+        assert!(matches!(
+            read_as(b"0 0\n\xff\n", Format::Xyz, None),
+            Err(SurfaceError::Malformed { line: 2, .. })
+        ));
+    }
+
+    #[test]
     fn refusals_name_the_problem() {
         let err = |bytes: &[u8], pixel| read(bytes, pixel).expect_err("refused");
         assert!(matches!(

@@ -394,11 +394,12 @@ try {
     const seq = window.tabbed.filter((el) => el.isConnected);
     const back = [];
     for (let i = 1; i < seq.length; i++) {
-      if (seq[i] !== seq[i - 1] && !(seq[i - 1].compareDocumentPosition(seq[i]) & Node.DOCUMENT_POSITION_FOLLOWING)) back.push(`${seq[i - 1].id || seq[i - 1].className} -> ${seq[i].id || seq[i].className}`);
+      if (seq[i] !== seq[i - 1] && !(seq[i - 1].compareDocumentPosition(seq[i]) & Node.DOCUMENT_POSITION_FOLLOWING)) back.push(`${seq[i - 1].tagName}#${seq[i - 1].id || seq[i - 1].className} -> ${seq[i].tagName}#${seq[i].id || seq[i].className}`);
     }
-    return { count: seq.length, back };
+    return { count: seq.length, back, seq: seq.map((el) => `${el.tagName}#${el.id || el.className}`) };
   });
   console.log(`   ${order.count} tab stops, backwards: ${JSON.stringify(order.back)}`);
+  if (order.back.length) console.log(`   tab stops: ${order.seq.join(" ")}`);
   assert.deepEqual(order.back, [], "the tab order jumps back in the page");
 
   step("a study: the form's scene at 2 and 5 N; its members' results against the load; two members compared");
