@@ -25,6 +25,7 @@ use super::partial::{self, PartialError};
 use super::registry::{Deletion, SubmitError};
 use super::servable::servable;
 use super::store::is_disk_full;
+use super::surfaces::surface_id;
 use super::{calibration_routes, study_routes, surface_routes};
 use crate::json::{self, JsonError};
 use crate::scene::{FieldError, SceneErrors, presets};
@@ -395,7 +396,8 @@ async fn submit(State(app): State<AppState>, request: Request) -> Result<Respons
     let scene = parse_scene(&document).map_err(ApiError::invalid_scene)?;
     let jobs = Arc::clone(&app.jobs);
     let record = tokio::task::spawn_blocking(move || {
-        let _hold = jobs.surfaces.hold();
+        // Only a scene naming a stored surface waits for (and holds off) its deletion.
+        let _hold = surface_id(&scene).map(|_| jobs.surfaces.hold());
         servable(&scene, &jobs.surfaces).map_err(ApiError::invalid_scene)?;
         Ok::<_, ApiError>(jobs.submit(scene))
     })
