@@ -519,10 +519,10 @@ async fn bad_input_gets_a_4xx_json_error_never_a_5xx() {
             &["ball.radius_mm", "test"],
         ),
         (json!([1, 2, 3]), &[""]),
-        // Valid for `tribosim run --surface`, but the service has no height map to give it.
+        // Valid for `tribosim run --surface`, but no surface of this id was uploaded.
         (
             json!({"disc": {"surface": {"kind": "measured", "id": "disc.gsf"}}}),
-            &["disc.surface.kind"],
+            &["disc.surface.id"],
         ),
     ];
     for (scene, paths) in invalid {

@@ -96,6 +96,25 @@ impl ApiError {
         )
     }
 
+    /// 415: a height map that is declared neither binary nor text.
+    pub fn unsupported_map_type() -> Self {
+        Self::new(
+            StatusCode::UNSUPPORTED_MEDIA_TYPE,
+            "a height map must be sent with `Content-Type: application/octet-stream` or \
+             `text/plain`",
+        )
+    }
+
+    /// 413: the request's body, or what it describes, is beyond a limit the message names.
+    pub fn too_large(message: impl Into<String>) -> Self {
+        Self::new(StatusCode::PAYLOAD_TOO_LARGE, message)
+    }
+
+    /// The answer's status.
+    pub fn status(&self) -> StatusCode {
+        self.status
+    }
+
     /// 414: the request's target is longer than `limit_bytes`.
     pub fn uri_too_long(limit_bytes: usize) -> Self {
         Self::new(

@@ -112,6 +112,12 @@ pub(super) fn is_json(headers: &HeaderMap) -> bool {
         .is_some_and(|essence| essence == "application/json" || essence.ends_with("+json"))
 }
 
+/// A height map's body: `application/octet-stream` or `text/plain`.
+pub(super) fn is_map_body(headers: &HeaderMap) -> bool {
+    essence(headers)
+        .is_some_and(|essence| essence == "application/octet-stream" || essence == "text/plain")
+}
+
 /// A measurement table's format: JSON as [`is_json`] has it, or `text/csv`.
 pub(super) fn table_format(headers: &HeaderMap) -> Option<Format> {
     if is_json(headers) {

@@ -33,6 +33,8 @@ mod store;
 mod studies;
 mod study_record;
 mod study_routes;
+mod surface_routes;
+mod surfaces;
 mod worker;
 
 use std::future::Future;
@@ -60,6 +62,7 @@ use calibrations::Calibrations;
 use registry::Jobs;
 use store::Store;
 use studies::Studies;
+use surfaces::Surfaces;
 
 /// Largest request body accepted: a scene is a few kilobytes, a measured table some tens
 /// (a profilometer trace of a few thousand points).
@@ -280,7 +283,8 @@ pub async fn serve_on(
     let (jobs, studies) = tokio::task::spawn_blocking(move || {
         let store = Store::open(&data_dir)?;
         let quarantine = store.quarantine_dir().to_owned();
-        let jobs = Jobs::open(store, capacity)?;
+        let surfaces = Arc::new(Surfaces::open(&data_dir, &quarantine)?);
+        let jobs = Jobs::open(store, capacity, surfaces)?;
         let studies = Studies::open(&data_dir, &quarantine, max_members, workers)?;
         Ok::<_, io::Error>((jobs, Arc::new(studies)))
     })

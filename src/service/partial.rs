@@ -10,8 +10,10 @@ use thiserror::Error;
 use super::job::Job;
 use super::registry::Jobs;
 use super::store::Damage;
+use super::surfaces::{SurfaceLoadError, surface_id};
 use crate::scene::Scene;
 use crate::simulation::{CycleRecord, Setup, SimulationError, SimulationResult};
+use crate::surface::HeightMap;
 
 /// Why a stopped job's partial result cannot be given.
 #[derive(Debug, Error)]
@@ -25,6 +27,9 @@ pub enum PartialError {
     /// The scene cannot be set up, so the run stopped before its first cycle.
     #[error("{0}")]
     Setup(#[from] SimulationError),
+    /// The height map the scene names is gone or damaged.
+    #[error("{0}")]
+    Surface(#[from] SurfaceLoadError),
     /// The result cannot be written as JSON.
     #[error("the result cannot be written: {0}")]
     Json(#[from] serde_json::Error),
@@ -45,7 +50,10 @@ impl Jobs {
             (Some(started), Some(finished)) => (finished - started).as_seconds_f64().max(0.0),
             _ => 0.0,
         };
-        let result = partial(&scene, cycles(&log), wall_s)?;
+        let map = surface_id(&scene)
+            .map(|id| self.surfaces.load(id))
+            .transpose()?;
+        let result = partial(&scene, map.as_ref(), cycles(&log), wall_s)?;
         Ok(serde_json::to_vec(&result)?)
     }
 }
@@ -72,10 +80,11 @@ fn cycles(log: &[u8]) -> Vec<CycleRecord> {
 /// The result of a run of `scene` stopped after `cycles`, which took `wall_s`.
 fn partial(
     scene: &Scene,
+    map: Option<&HeightMap>,
     cycles: Vec<CycleRecord>,
     wall_s: f64,
 ) -> Result<SimulationResult, SimulationError> {
-    let setup = Setup::new(scene)?;
+    let setup = Setup::with_surface(scene, map)?;
     let summary = setup.summary(&cycles, wall_s);
     Ok(SimulationResult {
         complete: false,
@@ -107,7 +116,7 @@ mod tests {
             )
         };
         let log = format!("{}\n{}\n{{\"cycle\": 9, \"ti", line(1, 1e-4), line(4, 3e-4));
-        let result = partial(&scene, cycles(log.as_bytes()), 2.5).expect("partial");
+        let result = partial(&scene, None, cycles(log.as_bytes()), 2.5).expect("partial");
         assert!(!result.complete);
         assert_eq!(result.cycles.len(), 2);
         assert_eq!(result.summary.cycles, 4);
@@ -116,7 +125,7 @@ mod tests {
         assert_eq!(result.summary.potential_v, Some(-0.3));
         assert_eq!((result.summary.solves, result.summary.iterations), (2, 14));
         assert!(result.profiles.is_empty() && result.pressure_maps.is_empty());
-        let empty = partial(&scene, cycles(b""), 0.0).expect("partial");
+        let empty = partial(&scene, None, cycles(b""), 0.0).expect("partial");
         assert_eq!(empty.summary.cycles, 0);
         let whole = serde_json::to_vec(&result).expect("serialises");
         assert_eq!(marked_complete(whole.clone()), whole, "the flag is first");

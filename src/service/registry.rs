@@ -17,6 +17,7 @@ use super::job::{Job, JobRecord, JobStatus};
 use super::measurements::{Columns, MeasurementKind, Measurements};
 use super::queue::Queue;
 use super::store::{Damage, Store, StoredJob, is_disk_full};
+use super::surfaces::{Surfaces, surface_id};
 use crate::scene::Scene;
 
 /// Why a job was not accepted.
@@ -63,6 +64,8 @@ pub struct Jobs {
     pub(super) store: Store,
     jobs: Mutex<HashMap<Uuid, Arc<Job>>>,
     pub(super) queue: Queue,
+    /// The height maps that scenes with a measured surface name.
+    pub(super) surfaces: Arc<Surfaces>,
 }
 
 impl Jobs {
@@ -71,7 +74,7 @@ impl Jobs {
     /// the order they were accepted). A succeeded job whose result is damaged runs again; a
     /// job whose scene is damaged is listed as `damaged`. One job's damage never stops the
     /// others from loading.
-    pub fn open(store: Store, capacity: usize) -> io::Result<Arc<Self>> {
+    pub fn open(store: Store, capacity: usize, surfaces: Arc<Surfaces>) -> io::Result<Arc<Self>> {
         let mut stored = store.load()?;
         stored.sort_by_key(|job| {
             job.record
@@ -84,6 +87,7 @@ impl Jobs {
             store,
             jobs: Mutex::new(HashMap::new()),
             queue: Queue::new(capacity),
+            surfaces,
         });
         for job in stored {
             jobs.restore(job);
@@ -171,6 +175,27 @@ impl Jobs {
 
     pub(super) fn lock_jobs(&self) -> MutexGuard<'_, HashMap<Uuid, Arc<Job>>> {
         self.jobs.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// The queued and running jobs whose scene names surface `id`.
+    pub fn using_surface(&self, id: Uuid) -> Vec<Uuid> {
+        let jobs: Vec<Arc<Job>> = self.lock_jobs().values().cloned().collect();
+        let mut users: Vec<Uuid> = jobs
+            .iter()
+            .filter(|job| {
+                let state = job.state();
+                !state.record.status.is_final()
+                    && state
+                        .scene
+                        .as_deref()
+                        .and_then(surface_id)
+                        .and_then(|named| Uuid::try_parse(named).ok())
+                        == Some(id)
+            })
+            .map(|job| job.id)
+            .collect();
+        users.sort();
+        users
     }
 
     /// The job with this id.

@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use axum::Json;
-use axum::extract::{Request, State};
+use axum::extract::{DefaultBodyLimit, Request, State};
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::middleware::Next;
 use axum::response::sse::{KeepAlive, Sse};
@@ -25,7 +25,8 @@ use super::partial::{self, PartialError};
 use super::registry::{Deletion, SubmitError};
 use super::servable::servable;
 use super::store::is_disk_full;
-use super::{calibration_routes, study_routes};
+use super::surfaces::surface_id;
+use super::{calibration_routes, study_routes, surface_routes};
 use crate::json::{self, JsonError};
 use crate::scene::{FieldError, SceneErrors, presets};
 use crate::simulation::parse_scene;
@@ -235,6 +236,34 @@ pub const ROUTES: &[Route] = &[
         auth: true,
         handler: |f| on(f, calibration_routes::get_calibration),
     },
+    Route {
+        verb: Verb::Post,
+        path: "/api/v1/surfaces",
+        auth: true,
+        handler: |f| {
+            on(f, surface_routes::upload_surface).layer(DefaultBodyLimit::max(
+                surface_routes::MAX_SURFACE_BODY_BYTES,
+            ))
+        },
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/surfaces",
+        auth: true,
+        handler: |f| on(f, surface_routes::list_surfaces),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/api/v1/surfaces/{id}",
+        auth: true,
+        handler: |f| on(f, surface_routes::get_surface),
+    },
+    Route {
+        verb: Verb::Delete,
+        path: "/api/v1/surfaces/{id}",
+        auth: true,
+        handler: |f| on(f, surface_routes::delete_surface),
+    },
 ];
 
 /// 414 with the JSON body for a request target over [`MAX_URI_BYTES`].
@@ -365,20 +394,24 @@ async fn submit(State(app): State<AppState>, request: Request) -> Result<Respons
         }
     })?;
     let scene = parse_scene(&document).map_err(ApiError::invalid_scene)?;
-    servable(&scene).map_err(ApiError::invalid_scene)?;
     let jobs = Arc::clone(&app.jobs);
-    let record = tokio::task::spawn_blocking(move || jobs.submit(scene))
-        .await
-        .map_err(|e| ApiError::internal("submitting a job", &e))?
-        .map_err(|e| match e {
-            SubmitError::QueueFull {
-                capacity,
-                retry_after_s,
-                ..
-            } => ApiError::queue_full(capacity, retry_after_s),
-            SubmitError::DiskFull => ApiError::disk_full("the job was not accepted"),
-            SubmitError::Storage(e) => ApiError::internal("storing the job", &e),
-        })?;
+    let record = tokio::task::spawn_blocking(move || {
+        // Only a scene naming a stored surface waits for (and holds off) its deletion.
+        let _hold = surface_id(&scene).map(|_| jobs.surfaces.hold());
+        servable(&scene, &jobs.surfaces).map_err(ApiError::invalid_scene)?;
+        Ok::<_, ApiError>(jobs.submit(scene))
+    })
+    .await
+    .map_err(|e| ApiError::internal("submitting a job", &e))??
+    .map_err(|e| match e {
+        SubmitError::QueueFull {
+            capacity,
+            retry_after_s,
+            ..
+        } => ApiError::queue_full(capacity, retry_after_s),
+        SubmitError::DiskFull => ApiError::disk_full("the job was not accepted"),
+        SubmitError::Storage(e) => ApiError::internal("storing the job", &e),
+    })?;
     let location = format!("/api/v1/jobs/{}", record.id);
     Ok((
         StatusCode::ACCEPTED,
@@ -495,6 +528,9 @@ async fn partial_bytes(
         .map_err(|e| match e {
             PartialError::Scene(ref damage) if !damage.is_read_failure() => {
                 ApiError::conflict(e.to_string())
+            }
+            PartialError::Surface(ref e) => {
+                ApiError::conflict(format!("the surface this job ran on cannot be read: {e}"))
             }
             PartialError::Setup(_) => ApiError::conflict(format!(
                 "job failed before its first cycle: {}",

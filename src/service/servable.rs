@@ -1,18 +1,27 @@
 //! What the service refuses that the core accepts: a scene it could accept but never run.
 
-use crate::scene::{FieldError, Scene, SceneErrors, SurfaceKind};
+use uuid::Uuid;
 
-/// Refuses a scene whose disc is a measured height map: the map reaches the core only
-/// through `tribosim run --surface FILE`, and the service has no upload of maps, so such a
-/// job could only fail on its worker after being accepted.
-pub(super) fn servable(scene: &Scene) -> Result<(), SceneErrors> {
-    match scene.disc.surface.as_ref().map(|surface| surface.kind) {
-        Some(SurfaceKind::Measured) => Err(SceneErrors(vec![FieldError::new(
-            "disc.surface.kind",
-            "a measured surface cannot be run by the service (it has no upload of height \
-             maps); run the scene with `tribosim run SCENE --surface FILE`, or give a \
-             synthetic surface",
-        )])),
-        Some(SurfaceKind::Synthetic) | None => Ok(()),
+use super::surfaces::{Surfaces, surface_id};
+use crate::scene::{FieldError, Scene, SceneErrors};
+
+/// Refuses a scene whose measured surface names no stored surface (422 at
+/// `disc.surface.id`): the map reaches a worker only from the surfaces uploaded with
+/// `POST /api/v1/surfaces`, so such a job could only fail on its worker after being
+/// accepted. Call it holding [`Surfaces::hold`] until the job is queued.
+pub(super) fn servable(scene: &Scene, surfaces: &Surfaces) -> Result<(), SceneErrors> {
+    let Some(id) = surface_id(scene) else {
+        return Ok(());
+    };
+    if Uuid::try_parse(id).is_ok_and(|uuid| surfaces.get(uuid).is_some()) {
+        return Ok(());
     }
+    Err(SceneErrors(vec![FieldError::new(
+        "disc.surface.id",
+        format!(
+            "no stored surface {:?}: upload the height map with POST /api/v1/surfaces and \
+             give the id it answers",
+            super::extract::cut(id)
+        ),
+    )]))
 }

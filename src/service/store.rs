@@ -95,7 +95,7 @@ impl Damage {
         matches!(self, Self::Unreadable { .. })
     }
 
-    fn reading(file: &'static str, source: io::Error) -> Self {
+    pub(super) fn reading(file: &'static str, source: io::Error) -> Self {
         if source.kind() == io::ErrorKind::NotFound {
             Self::Missing(file)
         } else {
@@ -113,14 +113,14 @@ pub struct Digest {
 }
 
 impl Digest {
-    fn of(bytes: &[u8]) -> Self {
+    pub(super) fn of(bytes: &[u8]) -> Self {
         Self {
             bytes: bytes.len() as u64,
             crc32: crc32fast::hash(bytes),
         }
     }
 
-    fn check(self, file: &'static str, bytes: &[u8]) -> Result<(), Damage> {
+    pub(super) fn check(self, file: &'static str, bytes: &[u8]) -> Result<(), Damage> {
         let found = Self::of(bytes);
         if found.bytes != self.bytes {
             return Err(Damage::Length {

@@ -24,6 +24,7 @@ use super::registry::{Deletion, Jobs, SubmitError};
 use super::servable::servable;
 use super::store::{quarantine, sweep_temporaries, sync_dir, to_json, write_atomic};
 use super::study_record::{AxisRecord, StudyRecord, record_of};
+use super::surfaces::surface_id;
 use crate::simulation::Summary;
 use crate::study::{MemberRow, Pending, Study, StudyError, StudySummary, describe_values};
 
@@ -187,8 +188,11 @@ impl Studies {
         let members = study
             .members(self.max_members)
             .map_err(StudySubmitError::Invalid)?;
+        // Held until the members are queued, so no surface they name is deleted meanwhile.
+        let names_surface = members.iter().any(|m| surface_id(&m.scene).is_some());
+        let _hold = names_surface.then(|| jobs.surfaces.hold());
         for member in &members {
-            servable(&member.scene).map_err(|source| {
+            servable(&member.scene, &jobs.surfaces).map_err(|source| {
                 StudySubmitError::Invalid(StudyError::Member {
                     index: member.index,
                     values: describe_values(&member.values),

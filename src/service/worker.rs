@@ -17,6 +17,7 @@ use time::OffsetDateTime;
 use super::job::{Job, JobStatus};
 use super::registry::Jobs;
 use super::store::CyclesWriter;
+use super::surfaces::surface_id;
 use crate::scene::Scene;
 use crate::simulation::{self, CycleRecord, SimulationError};
 
@@ -103,8 +104,13 @@ impl Jobs {
     /// job succeeded, `Ok(false)` when it was cancelled, `Err` with the reason when it failed.
     fn simulate(&self, job: &Job, scene: &Scene, mut writer: CyclesWriter) -> Result<bool, String> {
         let mut storage_error: Option<String> = None;
-        let outcome = simulation::run(
+        let map = match surface_id(scene) {
+            Some(id) => Some(self.surfaces.load(id).map_err(|e| e.to_string())?),
+            None => None,
+        };
+        let outcome = simulation::run_with_surface(
             scene,
+            map.as_ref(),
             &mut |record: &CycleRecord| {
                 let line = match serde_json::to_string(record) {
                     Ok(line) => line,

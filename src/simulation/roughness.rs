@@ -22,7 +22,7 @@ use std::f64::consts::TAU;
 
 use crate::contact::Grid;
 use crate::scene::{SurfaceKind, SurfaceSpec};
-use crate::surface::{HeightMap, Roughness, SelfAffine, Statistics};
+use crate::surface::{HeightMap, Roughness, SelfAffine, Statistics, measured_fit_range};
 
 use super::{Model, ModelChoice, SimulationError};
 
@@ -75,14 +75,13 @@ pub fn build(
 }
 
 /// The `(long, short)` wavelengths a map's spectrum is fitted over: a synthetic surface's
-/// own cut-offs within the map, or for a measured map half its side down to four pixels,
-/// where the Hann window and the pixel's own smoothing bend the spectrum least.
+/// own cut-offs within the map, or a measured map's [`measured_fit_range`].
 fn fit_range(map: &HeightMap, cutoffs: Option<(f64, f64)>) -> (f64, f64) {
     let side = map.width_m().min(map.height_side_m());
     let pixel = map.dx_m.max(map.dy_m);
     match cutoffs {
         Some((long, short)) => (long.min(side), short.max(2.0 * pixel)),
-        None => (side / 2.0, 4.0 * pixel),
+        None => measured_fit_range(map),
     }
 }
 

@@ -18,6 +18,8 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use serde::{Deserialize, Serialize};
+
 use super::{HeightMap, MAX_MAP_SIDE, SurfaceError};
 
 const GSF_MAGIC: &[u8] = b"Gwyddion Simple Field 1.0\n";
@@ -30,8 +32,9 @@ const MAX_FILE_BYTES: u64 = 256 << 20;
 /// digits (Gwyddion's default) err by up to 5e-7 of their value.
 const SPACING_TOLERANCE: f64 = 1e-5;
 
-/// The format a map was read from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// The format a map was read from, named in JSON as `gsf`, `matrix`, `xyz`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Format {
     /// Gwyddion Simple Field.
     Gsf,
@@ -71,6 +74,38 @@ pub fn read(bytes: &[u8], pixel_m: Option<f64>) -> Result<(HeightMap, Format), S
     match pixel_m {
         Some(pixel) => read_matrix(text, pixel).map(|m| (m, Format::Matrix)),
         None => read_xyz(text).map(|m| (m, Format::Xyz)),
+    }
+}
+
+/// A map from the bytes of a file said to be in `format` (the caller knows it, so the
+/// content does not have to tell): a matrix needs `pixel_m`, the others ignore it.
+pub fn read_as(
+    bytes: &[u8],
+    format: Format,
+    pixel_m: Option<f64>,
+) -> Result<HeightMap, SurfaceError> {
+    if format == Format::Gsf {
+        let rest = bytes
+            .strip_prefix(GSF_MAGIC)
+            .ok_or_else(|| SurfaceError::Malformed {
+                line: 1,
+                message: "a .gsf file starts with the line `Gwyddion Simple Field 1.0`".to_owned(),
+            })?;
+        return read_gsf(rest);
+    }
+    let text = std::str::from_utf8(bytes).map_err(|e| SurfaceError::Malformed {
+        line: 1 + bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count(),
+        message: "not UTF-8 text".to_owned(),
+    })?;
+    match (format, pixel_m) {
+        (Format::Matrix, Some(pixel)) => read_matrix(text, pixel),
+        (Format::Matrix, None) => Err(SurfaceError::Invalid(
+            "a plain-text matrix needs its pixel size".to_owned(),
+        )),
+        _ => read_xyz(text),
     }
 }
 
@@ -345,6 +380,35 @@ mod tests {
         assert_eq!(format, Format::Xyz);
         assert_eq!(points.heights_m, map.heights_m);
         assert!((points.dy_m / 2e-7 - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_format_given_is_held_to() {
+        let map = sample();
+        let gsf = gsf_bytes(&map);
+        assert_eq!(
+            read_as(&gsf, Format::Gsf, None),
+            read(&gsf, None).map(|r| r.0)
+        );
+        assert!(matches!(
+            read_as(b"0 0\n0 0\n", Format::Gsf, None),
+            Err(SurfaceError::Malformed { line: 1, .. })
+        ));
+        assert!(matches!(
+            read_as(b"0 0\n0 0\n", Format::Matrix, None),
+            Err(SurfaceError::Invalid(_))
+        ));
+        // Three columns read as a matrix when it is said to be one.
+        let matrix = read_as(
+            b"1e-7 2e-7 3e-7\n4e-7 5e-7 6e-7\n",
+            Format::Matrix,
+            Some(1e-6),
+        );
+        assert_eq!(matrix.map(|m| (m.nx, m.ny)), Ok((3, 2)));
+        assert!(matches!(
+            read_as(b"0 0\n\xff\n", Format::Xyz, None),
+            Err(SurfaceError::Malformed { line: 2, .. })
+        ));
     }
 
     #[test]

@@ -46,6 +46,20 @@ impl Statistics {
             fit_wavelengths_um: [long_m * 1e6, short_m * 1e6],
         }
     }
+
+    /// The statistics of a measured map, fitted over [`measured_fit_range`].
+    pub fn of_measured(map: &HeightMap) -> Self {
+        let (long, short) = measured_fit_range(map);
+        Self::of(map, long, short)
+    }
+}
+
+/// The `(long, short)` wavelengths, m, a measured map's spectrum is fitted over: half its
+/// shorter side down to four pixels, where the Hann window and the pixel's own smoothing
+/// bend the spectrum least.
+pub fn measured_fit_range(map: &HeightMap) -> (f64, f64) {
+    let side = map.width_m().min(map.height_side_m());
+    (side / 2.0, 4.0 * map.dx_m.max(map.dy_m))
 }
 
 /// Root mean square height about the mean, m.

@@ -394,11 +394,12 @@ try {
     const seq = window.tabbed.filter((el) => el.isConnected);
     const back = [];
     for (let i = 1; i < seq.length; i++) {
-      if (seq[i] !== seq[i - 1] && !(seq[i - 1].compareDocumentPosition(seq[i]) & Node.DOCUMENT_POSITION_FOLLOWING)) back.push(`${seq[i - 1].id || seq[i - 1].className} -> ${seq[i].id || seq[i].className}`);
+      if (seq[i] !== seq[i - 1] && !(seq[i - 1].compareDocumentPosition(seq[i]) & Node.DOCUMENT_POSITION_FOLLOWING)) back.push(`${seq[i - 1].tagName}#${seq[i - 1].id || seq[i - 1].className} -> ${seq[i].tagName}#${seq[i].id || seq[i].className}`);
     }
-    return { count: seq.length, back };
+    return { count: seq.length, back, seq: seq.map((el) => `${el.tagName}#${el.id || el.className}`) };
   });
   console.log(`   ${order.count} tab stops, backwards: ${JSON.stringify(order.back)}`);
+  if (order.back.length) console.log(`   tab stops: ${order.seq.join(" ")}`);
   assert.deepEqual(order.back, [], "the tab order jumps back in the page");
 
   step("a study: the form's scene at 2 and 5 N; its members' results against the load; two members compared");
@@ -552,6 +553,57 @@ try {
   console.log(`   ${JSON.stringify(phoneAgain)}`);
   assert.deepEqual(phoneAgain.open, ["study-panel", "calib-panel"]);
   assert.ok(phoneAgain.scrollWidth <= phoneAgain.clientWidth, `the page scrolls sideways: ${phoneAgain.scrollWidth} > ${phoneAgain.clientWidth}`);
+
+  step("a rough run on an uploaded height map: its contact cells drawn one cell per pixel, to scale");
+  await page.setViewportSize({ width: 1440, height: 1000 });
+  await page.goto(base);
+  await page.waitForSelector("body[data-ready=true]");
+  // A 64 x 64 text matrix of heights in m, 1 µm pixels: ripples of about 0.1 µm.
+  const side = 64;
+  const rows = Array.from({ length: side }, (_, j) => Array.from({ length: side },
+    (_, i) => (1e-7 * (Math.sin(0.9 * i) + Math.cos(0.7 * j + 0.3 * i))).toExponential(6)).join(" "));
+  await page.fill("#surface-pixel", "1");
+  await page.setInputFiles("#surface-file", { name: "ripples.txt", mimeType: "text/plain", buffer: Buffer.from(rows.join("\n") + "\n") });
+  await page.locator("#surface-status", { hasText: "64 × 64 pixels" }).waitFor();
+  console.log(`   ${await page.textContent("#surface-status")}`);
+  await page.fill("#f-numerics-grid", "128");
+  await page.fill("#f-test-cycles", "3");
+  const surfaceInScene = JSON.parse(await page.inputValue("#scene-json")).overrides.disc.surface;
+  assert.equal(surfaceInScene.kind, "measured");
+  await page.click("#submit");
+  await page.waitForFunction(() => document.getElementById("run-status").textContent.startsWith("succeeded"), null, { timeout: 600_000 });
+  await page.waitForFunction(() => Number(document.getElementById("plot-pressure").dataset.points) > 0);
+  const roughMaps = await page.evaluate(async () => Promise.all([...document.querySelectorAll("#plot-pressure svg g[data-cycle]")].map(async (g) => {
+    const map = state.result.pressure_maps.find((m) => m.cycle === Number(g.dataset.cycle));
+    const frame = g.querySelector("rect.frame"), image = g.querySelector("image.contact");
+    const picture = new Image();
+    picture.src = image.getAttribute("href");
+    await picture.decode();
+    const canvas = document.createElement("canvas");
+    canvas.width = picture.naturalWidth; canvas.height = picture.naturalHeight;
+    const ctx = canvas.getContext("2d");
+    ctx.drawImage(picture, 0, 0);
+    const alpha = ctx.getImageData(0, 0, canvas.width, canvas.height).data.filter((_, k) => k % 4 === 3);
+    const span = (c) => c[c.length - 1] - c[0] + (c[1] - c[0]);
+    return {
+      cycle: map.cycle, cellUm: map.x_um[1] - map.x_um[0], umPerPx: Number(g.dataset.umPerPx),
+      spanX: span(map.x_um), spanY: span(map.y_um), width: Number(frame.getAttribute("width")), height: Number(frame.getAttribute("height")),
+      imageWidth: Number(image.getAttribute("width")), cells: [map.x_um.length, map.y_um.length], pixels: [picture.naturalWidth, picture.naturalHeight],
+      contact: map.pressure_mpa.flat().filter((p) => p > 0).length, drawn: alpha.filter((a) => a > 0).length,
+      surface: Boolean(state.result.surface),
+    };
+  })));
+  console.log(`   rough maps: ${JSON.stringify(roughMaps)}`);
+  assert.ok(roughMaps.length >= 1 && roughMaps.every((m) => m.surface));
+  for (const m of roughMaps) {
+    // One cell per pixel, to the float error of x_um's differences; frames and images at
+    // that one scale to the 0.005 px of their two written decimals.
+    assert.ok(Math.abs(m.umPerPx / m.cellUm - 1) < 1e-9, `map ${m.cycle}: ${m.umPerPx} µm per px, cells of ${m.cellUm} µm`);
+    assert.ok(Math.abs(m.spanX / m.umPerPx - m.width) <= 0.0051 && Math.abs(m.spanY / m.umPerPx - m.height) <= 0.0051, `map ${m.cycle}: not to scale`);
+    assert.equal(m.imageWidth, m.width);
+    assert.deepEqual(m.pixels, m.cells, `map ${m.cycle}: the image is not one pixel per cell`);
+    assert.ok(m.contact > 0 && m.drawn === m.contact, `map ${m.cycle}: ${m.drawn} pixels drawn for ${m.contact} contact cells`);
+  }
 
   assert.deepEqual(errors, [], "errors in the page");
   console.log("e2e: all checks passed");

@@ -22,7 +22,8 @@ pub(in crate::scene) const SURFACE_KIND: Field = Field {
     why: "",
     meaning: "`synthetic`: a self-affine surface by Fourier filtering (Jacobs et al., Surf. \
               Topogr. 2017), from the fields below; `measured`: a height map supplied with \
-              the scene (`tribosim run --surface FILE`), named by `id`.",
+              the scene (`tribosim run --surface FILE`, or uploaded to the service), named \
+              by `id`.",
     feeds: "",
 };
 
@@ -100,7 +101,8 @@ pub(in crate::scene) const SURFACE_ID: Field = Field {
     range: Range::Text,
     why: "",
     meaning: "Measured: the map's name; `tribosim run --surface FILE` sets it to the file's \
-              name and supplies the map.",
+              name and supplies the map; on the service, the id `POST /api/v1/surfaces` \
+              answered.",
     feeds: "",
 };
 

@@ -1,0 +1,351 @@
+//! Height maps uploaded to the real `tribosim serve` binary: each of the three formats
+//! read, listed, read back and deleted; refusals naming the problem (422) or the limit
+//! (413); a scene naming a stored surface runs and its result carries the map's statistics;
+//! an unknown id is refused at `disc.surface.id`; a surface in use cannot be deleted; stored
+//! surfaces survive a kill -9, and a damaged one is quarantined rather than served.
+
+mod common;
+
+use serde_json::{Value, json};
+
+use common::process::ServerProcess;
+use common::{TempDir, get_json, is_final, long_scene, small_scene, submit, wait_for_job};
+
+/// Pixels of the test map.
+const NX: usize = 32;
+const NY: usize = 24;
+/// Its pixel, m: 4 um, the cell of `small_scene`'s grid (64 cells over 256 um).
+const PIXEL_M: f64 = 4e-6;
+
+/// Heights in m: a few wavelengths of about 0.1 um.
+fn heights() -> Vec<f64> {
+    (0..NX * NY)
+        .map(|i| {
+            let (x, y) = ((i % NX) as f64, (i / NX) as f64);
+            1e-7 * ((0.9 * x).sin() + (0.7 * y + 0.3 * x).cos())
+        })
+        .collect()
+}
+
+/// The map as Gwyddion writes a `.gsf`: magic line, header, NUL padding to a multiple of 4,
+/// f32 heights.
+fn gsf() -> Vec<u8> {
+    let mut bytes = b"Gwyddion Simple Field 1.0\n".to_vec();
+    let header = format!(
+        "XRes = {NX}\nYRes = {NY}\nXReal = {:e}\nYReal = {:e}\nXYUnits = m\nZUnits = m\n",
+        NX as f64 * PIXEL_M,
+        NY as f64 * PIXEL_M
+    );
+    bytes.extend_from_slice(header.as_bytes());
+    let padding = 4 - bytes.len() % 4;
+    bytes.extend(std::iter::repeat_n(0u8, padding));
+    for h in heights() {
+        bytes.extend_from_slice(&(h as f32).to_le_bytes());
+    }
+    bytes
+}
+
+fn matrix() -> String {
+    let rows: Vec<String> = heights()
+        .chunks(NX)
+        .map(|row| {
+            let cells: Vec<String> = row.iter().map(|h| format!("{h:e}")).collect();
+            cells.join("\t")
+        })
+        .collect();
+    format!("# heights in m\n{}\n", rows.join("\n"))
+}
+
+fn xyz() -> String {
+    heights()
+        .iter()
+        .enumerate()
+        .map(|(i, h)| {
+            let (x, y) = ((i % NX) as f64 * PIXEL_M, (i / NX) as f64 * PIXEL_M);
+            format!("{x:e} {y:e} {h:e}\n")
+        })
+        .collect()
+}
+
+/// POST a map; the status and the JSON body.
+async fn upload(
+    client: &reqwest::Client,
+    base: &str,
+    query: &str,
+    content_type: &str,
+    body: Vec<u8>,
+) -> (u16, Value) {
+    let response = client
+        .post(format!("{base}/api/v1/surfaces{query}"))
+        .header("content-type", content_type)
+        .body(body)
+        .send()
+        .await
+        .expect("POST surface");
+    let status = response.status().as_u16();
+    (status, response.json().await.expect("JSON body"))
+}
+
+fn rms_height(answer: &Value) -> f64 {
+    answer["statistics"]["rms_height_um"]
+        .as_f64()
+        .expect("rms height")
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn each_format_is_read_listed_and_deleted_and_bad_maps_are_named() {
+    let dir = TempDir::new("surfaces");
+    let client = reqwest::Client::new();
+    let server = ServerProcess::start(dir.path());
+    let base = server.base.clone();
+
+    let (status, from_gsf) = upload(&client, &base, "", "application/octet-stream", gsf()).await;
+    assert_eq!(status, 201, "{from_gsf}");
+    let query = "?pixel_um=4&name=matrix%20map";
+    let (status, from_matrix) = upload(&client, &base, query, "text/plain", matrix().into()).await;
+    assert_eq!(status, 201, "{from_matrix}");
+    let (status, from_xyz) = upload(&client, &base, "", "text/plain", xyz().into()).await;
+    assert_eq!(status, 201, "{from_xyz}");
+    for (answer, format) in [
+        (&from_gsf, "gsf"),
+        (&from_matrix, "matrix"),
+        (&from_xyz, "xyz"),
+    ] {
+        assert_eq!(answer["format"], format, "{answer}");
+        assert_eq!(
+            (answer["nx"].clone(), answer["ny"].clone()),
+            (json!(NX), json!(NY))
+        );
+        // The pixel as each format carries it: XReal / XRes, the query's, or the spacing
+        // of coordinates printed to 6 decimals ({:e}), so within 1e-6 of 4 um.
+        for key in ["pixel_x_um", "pixel_y_um"] {
+            let pixel = answer[key].as_f64().expect("pixel");
+            assert!((pixel / 4.0 - 1.0).abs() < 1e-6, "{key} {pixel}");
+        }
+        let stats = &answer["statistics"];
+        for key in ["rms_height_um", "rms_slope", "psd_slope"] {
+            assert!(stats[key].as_f64().is_some_and(f64::is_finite), "{stats}");
+        }
+    }
+    assert_eq!(from_matrix["name"], "matrix map");
+    // The same heights: the text formats exactly, the .gsf's f32 to 6e-8 of each height.
+    assert_eq!(
+        from_matrix["statistics"]["rms_height_um"],
+        from_xyz["statistics"]["rms_height_um"]
+    );
+    assert!((rms_height(&from_gsf) / rms_height(&from_matrix) - 1.0).abs() < 1e-7);
+
+    let listed = get_json(&client, &format!("{base}/api/v1/surfaces")).await;
+    assert_eq!(listed, json!([from_gsf, from_matrix, from_xyz]));
+    let id = from_xyz["id"].as_str().expect("id");
+    let url = format!("{base}/api/v1/surfaces/{id}");
+    assert_eq!(get_json(&client, &url).await, from_xyz);
+    let deleted = client.delete(&url).send().await.expect("DELETE");
+    assert_eq!(deleted.status(), 204);
+    assert!(!dir.path().join("surfaces").join(id).exists());
+    for response in [
+        client.get(&url).send().await.expect("GET"),
+        client.delete(&url).send().await.expect("DELETE"),
+    ] {
+        assert_eq!(response.status(), 404);
+    }
+    let malformed = client
+        .get(format!("{base}/api/v1/surfaces/not-a-uuid"))
+        .send()
+        .await
+        .expect("GET");
+    assert_eq!(malformed.status(), 400);
+
+    // Refusals name the problem and where it is; nothing refused is stored.
+    let flat = format!("{}\n", vec![vec!["0"; 16].join(" "); 16].join("\n"));
+    let refusals: [(&str, &str, Vec<u8>, &str, &str); 6] = [
+        (
+            "?pixel_um=1",
+            "text/plain",
+            flat.into(),
+            "body",
+            "psd_slope is NaN",
+        ),
+        (
+            "?pixel_um=1",
+            "text/plain",
+            b"1e-7 2e-7\n3e-7 NaN\n".to_vec(),
+            "body",
+            "column 1, row 1",
+        ),
+        (
+            "?pixel_um=1",
+            "text/plain",
+            b"0 0 0\n0 0\n".to_vec(),
+            "body",
+            "line 2",
+        ),
+        (
+            "?format=matrix",
+            "text/plain",
+            b"0 0\n0 0\n".to_vec(),
+            "pixel_um",
+            "pixel size",
+        ),
+        (
+            "?pixel_um=-1",
+            "text/plain",
+            b"0 0\n0 0\n".to_vec(),
+            "pixel_um",
+            "\"-1\"",
+        ),
+        (
+            "",
+            "application/octet-stream",
+            b"\x89PNG\r\n\x1a\n".to_vec(),
+            "body",
+            ".gsf",
+        ),
+    ];
+    for (query, content_type, body, path, words) in refusals {
+        let (status, answer) = upload(&client, &base, query, content_type, body).await;
+        assert_eq!(status, 422, "{answer}");
+        assert_eq!(answer["fields"][0]["path"], path, "{answer}");
+        let message = answer["error"].as_str().expect("message");
+        assert!(message.contains(words), "{message}");
+    }
+    let (status, _) = upload(&client, &base, "", "application/json", xyz().into()).await;
+    assert_eq!(status, 415);
+
+    // Too big: more pixels per side than the reader takes, or more bytes than the body limit.
+    let wide = format!("{}\n{0}\n", vec!["0"; 4097].join(" "));
+    let (status, answer) = upload(&client, &base, "?pixel_um=1", "text/plain", wide.into()).await;
+    assert_eq!(status, 413, "{answer}");
+    assert!(answer["error"].as_str().expect("message").contains("4096"));
+    let huge = vec![b'0'; (64 << 20) + 1];
+    let (status, answer) = upload(&client, &base, "?pixel_um=1", "text/plain", huge).await;
+    assert_eq!(status, 413, "{answer}");
+    let message = answer["error"].as_str().expect("message");
+    assert!(message.contains(&(64u64 << 20).to_string()), "{message}");
+    let listed = get_json(&client, &format!("{base}/api/v1/surfaces")).await;
+    assert_eq!(listed, json!([from_gsf, from_matrix]));
+}
+
+/// `small_scene` on the surface `id`, without the plastic cap (docs/scene.md's rough example).
+fn measured_scene(id: &str, cycles: u64) -> Value {
+    let mut scene = small_scene(cycles);
+    scene["overrides"]["disc"] = json!({"surface": {"kind": "measured", "id": id}});
+    scene["overrides"]["wear"] = json!({"plasticity": "off"});
+    scene
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_measured_scene_runs_on_its_stored_surface_which_survives_a_restart() {
+    let dir = TempDir::new("surface-runs");
+    let client = reqwest::Client::new();
+    let mut server = ServerProcess::start(dir.path());
+    let base = server.base.clone();
+    let (status, surface) = upload(&client, &base, "", "text/plain", xyz().into()).await;
+    assert_eq!(status, 201, "{surface}");
+    let id = surface["id"].as_str().expect("id").to_owned();
+    let (status, spare) =
+        upload(&client, &base, "?pixel_um=4", "text/plain", matrix().into()).await;
+    assert_eq!(status, 201, "{spare}");
+
+    // An unknown id is refused at the field that names it, for a job and a study alike.
+    let unknown = measured_scene("6b0a2f64-1d7e-4c3a-9f1e-2b8d5c4a7e90", 3);
+    let response = client
+        .post(format!("{base}/api/v1/jobs"))
+        .json(&unknown)
+        .send()
+        .await
+        .expect("POST job");
+    assert_eq!(response.status(), 422);
+    let answer: Value = response.json().await.expect("JSON");
+    assert_eq!(answer["fields"][0]["path"], "disc.surface.id", "{answer}");
+
+    let study = |base: Value| json!({"base": base, "axes": {"test.load_n": [2, 5]}});
+    let response = client
+        .post(format!("{base}/api/v1/studies"))
+        .json(&study(unknown.clone()))
+        .send()
+        .await
+        .expect("POST study");
+    assert_eq!(response.status(), 422);
+    let answer: Value = response.json().await.expect("JSON");
+    assert_eq!(
+        answer["fields"][0]["path"], "base.disc.surface.id",
+        "{answer}"
+    );
+    let response = client
+        .post(format!("{base}/api/v1/studies"))
+        .json(&study(measured_scene(&id, 2)))
+        .send()
+        .await
+        .expect("POST study");
+    assert_eq!(response.status(), 201);
+    let members: Value = response.json().await.expect("JSON");
+    for member in members["members"].as_array().expect("members") {
+        let member_id = member["job_id"].as_str().expect("job id");
+        let done = wait_for_job(&client, &base, member_id, is_final).await;
+        assert_eq!(done["status"], "succeeded", "{done}");
+    }
+
+    // The one worker is busy, so the measured job waits, and its surface cannot go.
+    let busy = submit(&client, &base, &long_scene(300_000)).await;
+    let busy_id = busy["id"].as_str().expect("id");
+    let job = submit(&client, &base, &measured_scene(&id, 3)).await;
+    let job_id = job["id"].as_str().expect("id").to_owned();
+    let surface_url = format!("{base}/api/v1/surfaces/{id}");
+    let refused = client.delete(&surface_url).send().await.expect("DELETE");
+    assert_eq!(refused.status(), 409);
+    let answer: Value = refused.json().await.expect("JSON");
+    assert!(answer["error"].as_str().expect("message").contains(&job_id));
+    let cancelled = client
+        .delete(format!("{base}/api/v1/jobs/{busy_id}"))
+        .send()
+        .await
+        .expect("cancel");
+    assert!(cancelled.status().is_success());
+
+    let done = wait_for_job(&client, &base, &job_id, is_final).await;
+    assert_eq!(done["status"], "succeeded", "{done}");
+    let result = get_json(&client, &format!("{base}/api/v1/jobs/{job_id}/result")).await;
+    // The run reads the stored map exactly: its statistics are the upload's, to the bit.
+    assert_eq!(
+        result["surface"]["measured"], surface["statistics"],
+        "{result}"
+    );
+    assert!(
+        result["surface"]["on_grid"]["rms_height_um"]
+            .as_f64()
+            .is_some()
+    );
+
+    // Kept across a kill -9; a surface whose heights were changed on disk is quarantined.
+    server.kill_9();
+    let spare_id = spare["id"].as_str().expect("id");
+    let heights = dir
+        .path()
+        .join("surfaces")
+        .join(spare_id)
+        .join("heights.f64");
+    let mut bytes = std::fs::read(&heights).expect("heights");
+    bytes[40] ^= 0x10;
+    std::fs::write(&heights, bytes).expect("damage");
+    let server = ServerProcess::start(dir.path());
+    let base = server.base.clone();
+    let surface_url = format!("{base}/api/v1/surfaces/{id}");
+    assert_eq!(get_json(&client, &surface_url).await, surface);
+    let listed = get_json(&client, &format!("{base}/api/v1/surfaces")).await;
+    assert_eq!(listed, json!([surface]));
+    let quarantined = std::fs::read_dir(dir.path().join("quarantine"))
+        .expect("quarantine")
+        .filter_map(Result::ok)
+        .any(|entry| entry.file_name().to_string_lossy().starts_with(spare_id));
+    assert!(quarantined, "the damaged surface was not quarantined");
+    let again = submit(&client, &base, &measured_scene(&id, 2)).await;
+    let again_id = again["id"].as_str().expect("id");
+    let done = wait_for_job(&client, &base, again_id, is_final).await;
+    assert_eq!(done["status"], "succeeded", "{done}");
+
+    // No job waits for it now: deleted.
+    let deleted = client.delete(&surface_url).send().await.expect("DELETE");
+    assert_eq!(deleted.status(), 204);
+    assert!(!dir.path().join("surfaces").join(&id).exists());
+}
