@@ -354,3 +354,18 @@ fn a_change_of_regime_wears_each_cycle_at_its_own_k() {
     assert!(solved(218) && solved(219), "restarted at 218");
     assert!(stepped.cycles.len() < 300, "it stepped elsewhere");
 }
+
+#[test]
+fn the_solver_threads_change_no_value() {
+    // The split apply is bit-identical to the one-thread apply (`contact::fft`'s unit test);
+    // a run on two threads then repeats every record of the run on one.
+    let threaded = |threads: &str| {
+        let text = format!(
+            r#"{{"preset": "dalmau2018-316l", "overrides": {{"test": {{"cycles": 20}}, "numerics": {{"grid": 32, "threads": {threads}}}}}}}"#
+        );
+        simulate(&scene(&text)).cycles
+    };
+    let one = threaded("1");
+    assert_eq!(one, threaded("2"));
+    assert_eq!(one, threaded("\"auto\""));
+}

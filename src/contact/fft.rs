@@ -24,6 +24,8 @@
 
 mod split;
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use rustfft::num_complex::Complex;
 
 use self::split::Split;
@@ -37,6 +39,38 @@ pub(crate) const BLOCK: usize = 16;
 
 /// Padding of the column stride, in complex entries (128 bytes).
 pub(crate) const STRIDE_PAD: usize = 8;
+
+/// The most threads an apply may be split across (the bound of the scene's
+/// `numerics.threads`).
+pub const MAX_SPLIT_THREADS: usize = 64;
+
+/// Grid cells from which an automatic thread count splits an apply: below it the three
+/// spawns and joins per apply cost about as much as the share of the passes a second
+/// thread takes (`tribosim bench speed`, the thread study).
+pub const SPLIT_MIN_CELLS: usize = 512 * 512;
+
+/// Runs of the process that solve at the same time (the service's workers): an automatic
+/// thread count shares the cores among them. A process property, not a scene's: the
+/// results do not depend on the thread count.
+static CONCURRENT_RUNS: AtomicUsize = AtomicUsize::new(1);
+
+/// Tells the automatic thread counts of [`split_threads`] that `runs` runs share the cores.
+pub fn share_cores_among(runs: usize) {
+    CONCURRENT_RUNS.store(runs.max(1), Ordering::Relaxed);
+}
+
+/// The threads of an apply on `cells` cells: `requested`, or (automatic, `None`) one below
+/// [`SPLIT_MIN_CELLS`] and, from there on, the cores the process may use divided among
+/// its concurrent runs ([`share_cores_among`]), at least one.
+pub fn split_threads(requested: Option<usize>, cells: usize) -> usize {
+    requested.unwrap_or_else(|| {
+        if cells < SPLIT_MIN_CELLS {
+            return 1;
+        }
+        let cores = std::thread::available_parallelism().map_or(1, usize::from);
+        (cores / CONCURRENT_RUNS.load(Ordering::Relaxed)).max(1)
+    })
+}
 
 /// The DC-FFT convolution operator of one kernel on one grid.
 pub struct DcFft {
