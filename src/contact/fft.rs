@@ -44,10 +44,11 @@ pub(crate) const STRIDE_PAD: usize = 8;
 /// `numerics.threads`).
 pub const MAX_SPLIT_THREADS: usize = 64;
 
-/// Grid cells from which an automatic thread count splits an apply: below it the three
-/// spawns and joins per apply cost about as much as the share of the passes a second
-/// thread takes (`tribosim bench speed`, the thread study).
-pub const SPLIT_MIN_CELLS: usize = 512 * 512;
+/// Grid cells from which an automatic thread count splits an apply, or `None`: never.
+/// `tribosim bench threads` measured the split slower than one thread at every grid from
+/// N = 256 to 2048 on 2 cores shared with other work (speed-up 0.67-0.86 at N >= 512, load
+/// average 6-8), so `auto` keeps one thread until a quiet machine shows where it pays.
+pub const SPLIT_MIN_CELLS: Option<usize> = None;
 
 /// Runs of the process that solve at the same time (the service's workers): an automatic
 /// thread count shares the cores among them. A process property, not a scene's: the
@@ -64,7 +65,7 @@ pub fn share_cores_among(runs: usize) {
 /// its concurrent runs ([`share_cores_among`]), at least one.
 pub fn split_threads(requested: Option<usize>, cells: usize) -> usize {
     requested.unwrap_or_else(|| {
-        if cells < SPLIT_MIN_CELLS {
+        if SPLIT_MIN_CELLS.is_none_or(|min| cells < min) {
             return 1;
         }
         let cores = std::thread::available_parallelism().map_or(1, usize::from);

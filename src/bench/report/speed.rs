@@ -88,7 +88,10 @@ fn thread_cells(r: &ThreadRow) -> Vec<String> {
 
 /// The thread study's words and table.
 fn threads(report: &mut Report, rows: &[ThreadRow]) {
-    let side = (SPLIT_MIN_CELLS as f64).sqrt().round();
+    let auto = SPLIT_MIN_CELLS.map_or("never splits".to_owned(), |cells| {
+        let side = (cells as f64).sqrt().round();
+        format!("splits from {side} x {side} cells on")
+    });
     report.push(&format!(
         "### Threads: the FFT passes of an apply split across cores\n\n\
          One apply of the Hertz case's operator on one thread against the same apply with \
@@ -96,8 +99,8 @@ fn threads(report: &mut Report, rows: &[ThreadRow]) {
          {THREAD_ROUNDS} alternating rounds per grid; times are the medians, the speed-up \
          the median of the rounds' ratios, with the lowest and highest round's. The load \
          average says how many of the cores other work held: a split only pays on free \
-         cores. `numerics.threads: \"auto\"` splits from {side} x {side} cells on, over \
-         the cores the process may use divided among the service's workers.\n"
+         cores. `numerics.threads: \"auto\"` {auto} (`contact::SPLIT_MIN_CELLS`), over the \
+         cores the process may use divided among the service's workers.\n"
     ));
     report.push(&table(
         &[
