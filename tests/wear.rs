@@ -420,3 +420,18 @@ fn yielding_cuts_each_row_to_its_lowest_pressed_level_and_removes_what_it_cut() 
         assert!((a - b - (r - h)).abs() < 1e-20, "cell {i}");
     }
 }
+
+#[test]
+fn the_solver_threads_change_no_value() {
+    // The split apply is bit-identical to the one-thread apply (`contact::fft`'s unit test);
+    // a run on two threads then repeats every record of the run on one.
+    let threaded = |threads: &str| {
+        let text = format!(
+            r#"{{"preset": "dalmau2018-316l", "overrides": {{"test": {{"cycles": 20}}, "numerics": {{"grid": 32, "threads": {threads}}}}}}}"#
+        );
+        simulate(&scene(&text)).cycles
+    };
+    let one = threaded("1");
+    assert_eq!(one, threaded("2"));
+    assert_eq!(one, threaded("\"auto\""));
+}

@@ -11,7 +11,7 @@ use crate::contact::{
     ContactError, ContactProblem, ContactSolver, CoupledSolver, DcFft, Grid, Kernel, SolverOptions,
     solve,
 };
-use crate::scene::{DomainSize, GridSize, Switch};
+use crate::scene::{DEFAULT_TOLERANCE, DomainSize, GridSize, Switch};
 use crate::simulation::{
     COUPLING_SENSITIVITY, DOMAIN_PER_CONTACT_RADIUS, Model, SimulationError, SimulationResult,
 };
@@ -87,13 +87,23 @@ pub struct AutoStudies {
     pub loads_n: [f64; 2],
 }
 
-/// Friction coefficients of the coupling study: around the threshold at tolerance 1e-8
-/// (`|mu delta-nu| = 1e-8 / 1.2` is mu = 2.1e-7) up to mu = 1; 0.45 is the paper's.
-pub const FRICTION: [f64; 6] = [1e-7, 1e-6, 1e-4, 1e-2, 0.45, 1.0];
+/// Friction coefficients of the coupling study: around the threshold at the scene's default
+/// tolerance 1e-6 (`|mu delta-nu| = 1e-6 / 1.2` is mu = 2.1e-5) up to mu = 1; 0.45 is the
+/// paper's.
+pub const FRICTION: [f64; 6] = [1e-5, 1e-4, 1e-3, 1e-2, 0.45, 1.0];
+
+/// The coupling study's solver options: the scene's default tolerance, the one `auto`
+/// decides against in a run.
+fn coupling_options() -> SolverOptions {
+    SolverOptions {
+        tolerance: DEFAULT_TOLERANCE,
+        ..SolverOptions::default()
+    }
+}
 
 /// Runs every study (about half a minute).
 pub fn auto_studies() -> Result<AutoStudies, BenchError> {
-    let tolerance = SolverOptions::default().tolerance;
+    let tolerance = coupling_options().tolerance;
     let coupling = COUPLING_STUDY_SIZES
         .into_iter()
         .flat_map(|n| FRICTION.map(|mu| coupling_row(n, mu)))
@@ -238,7 +248,7 @@ fn reasons(result: &SimulationResult, name: Model) -> Vec<String> {
 /// The paper's Hertz case on `n` cells, solved without and with the coupling term at `mu`.
 fn coupling_row(n: usize, mu: f64) -> Result<CouplingRow, ContactError> {
     let (pair, hertz) = paper_hertz();
-    let options = SolverOptions::default();
+    let options = coupling_options();
     let grid = Grid::square(n, DOMAIN_M)?;
     let separation = grid.sample(|x, y| hertz.separation_m(x, y));
     let problem = ContactProblem {

@@ -9,6 +9,7 @@ mod fft_pair;
 mod plot;
 mod report;
 mod speed;
+mod threads;
 mod wear;
 
 use std::path::Path;
@@ -29,8 +30,10 @@ pub enum BenchTarget {
     /// The measurements behind the auto choices: coupling, domain, plasticity.
     Auto,
     /// The solver's speed levers: warm solves of the default scene, the coarse-to-fine
-    /// start, and the peak memory up to N = 2048.
+    /// start, the peak memory up to N = 2048, and the FFT passes split across threads.
     Speed,
+    /// The thread study of `speed` alone (a table, never written to the report).
+    Threads,
     /// All four.
     All,
 }
@@ -84,6 +87,7 @@ pub fn print(target: BenchTarget, json: bool, markdown: Option<&Path>) -> Result
         let studies = speed::SpeedStudies {
             warm: speed::warm_rows()?,
             coarse: speed::coarse_rows()?,
+            threads: threads::thread_rows()?,
         };
         if json {
             speed::print_json(&studies)?;
@@ -91,6 +95,13 @@ pub fn print(target: BenchTarget, json: bool, markdown: Option<&Path>) -> Result
             print!("{}", report::speed_tables(&studies));
         }
         measured.speed = Some(studies);
+    }
+    if target == BenchTarget::Threads {
+        emit(&threads::thread_rows()?, json, threads::threads_table)?;
+        if markdown.is_some() {
+            eprintln!("the thread study is written with the speed section: bench speed --markdown");
+        }
+        return Ok(());
     }
     if let Some(path) = markdown {
         let name = clap::ValueEnum::to_possible_value(&target)

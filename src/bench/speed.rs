@@ -6,7 +6,8 @@
 //! - cold solves: the Hertz case from a coarse-to-fine start ([`crate::contact::coarse_start`])
 //!   against the uniform start, at [`COARSE_STUDY_SIZES`];
 //!   with the peak resident memory of the process after each grid (the memory per cell
-//!   at N = 2048).
+//!   at N = 2048);
+//! - threads: one apply against its FFT passes split across threads ([`super::threads`]).
 
 use std::time::Instant;
 
@@ -14,6 +15,7 @@ use serde::Serialize;
 
 use super::contact::{DOMAIN_M, paper_hertz};
 use super::error::BenchError;
+pub use super::threads::ThreadRow;
 use super::wear::simulate;
 use crate::contact::{ContactProblem, DcFft, Grid, Kernel, SolverOptions, coarse_start, solve};
 use crate::scene::{DEFAULT_TOLERANCE, Scene};
@@ -27,13 +29,15 @@ pub const WARM_ROUNDS: usize = 3;
 /// Grid sides of the coarse-to-fine study.
 pub const COARSE_STUDY_SIZES: [usize; 3] = [256, 1024, 2048];
 
-/// The three studies of one run.
+/// The studies of one run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SpeedStudies {
     /// The warm-solve study.
     pub warm: Vec<WarmRow>,
     /// The coarse-to-fine study.
     pub coarse: Vec<CoarseRow>,
+    /// The thread study.
+    pub threads: Vec<ThreadRow>,
 }
 
 /// Every row as a JSON line.
@@ -42,6 +46,9 @@ pub fn print_json(studies: &SpeedStudies) -> Result<(), BenchError> {
         println!("{}", serde_json::to_string(row)?);
     }
     for row in &studies.coarse {
+        println!("{}", serde_json::to_string(row)?);
+    }
+    for row in &studies.threads {
         println!("{}", serde_json::to_string(row)?);
     }
     Ok(())

@@ -146,6 +146,8 @@ pub const DIRECT_BUDGET: usize = 150;
 pub struct CoupledSolver {
     summed: DcFft,
     route: Route,
+    /// Threads of each apply, on either route.
+    threads: usize,
 }
 
 /// How the coupled solver solves: directly (keeping the kernels the fixed point would
@@ -171,7 +173,15 @@ impl CoupledSolver {
                 normal: normal.clone(),
                 coupling: coupling.clone(),
             },
+            threads: 1,
         }
+    }
+
+    /// The same solver applying on `threads` threads ([`DcFft::threaded`]).
+    pub fn threaded(mut self, threads: usize) -> Self {
+        self.summed = self.summed.threaded(threads);
+        self.threads = threads;
+        self
     }
 
     /// Whether the direct route is still in use (false once it failed to converge).
@@ -197,8 +207,8 @@ impl ContactSolver for CoupledSolver {
                 Err(ContactError::NotConverged { iterations, .. }) => {
                     spent = iterations;
                     self.route = Route::FixedPoint {
-                        normal: Box::new(DcFft::new(normal)),
-                        coupling: Box::new(DcFft::new(coupling)),
+                        normal: Box::new(DcFft::new(normal).threaded(self.threads)),
+                        coupling: Box::new(DcFft::new(coupling).threaded(self.threads)),
                     };
                 }
                 outcome => return outcome,

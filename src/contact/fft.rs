@@ -22,8 +22,13 @@
 //! dropped is round-off; the direct-summation test bounds the result). Nothing is allocated
 //! per apply.
 
+mod split;
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use rustfft::num_complex::Complex;
 
+use self::split::Split;
 use super::influence::{Kernel, Symmetry};
 use super::operator::{Operator, Preconditioner};
 use super::plans::Plans;
@@ -34,6 +39,39 @@ pub(crate) const BLOCK: usize = 16;
 
 /// Padding of the column stride, in complex entries (128 bytes).
 pub(crate) const STRIDE_PAD: usize = 8;
+
+/// The most threads an apply may be split across (the bound of the scene's
+/// `numerics.threads`).
+pub const MAX_SPLIT_THREADS: usize = 64;
+
+/// Grid cells from which an automatic thread count splits an apply, or `None`: never.
+/// `tribosim bench threads` measured the split slower than one thread at every grid from
+/// N = 256 to 2048 on 2 cores shared with other work (speed-up 0.67-0.86 at N >= 512, load
+/// average 6-8), so `auto` keeps one thread until a quiet machine shows where it pays.
+pub const SPLIT_MIN_CELLS: Option<usize> = None;
+
+/// Runs of the process that solve at the same time (the service's workers): an automatic
+/// thread count shares the cores among them. A process property, not a scene's: the
+/// results do not depend on the thread count.
+static CONCURRENT_RUNS: AtomicUsize = AtomicUsize::new(1);
+
+/// Tells the automatic thread counts of [`split_threads`] that `runs` runs share the cores.
+pub fn share_cores_among(runs: usize) {
+    CONCURRENT_RUNS.store(runs.max(1), Ordering::Relaxed);
+}
+
+/// The threads of an apply on `cells` cells: `requested`, or (automatic, `None`) one below
+/// [`SPLIT_MIN_CELLS`] and, from there on, the cores the process may use divided among
+/// its concurrent runs ([`share_cores_among`]), at least one.
+pub fn split_threads(requested: Option<usize>, cells: usize) -> usize {
+    requested.unwrap_or_else(|| {
+        if SPLIT_MIN_CELLS.is_none_or(|min| cells < min) {
+            return 1;
+        }
+        let cores = std::thread::available_parallelism().map_or(1, usize::from);
+        (cores / CONCURRENT_RUNS.load(Ordering::Relaxed)).max(1)
+    })
+}
 
 /// The DC-FFT convolution operator of one kernel on one grid.
 pub struct DcFft {
@@ -54,6 +92,8 @@ pub struct DcFft {
     row_block: Vec<Complex<f64>>,
     /// The preconditioner: the inverse of the normal kernel's periodic wrap.
     inverse: Option<FourierInverse>,
+    /// The passes split across threads (`None`: one thread).
+    split: Option<Split>,
 }
 
 /// The kernel spectrum, stored by what it can hold: real for an even kernel, imaginary for
@@ -62,6 +102,18 @@ enum Spectrum {
     Real(Vec<f64>),
     Imaginary(Vec<f64>),
     Complex(Vec<Complex<f64>>),
+}
+
+/// `column *= spectrum` over the column that starts at `start` in the spectrum's layout.
+fn multiply(spectrum: &Spectrum, column: &mut [Complex<f64>], start: usize) {
+    let range = start..start + column.len();
+    match spectrum {
+        Spectrum::Real(s) => column.iter_mut().zip(&s[range]).for_each(|(c, &k)| *c *= k),
+        Spectrum::Imaginary(s) => column.iter_mut().zip(&s[range]).for_each(|(c, &k)| {
+            *c = Complex::new(-c.im * k, c.re * k);
+        }),
+        Spectrum::Complex(s) => column.iter_mut().zip(&s[range]).for_each(|(c, k)| *c *= k),
+    }
 }
 
 impl std::fmt::Debug for DcFft {
@@ -120,7 +172,20 @@ impl DcFft {
             row_real: vec![0.0; row_len],
             row_block: vec![Complex::default(); BLOCK * half],
             inverse: None,
+            split: None,
         }
+    }
+
+    /// The same operator applying on `threads` threads (1: on the caller's thread alone).
+    /// The preconditioner stays on one thread: its transform is a quarter of the padded one.
+    pub fn threaded(mut self, threads: usize) -> Self {
+        self.split = (threads > 1).then(|| Split::new(threads, &self.plans, self.nx, self.ny));
+        self
+    }
+
+    /// The threads an apply runs on.
+    pub fn threads(&self) -> usize {
+        self.split.as_ref().map_or(1, Split::threads)
     }
 
     /// The kernel arranged by wrap-around on the padded grid (index `i < n` holds offset
@@ -202,6 +267,11 @@ impl Operator for DcFft {
         let (nx, ny) = (self.nx, self.ny);
         assert_eq!(input.len(), nx * ny, "input does not match the grid");
         assert_eq!(output.len(), nx * ny, "output does not match the grid");
+        if let Some(split) = &mut self.split {
+            let shape = (nx, ny, self.stride);
+            split.apply(shape, &self.spectrum, &mut self.columns, input, output);
+            return;
+        }
         for first in (0..ny).step_by(BLOCK) {
             let rows = BLOCK.min(ny - first);
             for slot in 0..rows {
@@ -218,14 +288,7 @@ impl Operator for DcFft {
             self.plans
                 .col_forward
                 .process_with_scratch(column, &mut self.plans.complex_scratch);
-            let range = k * self.stride..k * self.stride + self.col_len;
-            match &self.spectrum {
-                Spectrum::Real(s) => column.iter_mut().zip(&s[range]).for_each(|(c, &k)| *c *= k),
-                Spectrum::Imaginary(s) => column.iter_mut().zip(&s[range]).for_each(|(c, &k)| {
-                    *c = Complex::new(-c.im * k, c.re * k);
-                }),
-                Spectrum::Complex(s) => column.iter_mut().zip(&s[range]).for_each(|(c, k)| *c *= k),
-            }
+            multiply(&self.spectrum, column, k * self.stride);
             self.plans
                 .col_inverse
                 .process_with_scratch(column, &mut self.plans.complex_scratch);
@@ -309,6 +372,37 @@ mod tests {
         let scale = slow.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (f, s) in fast.iter().zip(&slow) {
             assert!((f - s).abs() < 1e-12 * scale);
+        }
+    }
+
+    #[test]
+    fn the_split_apply_equals_the_one_thread_apply() {
+        // Same transforms and products in another order of rows and columns: equal to the
+        // last bit, on even and odd sizes, for each kind of spectrum.
+        let grid = Grid::new(37, 20, 1e-6, 1.3e-6).expect("valid");
+        let pair = pair(0.21, 0.28, 205e9);
+        let normal = Kernel::normal(&grid, &pair);
+        let coupling = Kernel::coupling(&grid, &pair, 0.45);
+        let input: Vec<f64> = (0..grid.len()).map(|i| ((i * 31) % 13) as f64).collect();
+        for threads in [2, 3] {
+            let pairs = [
+                (DcFft::new(&normal), DcFft::new(&normal).threaded(threads)),
+                (
+                    DcFft::new(&coupling),
+                    DcFft::new(&coupling).threaded(threads),
+                ),
+                (
+                    DcFft::sum(&normal, &coupling),
+                    DcFft::sum(&normal, &coupling).threaded(threads),
+                ),
+            ];
+            for (mut one, mut split) in pairs {
+                assert_eq!(split.threads(), threads);
+                let (mut a, mut b) = (vec![0.0; grid.len()], vec![0.0; grid.len()]);
+                one.apply(&input, &mut a);
+                split.apply(&input, &mut b);
+                assert_eq!(a, b);
+            }
         }
     }
 

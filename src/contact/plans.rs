@@ -9,7 +9,8 @@ use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
 /// Planned row (real-to-complex and back) and column (complex) transforms of a 2D FFT,
-/// with the scratch they need.
+/// with the scratch they need. A clone shares the transforms and has its own scratch.
+#[derive(Clone)]
 pub(crate) struct Plans {
     pub(crate) row_forward: Arc<dyn RealToComplex<f64>>,
     pub(crate) row_inverse: Arc<dyn ComplexToReal<f64>>,

@@ -1,5 +1,5 @@
 //! The settings that take `"auto"` or a number (`numerics.grid`, `numerics.domain_um`,
-//! `numerics.cycle_step`) and their one JSON shape.
+//! `numerics.cycle_step`, `numerics.threads`) and their one JSON shape.
 
 use serde::de::{DeserializeOwned, Error as _};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -37,6 +37,17 @@ pub enum CycleStep {
     Auto,
     /// Every cycle solved (JSON `1`).
     EveryCycle,
+}
+
+/// Threads of each contact solve's FFT passes: `"auto"` or a number. The results do not
+/// depend on it (the split apply is bit-identical to the one-thread apply).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(from = "AutoOr<usize>", into = "AutoOr<usize>")]
+pub enum SolverThreads {
+    /// One thread on grids too small for a split to pay, else the cores the process may use.
+    Auto,
+    /// This many threads per apply.
+    Count(usize),
 }
 
 /// The JSON shape shared by the `"auto"`-or-number settings.
@@ -83,6 +94,24 @@ impl From<GridSize> for AutoOr<usize> {
         match value {
             GridSize::Auto => Self::Auto,
             GridSize::Cells(cells) => Self::Value(cells),
+        }
+    }
+}
+
+impl From<AutoOr<usize>> for SolverThreads {
+    fn from(value: AutoOr<usize>) -> Self {
+        match value {
+            AutoOr::Auto => Self::Auto,
+            AutoOr::Value(threads) => Self::Count(threads),
+        }
+    }
+}
+
+impl From<SolverThreads> for AutoOr<usize> {
+    fn from(value: SolverThreads) -> Self {
+        match value {
+            SolverThreads::Auto => Self::Auto,
+            SolverThreads::Count(threads) => Self::Value(threads),
         }
     }
 }

@@ -404,6 +404,19 @@ pub(super) const COUPLING: Field = Field {
     feeds: "the mu C_zx term of eq. 10 (eq. 7)",
 };
 
+/// `numerics.threads`.
+pub(super) const THREADS: Field = Field {
+    path: "numerics.threads",
+    unit: "threads",
+    range: Range::AutoOrWhole(1, crate::contact::MAX_SPLIT_THREADS as u64),
+    why: "more threads than cores only wait for each other",
+    meaning: "Threads of each contact solve's FFT passes; the results do not depend on it. \
+              `auto`: one where the split does not pay (for now every grid), else the \
+              cores the process may use divided among the service's workers \
+              (`docs/operations.md`).",
+    feeds: "the apply of K in eqs. 10-12 (no value changes)",
+};
+
 /// A section of the scene: an object of the fields under its name.
 const fn section(path: &'static str, meaning: &'static str, range: Range) -> Field {
     Field {
@@ -493,6 +506,7 @@ pub const FIELDS: &[Field] = &[
     CYCLE_STEP_BOUND,
     RECORD_CYCLES,
     COUPLING,
+    THREADS,
 ];
 
 /// The descriptor of the field at `path`, if the scene has one.

@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::hardness::{self, HardnessError, HardnessLaw};
 
-pub use auto_or::{CycleStep, DomainSize, FixedStrideError, GridSize};
+pub use auto_or::{CycleStep, DomainSize, FixedStrideError, GridSize, SolverThreads};
 pub use error::{FieldError, SceneErrors};
 pub use field::{Field, Range};
 pub use fields::{FIELDS, field};

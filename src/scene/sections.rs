@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::auto_or::{CycleStep, DomainSize, GridSize};
+use super::auto_or::{CycleStep, DomainSize, GridSize, SolverThreads};
 use super::record::RecordCycles;
 use super::surface::SurfaceSpec;
 use crate::corrosion::CorrosionModel;
@@ -370,6 +370,8 @@ pub struct Numerics {
     pub coupling: Switch,
     /// The cycles at which the state is recorded exactly: solved there, profile kept.
     pub record_cycles: RecordCycles,
+    /// Threads of each contact solve's FFT passes.
+    pub threads: SolverThreads,
 }
 
 impl Default for Numerics {
@@ -382,6 +384,7 @@ impl Default for Numerics {
             cycle_step_bound: STEP_CHANGE_BOUND,
             coupling: Switch::Auto,
             record_cycles: RecordCycles::Auto,
+            threads: SolverThreads::Auto,
         }
     }
 }

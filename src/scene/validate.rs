@@ -11,11 +11,13 @@ use super::fields::{
     DENSITY, DISC_HARDNESS, DISC_MODULUS, DISC_POISSON, DOMAIN, EXPOSED_AREA, FRICTION, GRID, LOAD,
     MOLAR_MASS, REGIME_CHANGE_CYCLE, REGIME_CHANGE_K_BEFORE, SPEED, SURFACE_HURST,
     SURFACE_LONG_CUTOFF, SURFACE_RMS_HEIGHT, SURFACE_RMS_SLOPE, SURFACE_SEED, SURFACE_SHORT_CUTOFF,
-    TAFEL_A, TAFEL_B, TOLERANCE, TRACK_RADIUS, VALENCE, YIELD_FACTOR,
+    TAFEL_A, TAFEL_B, THREADS, TOLERANCE, TRACK_RADIUS, VALENCE, YIELD_FACTOR,
 };
 use super::format::num;
 use super::surface::SurfaceKind;
-use super::{DomainSize, FieldError, GridSize, MAX_RECORD_CYCLES, RecordCycles, Scene};
+use super::{
+    DomainSize, FieldError, GridSize, MAX_RECORD_CYCLES, RecordCycles, Scene, SolverThreads,
+};
 
 /// All problems with `scene`'s own fields, empty when each is valid.
 pub(super) fn check(scene: &Scene) -> Vec<FieldError> {
@@ -249,6 +251,9 @@ fn check_numerics(c: &mut Checks, scene: &Scene) {
     }
     c.number(&TOLERANCE, numerics.tolerance);
     c.number(&CYCLE_STEP_BOUND, numerics.cycle_step_bound);
+    if let SolverThreads::Count(threads) = numerics.threads {
+        c.whole(&THREADS, threads as u64);
+    }
     check_record_cycles(c, scene);
 }
 
@@ -376,6 +381,7 @@ mod tests {
         scene.numerics.tolerance = 1e-10;
         scene.numerics.cycle_step_bound = 0.1;
         scene.numerics.domain_um = DomainSize::Micrometres(100_000.0);
+        scene.numerics.threads = SolverThreads::Count(64);
         scene.ball.poisson_ratio = -0.99;
         assert!(check(&scene).is_empty(), "{:?}", check(&scene));
 
@@ -385,6 +391,7 @@ mod tests {
         scene.numerics.tolerance = 0.99e-10;
         scene.numerics.cycle_step_bound = 0.11;
         scene.numerics.domain_um = DomainSize::Micrometres(0.0);
+        scene.numerics.threads = SolverThreads::Count(0);
         scene.ball.poisson_ratio = -1.0;
         assert_eq!(
             paths(&scene),
@@ -396,6 +403,7 @@ mod tests {
                 "numerics.domain_um",
                 "numerics.tolerance",
                 "numerics.cycle_step_bound",
+                "numerics.threads",
             ]
         );
     }

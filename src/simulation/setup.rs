@@ -3,10 +3,10 @@
 
 use crate::contact::{
     ContactSolver, CoupledSolver, DcFft, ElasticPair, Grid, Hertz, Kernel, NormalSolver,
-    SolverOptions,
+    SolverOptions, split_threads,
 };
 use crate::hardness::HardnessLaw;
-use crate::scene::{ArchardRegimeChange, Scene, Switch};
+use crate::scene::{ArchardRegimeChange, Scene, SolverThreads, Switch};
 use crate::surface::HeightMap;
 use crate::wear::Groove;
 
@@ -219,11 +219,16 @@ impl Setup {
     /// The contact solver of `grid`: the normal operator alone, or with the coupling term.
     pub fn solver(&self, grid: &Grid) -> Box<dyn ContactSolver> {
         let normal = Kernel::normal(grid, &self.pair);
+        let requested = match self.scene.numerics.threads {
+            SolverThreads::Auto => None,
+            SolverThreads::Count(threads) => Some(threads),
+        };
+        let threads = split_threads(requested, grid.len());
         if self.coupling {
             let coupling = Kernel::coupling(grid, &self.pair, self.scene.test.friction_coefficient);
-            Box::new(CoupledSolver::new(&normal, &coupling))
+            Box::new(CoupledSolver::new(&normal, &coupling).threaded(threads))
         } else {
-            Box::new(NormalSolver::new(DcFft::new(&normal)))
+            Box::new(NormalSolver::new(DcFft::new(&normal).threaded(threads)))
         }
     }
 }

@@ -3,9 +3,11 @@
 //! report ([`splice`]), so it can be regenerated without the other studies.
 
 use crate::bench::speed::{
-    COARSE_STUDY_SIZES, CoarseRow, PREVIOUS_TOLERANCE, SpeedStudies, WARM_ROUNDS, WarmRow,
+    COARSE_STUDY_SIZES, CoarseRow, PREVIOUS_TOLERANCE, SpeedStudies, ThreadRow, WARM_ROUNDS,
+    WarmRow,
 };
-use crate::contact::{COARSE_TOLERANCE, COARSEST_CELLS};
+use crate::bench::threads::THREAD_ROUNDS;
+use crate::contact::{COARSE_TOLERANCE, COARSEST_CELLS, SPLIT_MIN_CELLS};
 use crate::scene::DEFAULT_TOLERANCE;
 
 use super::format::{error, sig, table};
@@ -71,6 +73,49 @@ fn coarse_cells(r: &CoarseRow) -> Vec<String> {
     ]
 }
 
+fn thread_cells(r: &ThreadRow) -> Vec<String> {
+    vec![
+        r.n.to_string(),
+        r.threads.to_string(),
+        sig(r.one_thread_s, 3),
+        sig(r.split_s, 3),
+        format!("{:.2}", r.speedup),
+        format!("{:.2}-{:.2}", r.speedup_range[0], r.speedup_range[1]),
+        r.load_average
+            .map_or("n/a".to_owned(), |l| format!("{l:.1}")),
+    ]
+}
+
+/// The thread study's words and table.
+fn threads(report: &mut Report, rows: &[ThreadRow]) {
+    let auto = SPLIT_MIN_CELLS.map_or("never splits".to_owned(), |cells| {
+        let side = (cells as f64).sqrt().round();
+        format!("splits from {side} x {side} cells on")
+    });
+    report.push(&format!(
+        "### Threads: the FFT passes of an apply split across cores\n\n\
+         One apply of the Hertz case's operator on one thread against the same apply with \
+         its row, column and row passes split across threads (bit-identical), \
+         {THREAD_ROUNDS} alternating rounds per grid; times are the medians, the speed-up \
+         the median of the rounds' ratios, with the lowest and highest round's. The load \
+         average says how many of the cores other work held: a split only pays on free \
+         cores. `numerics.threads: \"auto\"` {auto} (`contact::SPLIT_MIN_CELLS`), over the \
+         cores the process may use divided among the service's workers.\n"
+    ));
+    report.push(&table(
+        &[
+            "N",
+            "threads",
+            "1 thread s",
+            "split s",
+            "speed-up",
+            "rounds",
+            "load average",
+        ],
+        &rows.iter().map(thread_cells).collect::<Vec<_>>(),
+    ));
+}
+
 /// Appends the section.
 pub(super) fn section(
     report: &mut Report,
@@ -133,6 +178,7 @@ pub(super) fn body(report: &mut Report, studies: &SpeedStudies) {
         ],
         &studies.coarse.iter().map(coarse_cells).collect::<Vec<_>>(),
     ));
+    threads(report, &studies.threads);
 }
 
 /// Rewrites only this section of the report `text` (the rest is another run's): replaced
