@@ -203,7 +203,7 @@ pub fn coarse_rows() -> Result<Vec<CoarseRow>, BenchError> {
 }
 
 /// The process's peak resident memory so far (Linux's `VmHWM`), bytes.
-fn peak_rss_bytes() -> Option<u64> {
+pub(super) fn peak_rss_bytes() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
