@@ -21,7 +21,7 @@ use super::contact::{DOMAIN_M, paper_hertz};
 use super::error::BenchError;
 use super::fft_pair::FftPair;
 use super::median_time;
-use super::speed::peak_rss_bytes;
+use super::speed::{peak_rss_bytes, thread_cpu_s};
 use crate::contact::{
     ContactProblem, ContactSolution, Grid, Operator, PeriodicHalfSpace, SolverOptions, solve,
 };
@@ -85,6 +85,9 @@ pub struct RoughRow {
     pub wall_s: f64,
     /// The solve alone, s (median).
     pub solve_s: f64,
+    /// CPU time of the solve's thread, s (median; `None` where it cannot be read): its own
+    /// work, which other work on a shared machine does not inflate as much.
+    pub solve_cpu_s: Option<f64>,
     /// Runs behind each median.
     pub runs: usize,
     /// One application of the operator, s (median).
@@ -156,7 +159,7 @@ pub fn rough_rows(surfaces: Option<&Path>) -> Result<Vec<RoughRow>, BenchError> 
             std::hint::black_box(build());
         });
         let mut operator = build();
-        let (solution, solve_s) = timed_solves(&mut operator, &problem, reps)?;
+        let (solution, solve_s, solve_cpu_s) = timed_solves(&mut operator, &problem, reps)?;
         let peak_rss_bytes = peak_rss_bytes();
         let apply_s = apply_time(&mut operator, &solution, reps);
         let mut fft = FftPair::new(n);
@@ -176,6 +179,7 @@ pub fn rough_rows(surfaces: Option<&Path>) -> Result<Vec<RoughRow>, BenchError> 
             residual: solution.residual,
             wall_s: build_s + solve_s,
             solve_s,
+            solve_cpu_s,
             runs: reps,
             apply_s,
             fft_pair_s,
@@ -195,25 +199,36 @@ pub fn rough_rows(surfaces: Option<&Path>) -> Result<Vec<RoughRow>, BenchError> 
     Ok(rows)
 }
 
-/// `reps` cold solves of `problem`: the last solution and the median time.
+/// `reps` cold solves of `problem`: the last solution, the median wall time and the median
+/// CPU time.
 fn timed_solves(
     operator: &mut dyn Operator,
     problem: &ContactProblem,
     reps: usize,
-) -> Result<(ContactSolution, f64), BenchError> {
-    let mut times = Vec::with_capacity(reps);
+) -> Result<(ContactSolution, f64, Option<f64>), BenchError> {
+    let (mut walls, mut cpus) = (Vec::with_capacity(reps), Vec::with_capacity(reps));
     let mut timed = || {
-        let started = Instant::now();
+        let (cpu, started) = (thread_cpu_s(), Instant::now());
         let solution = solve(&mut *operator, problem, &options(), None);
-        times.push(started.elapsed().as_secs_f64());
+        walls.push(started.elapsed().as_secs_f64());
+        if let Some(spent) = thread_cpu_s()
+            .zip(cpu)
+            .map(|(after, before)| after - before)
+        {
+            cpus.push(spent);
+        }
         solution
     };
     let mut solution = timed()?;
     for _ in 1..reps {
         solution = timed()?;
     }
-    times.sort_by(f64::total_cmp);
-    Ok((solution, times[times.len() / 2]))
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied()
+    };
+    let wall = median(walls).unwrap_or(f64::NAN);
+    Ok((solution, wall, median(cpus)))
 }
 
 /// The mean over all cells of the gap `K p + h - delta`: zero in contact, the separation
@@ -276,10 +291,10 @@ pub fn table(rows: &[RoughRow]) -> String {
             rows.last().map_or(0, |r| r.n)
         );
     }
-    out += "     N  cells/short  area frac  mean gap um   err area    err gap  iters  applies  wall s  apply ms  iter/pair  peak MB\n";
+    out += "     N  cells/short  area frac  mean gap um   err area    err gap  iters  applies  wall s  solve CPU s  apply ms  iter/pair  peak MB\n";
     for r in rows {
         out += &format!(
-            "{:>6} {:>12.2} {:>10.5} {:>12.5} {:>+10.2e} {:>+10.2e} {:>6} {:>8} {:>7.3} {:>9.2} {:>10.2} {:>8}\n",
+            "{:>6} {:>12.2} {:>10.5} {:>12.5} {:>+10.2e} {:>+10.2e} {:>6} {:>8} {:>7.3} {:>12} {:>9.2} {:>10.2} {:>8}\n",
             r.n,
             r.cells_per_short_cutoff,
             r.area_fraction,
@@ -289,6 +304,8 @@ pub fn table(rows: &[RoughRow]) -> String {
             r.iterations,
             r.applies,
             r.wall_s,
+            r.solve_cpu_s
+                .map_or("n/a".to_owned(), |c| format!("{c:.3}")),
             r.apply_s * 1e3,
             r.iteration_per_fft_pair,
             r.peak_rss_bytes

@@ -145,7 +145,7 @@ pub fn warm_rows() -> Result<Vec<WarmRow>, BenchError> {
 
 /// CPU time of the calling thread so far, s (Linux's `schedstat`; `None` elsewhere): the
 /// run's own work, whatever else the machine is doing.
-fn thread_cpu_s() -> Option<f64> {
+pub(super) fn thread_cpu_s() -> Option<f64> {
     let stat = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
     let nanoseconds: f64 = stat.split_whitespace().next()?.parse().ok()?;
     Some(nanoseconds * 1e-9)

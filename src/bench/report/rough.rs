@@ -69,6 +69,7 @@ fn cells(r: &RoughRow, finest: usize) -> Vec<String> {
         r.iterations.to_string(),
         r.applies.to_string(),
         sig(r.wall_s, 3),
+        r.solve_cpu_s.map_or("n/a".to_owned(), |c| sig(c, 3)),
         sig(r.apply_s * 1e3, 3),
         sig(r.applies as f64 * r.apply_s, 3),
         format!("{:.2}", r.iteration_per_fft_pair),
@@ -107,6 +108,7 @@ pub(super) fn section(
             "iterations",
             "applies",
             "wall s",
+            "solve CPU s",
             "apply ms",
             "applies x apply s",
             "iteration per FFT pair",
@@ -115,12 +117,14 @@ pub(super) fn section(
         &rows.iter().map(|r| cells(r, finest.n)).collect::<Vec<_>>(),
     ));
     report.push(&format!(
-        "At N = {}: {} s for the contact ({} iterations, {} operator applications of {} ms: \
-         {} s of FFTs), the process's peak resident memory {:.0} MB; \"peak MB\" is the \
-         process's after each grid's solves (coarsest first, after the N = {} surface was \
-         generated).\n",
+        "At N = {}: {} s for the contact ({} s of CPU for the solve; {} iterations, {} operator \
+         applications of {} ms: {} s of them, and one preconditioner application per \
+         iteration at about the same cost), the process's peak resident memory {:.0} MB; \
+         \"peak MB\" is the process's after each grid's solves (coarsest first, after the \
+         N = {} surface was generated).\n",
         finest.n,
         sig(finest.wall_s, 3),
+        finest.solve_cpu_s.map_or("n/a".to_owned(), |c| sig(c, 3)),
         finest.iterations,
         finest.applies,
         sig(finest.apply_s * 1e3, 3),
@@ -166,4 +170,69 @@ pub(super) fn section(
             }],
         },
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bench::report::splice::splice;
+
+    fn row(n: usize, err: f64) -> RoughRow {
+        RoughRow {
+            study: "rough_grid",
+            n,
+            pixel_m: 1e-7,
+            cells_per_short_cutoff: 8.0 * n as f64 / 2048.0,
+            reduced_modulus_pa: 1.3e11,
+            mean_pressure_pa: 2e8,
+            tolerance: 1e-8,
+            area_fraction: 0.032 * (1.0 + err),
+            mean_gap_m: 3.5e-7 * (1.0 - err),
+            iterations: 60,
+            applies: 120,
+            residual: 5e-9,
+            wall_s: n as f64 / 100.0,
+            solve_s: n as f64 / 100.0,
+            solve_cpu_s: None,
+            runs: 1,
+            apply_s: 0.1,
+            fft_pair_s: 0.2,
+            iteration_per_fft_pair: 1.0,
+            peak_rss_bytes: Some(446_000_000),
+            err_area: err,
+            err_gap: -err,
+            surface_file: None,
+        }
+    }
+
+    #[test]
+    fn the_section_has_its_table_plots_and_the_finest_grid_in_words() {
+        let dir = std::env::temp_dir().join(format!("tribosim-rough-{}", std::process::id()));
+        let path = dir.join("accuracy.md");
+        let machine = Machine {
+            date: "2026-11-23".into(),
+            cpu: "AMD EPYC".into(),
+            cores: 2,
+            commit: None,
+        };
+        let mut report = Report::beside(&path).expect("plot folder");
+        let rows = [row(1024, 0.05), row(2048, 0.0)];
+        section(&mut report, &rows, &machine, "bench rough").expect("written");
+        let plots = ["rough-error.svg", "rough-time.svg"].map(|f| dir.join("accuracy").join(f));
+        let drawn = plots.iter().all(|p| p.is_file());
+        std::fs::remove_dir_all(&dir).expect("cleaned up");
+        assert!(drawn && report.plots == 2);
+        let text = &report.text;
+        assert!(text.starts_with(HEADING), "{text}");
+        assert!(text.contains("| 1024 | 4.00 | 3.360 | 0.3325 | +5.00e-2 | -5.00e-2 |"));
+        assert!(text.contains("| 2048 | 8.00 | 3.200 | 0.3500 | reference | reference |"));
+        assert!(text.contains("At N = 2048: 20.5 s for the contact"));
+        assert!(text.contains("peak resident memory 446 MB"));
+        // Rewritten alone, before the peers.
+        let spliced = splice("# R\n\n## Peers\n\np\n", HEADING, text);
+        assert!(
+            spliced.starts_with(&format!("# R\n\n{HEADING}"))
+                && spliced.ends_with("## Peers\n\np\n")
+        );
+    }
 }
