@@ -477,9 +477,8 @@ def main():
         groups, rows = peers_rough.run_rough(args, peers)
         header, lines = peers_rough.rough_table(groups)
         print(plain_table(header, lines))
-        section = peers_rough.rough_markdown(
-            groups, rows, peers, args, now(), machine(load), markdown_table
-        )
+        run = f"{now()} on {machine(load)}; versions: {versions(args.binary)}"
+        section = peers_rough.rough_markdown(groups, rows, peers, args, run, markdown_table)
         text = peers_rough.with_section(text, section)
     out.write_text(text)
     print(f"wrote {args.out}", file=sys.stderr)

@@ -274,7 +274,8 @@ def with_section(existing, section):
     return (before + "\n\n" if before else "") + section.strip() + "\n"
 
 
-def rough_markdown(groups, rows, peers, args, date, machine, markdown_table):
+def rough_markdown(groups, rows, peers, args, run, markdown_table):
+    """The section; `run` names when, where and with which versions it was measured."""
     header, lines = rough_table(groups)
     first = next(iter(rows.values()))
     finest = max(rows)
@@ -282,9 +283,9 @@ def rough_markdown(groups, rows, peers, args, date, machine, markdown_table):
     sizes = ", ".join(str(n) for n in groups)
     return f"""{HEADING}
 
-Measured {date} on {machine} by `scripts/peers.sh --only rough` (the rough cases of
-`scripts/peers.sh`, which runs them after the smooth ones; this section alone is rewritten
-when run with `--only rough`).
+Measured {run} by `scripts/peers.sh --only rough` (the rough cases of `scripts/peers.sh`,
+which runs them after the smooth ones; this section alone is rewritten when run with
+`--only rough`).
 
 Case: the rough-surface study of `tribosim bench rough` (docs/accuracy.md): one seeded
 self-affine surface generated at N = {finest} and sampled on each grid, pressed by a rigid
