@@ -8,8 +8,12 @@ the same contact with the pressure cap Y = 2551 MPa / 2.8. Errors are against th
 references our own benchmark reports (Hertz's analytic solution; our fine-grid solution of
 the capped case), read from `tribosim bench contact --json` run in the same process tree.
 
+The rough cases (scripts/peers_rough.py) follow: a rough flat on the periodic half-space,
+the very same height arrays that `tribosim bench rough --surfaces` writes given to all three.
+
 Run through scripts/peers.sh, which prepares the venv and the release build. Writes the
-table to stdout and a markdown fragment (default docs/peers.md).
+tables to stdout and a markdown fragment (default docs/peers.md); `--only rough` rewrites
+only its rough section, `--only smooth` keeps the rough section there.
 """
 
 import argparse
@@ -29,6 +33,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+
+import peers_rough
 
 # The paper's case, as in src/bench/contact/mod.rs.
 RADIUS_M = 3e-3
@@ -395,8 +401,12 @@ def versions(binary):
     return f"{ours_version} (commit {commit or 'unknown'}), Python {platform.python_version()}, " + ", ".join(found)
 
 
+def now():
+    return datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+
+
 def markdown(header, lines, peers, args, reference_n, load):
-    date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    date = now()
     criteria = "\n".join(f"- **{p.name}**: {p.criterion} {p.notes}" for p in peers)
     return f"""## Peers: the same contacts in Tamaas and ContactMechanics
 
@@ -441,9 +451,47 @@ def main():
         help="seconds after which a peer's measurement stops repeating",
     )
     parser.add_argument("--out", default="docs/peers.md")
+    parser.add_argument(
+        "--only", choices=["smooth", "rough"], help="run one set of cases; the default runs both"
+    )
+    parser.add_argument("--rough-sizes", type=int, nargs="+", default=[256, 512, 1024, 2048])
+    parser.add_argument(
+        "--rough-cap", type=float, default=900.0,
+        help="seconds beyond which a peer's rough run is not started (four times its time "
+        "on the grid below)",
+    )
+    parser.add_argument(
+        "--surfaces", default="target/rough-surfaces",
+        help="where `tribosim bench rough` writes the height arrays the peers read",
+    )
     args = parser.parse_args()
 
     load = os.getloadavg()[0]
+    out = Path(args.out)
+    text = out.read_text() if out.exists() else ""
+    if args.only != "rough":
+        text = peers_rough.with_section(smooth(args, load), rough_part(text))
+    if args.only != "smooth":
+        peers = [peers_rough.TamaasRough(captured_stderr, LOG_LINE),
+                 peers_rough.ContactMechanicsRough()]
+        groups, rows = peers_rough.run_rough(args, peers)
+        header, lines = peers_rough.rough_table(groups)
+        print(plain_table(header, lines))
+        run = f"{now()} on {machine(load)}; versions: {versions(args.binary)}"
+        section = peers_rough.rough_markdown(groups, rows, peers, args, run, markdown_table)
+        text = peers_rough.with_section(text, section)
+    out.write_text(text)
+    print(f"wrote {args.out}", file=sys.stderr)
+
+
+def rough_part(text):
+    """The rough section of an existing fragment, or nothing."""
+    start = text.find(peers_rough.HEADING)
+    return "" if start < 0 else text[start:]
+
+
+def smooth(args, load):
+    """The smooth cases: run, printed, and their markdown."""
     print("running tribosim bench contact --json ...", file=sys.stderr)
     mine = ours(args.binary)
     peers = [TamaasPeer(), ContactMechanicsPeer()]
@@ -461,8 +509,7 @@ def main():
     header, lines = table_rows(groups)
     print(plain_table(header, lines))
     reference_n = next(r["reference"]["n"] for r in mine.values() if r["case"] == "capped")
-    Path(args.out).write_text(markdown(header, lines, peers, args, reference_n, load))
-    print(f"wrote {args.out}", file=sys.stderr)
+    return markdown(header, lines, peers, args, reference_n, load)
 
 
 if __name__ == "__main__":

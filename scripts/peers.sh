@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Our contact solver beside Tamaas and ContactMechanics: makes a venv with the
 # public PyPI packages under target/peers-venv if missing, builds the release binary, then
-# runs scripts/peers.py, which prints the table and rewrites docs/peers.md.
-# Usage: scripts/peers.sh [peers.py options, e.g. --sizes 64 128 --reps 5]
+# runs scripts/peers.py, which prints the tables and rewrites docs/peers.md: the smooth
+# Hertz and capped cases, then the rough cases on the very same height arrays
+# (scripts/peers_rough.py; the peers at N = 2048 take minutes each).
+# Usage: scripts/peers.sh [peers.py options, e.g. --sizes 64 128 --reps 5, --only rough]
 # Run it on an otherwise idle machine: the times are the point. It takes 10 to 15 minutes,
 # most of it Tamaas's KatoSaturated at N = 256 and 512 (thousands of iterations).
 set -euo pipefail

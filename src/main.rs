@@ -123,6 +123,10 @@ enum Command {
         /// (`docs/accuracy.md` puts them in `docs/accuracy/`).
         #[arg(long, value_name = "PATH")]
         markdown: Option<PathBuf>,
+        /// `rough`: also write each grid's height array here as a text matrix in m
+        /// (`rough-N.txt`), the arrays `scripts/peers.py` gives the public solvers.
+        #[arg(long, value_name = "DIR")]
+        surfaces: Option<PathBuf>,
     },
 }
 
@@ -350,7 +354,9 @@ fn main() -> ExitCode {
             target,
             json,
             markdown,
-        } => bench::print(target, json, markdown.as_deref()).map_err(|e| e.to_string()),
+            surfaces,
+        } => bench::print(target, json, markdown.as_deref(), surfaces.as_deref())
+            .map_err(|e| e.to_string()),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

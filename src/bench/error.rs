@@ -6,6 +6,7 @@ use plotters::drawing::DrawingAreaErrorKind;
 
 use crate::contact::ContactError;
 use crate::simulation::SimulationError;
+use crate::surface::SurfaceError;
 
 /// Why `tribosim bench` failed.
 #[derive(Debug, thiserror::Error)]
@@ -16,6 +17,9 @@ pub enum BenchError {
     /// A wear run of the paper-scene studies.
     #[error(transparent)]
     Simulation(#[from] SimulationError),
+    /// The rough-surface study's surface could not be generated.
+    #[error(transparent)]
+    Surface(#[from] SurfaceError),
     /// A row could not be written as JSON.
     #[error("JSON: {0}")]
     Json(#[from] serde_json::Error),

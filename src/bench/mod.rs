@@ -8,6 +8,7 @@ mod error;
 mod fft_pair;
 mod plot;
 mod report;
+mod rough;
 mod speed;
 mod threads;
 mod wear;
@@ -34,7 +35,10 @@ pub enum BenchTarget {
     Speed,
     /// The thread study of `speed` alone (a table, never written to the report).
     Threads,
-    /// All four.
+    /// A rough flat on a flat, periodic: one seeded self-affine surface on grids up to
+    /// N = 2048, real contact area and mean gap against the finest grid.
+    Rough,
+    /// All five (the thread study within `speed`).
     All,
 }
 
@@ -52,8 +56,14 @@ fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
 }
 
 /// Runs the chosen benchmark and prints it as a table or as JSON lines; with `markdown`, also
-/// writes the report there and its plots beside it.
-pub fn print(target: BenchTarget, json: bool, markdown: Option<&Path>) -> Result<(), BenchError> {
+/// writes the report there and its plots beside it; with `surfaces`, the rough study writes
+/// the height array of each grid there.
+pub fn print(
+    target: BenchTarget,
+    json: bool,
+    markdown: Option<&Path>,
+    surfaces: Option<&Path>,
+) -> Result<(), BenchError> {
     let wanted = |t: BenchTarget| target == t || target == BenchTarget::All;
     let mut measured = Measurements::default();
     if wanted(BenchTarget::Contact) {
@@ -103,6 +113,10 @@ pub fn print(target: BenchTarget, json: bool, markdown: Option<&Path>) -> Result
         }
         return Ok(());
     }
+    if wanted(BenchTarget::Rough) {
+        measured.rough = rough::rough_rows(surfaces)?;
+        emit(&measured.rough, json, rough::table)?;
+    }
     if let Some(path) = markdown {
         let name = clap::ValueEnum::to_possible_value(&target)
             .map_or_else(|| "all".to_owned(), |v| v.get_name().to_owned());
@@ -115,6 +129,10 @@ pub fn print(target: BenchTarget, json: bool, markdown: Option<&Path>) -> Result
             (Some(studies), BenchTarget::Speed) => {
                 report::write_speed_section(path, studies, &machine, &command)?;
                 eprintln!("rewrote the speed section of {}", path.display());
+            }
+            (_, BenchTarget::Rough) => {
+                report::write_rough_section(path, &measured.rough, &machine, &command)?;
+                eprintln!("rewrote the rough-surface section of {}", path.display());
             }
             _ => {
                 let plots = report::write(path, &measured, &machine, &command)?;

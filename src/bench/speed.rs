@@ -152,7 +152,7 @@ pub fn warm_rows() -> Result<Vec<WarmRow>, BenchError> {
 
 /// CPU time of the calling thread so far, s (Linux's `schedstat`; `None` elsewhere): the
 /// run's own work, whatever else the machine is doing.
-fn thread_cpu_s() -> Option<f64> {
+pub(super) fn thread_cpu_s() -> Option<f64> {
     let stat = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
     let nanoseconds: f64 = stat.split_whitespace().next()?.parse().ok()?;
     Some(nanoseconds * 1e-9)
@@ -210,7 +210,7 @@ pub fn coarse_rows() -> Result<Vec<CoarseRow>, BenchError> {
 }
 
 /// The process's peak resident memory so far (Linux's `VmHWM`), bytes.
-fn peak_rss_bytes() -> Option<u64> {
+pub(super) fn peak_rss_bytes() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;

@@ -10,7 +10,9 @@ mod contact;
 mod coupling;
 mod format;
 mod machine;
+mod rough;
 mod speed;
+mod splice;
 mod wear;
 
 use std::path::{Path, PathBuf};
@@ -21,6 +23,7 @@ use super::BenchError;
 use super::auto::AutoStudies;
 use super::contact::{ContactRow, ToleranceRow};
 use super::plot::{LogLogPlot, Series};
+use super::rough::RoughRow;
 use super::speed::SpeedStudies;
 use super::wear::WearRow;
 
@@ -39,6 +42,8 @@ pub struct Measurements {
     pub auto: Option<AutoStudies>,
     /// The solver's speed levers.
     pub speed: Option<SpeedStudies>,
+    /// The rough-surface grid study.
+    pub rough: Vec<RoughRow>,
 }
 
 /// The report being written: markdown text and the plots written so far.
@@ -50,6 +55,27 @@ struct Report {
 }
 
 impl Report {
+    /// An empty report for `path`, its plots to go in the folder of the same name (made
+    /// here).
+    fn beside(path: &Path) -> Result<Self, BenchError> {
+        let stem = path
+            .file_stem()
+            .ok_or_else(|| BenchError::NotAFile(path.to_owned()))?
+            .to_string_lossy()
+            .into_owned();
+        let plot_dir = path.parent().unwrap_or(Path::new("")).join(&stem);
+        std::fs::create_dir_all(&plot_dir).map_err(|source| BenchError::Write {
+            path: plot_dir.clone(),
+            source,
+        })?;
+        Ok(Self {
+            text: String::new(),
+            plot_dir,
+            link_dir: stem,
+            plots: 0,
+        })
+    }
+
     /// Appends a block (paragraph, table, list, image), a blank line after it.
     fn push(&mut self, block: &str) {
         self.text += block.trim_end();
@@ -110,24 +136,9 @@ pub fn write(
     machine: &Machine,
     command: &str,
 ) -> Result<usize, BenchError> {
-    let stem = path
-        .file_stem()
-        .ok_or_else(|| BenchError::NotAFile(path.to_owned()))?
-        .to_string_lossy()
-        .into_owned();
+    let mut report = Report::beside(path)?;
     let folder = path.parent().unwrap_or(Path::new(""));
-    let plot_dir = folder.join(&stem);
-    std::fs::create_dir_all(&plot_dir).map_err(|source| BenchError::Write {
-        path: plot_dir.clone(),
-        source,
-    })?;
     let peers = std::fs::read_to_string(folder.join("peers.md")).ok();
-    let mut report = Report {
-        text: String::new(),
-        plot_dir,
-        link_dir: stem,
-        plots: 0,
-    };
     render(&mut report, measured, machine, command, peers.as_deref())?;
     std::fs::write(path, report.text.trim_end().to_owned() + "\n").map_err(|source| {
         BenchError::Write {
@@ -173,6 +184,24 @@ pub fn write_speed_section(
     })
 }
 
+/// Rewrites the rough-surface section of the report at `path` alone, its plots beside it
+/// (the file's other sections are kept as another run wrote them).
+pub fn write_rough_section(
+    path: &Path,
+    rows: &[RoughRow],
+    machine: &Machine,
+    command: &str,
+) -> Result<(), BenchError> {
+    let existing = std::fs::read_to_string(path).unwrap_or_default();
+    let mut report = Report::beside(path)?;
+    rough::section(&mut report, rows, machine, command)?;
+    let text = splice::splice(&existing, rough::HEADING, &report.text);
+    std::fs::write(path, text).map_err(|source| BenchError::Write {
+        path: path.to_owned(),
+        source,
+    })
+}
+
 fn render(
     report: &mut Report,
     measured: &Measurements,
@@ -192,6 +221,9 @@ fn render(
     }
     if let Some(studies) = &measured.speed {
         speed::section(report, studies, machine, command);
+    }
+    if !measured.rough.is_empty() {
+        rough::section(report, &measured.rough, machine, command)?;
     }
     if let Some(peers) = peers {
         // The fragment's own heading, if it has one, heads the section.
@@ -252,6 +284,7 @@ mod tests {
             ],
             auto: None,
             speed: None,
+            rough: Vec::new(),
         };
         let machine = Machine {
             date: "2026-11-22".into(),

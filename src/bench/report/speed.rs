@@ -181,28 +181,9 @@ pub(super) fn body(report: &mut Report, studies: &SpeedStudies) {
     threads(report, &studies.threads);
 }
 
-/// Rewrites only this section of the report `text` (the rest is another run's): replaced
-/// where it is, or put before the peers' section (or at the end) when it is missing.
+/// Rewrites only this section of the report `text` (the rest is another run's).
 pub(super) fn splice(text: &str, section: &str) -> String {
-    let (before, after) = match text.find(&format!("\n{HEADING}\n")) {
-        Some(start) => {
-            let body = start + 1 + HEADING.len();
-            let end = text[body..]
-                .find("\n## ")
-                .map_or(text.len(), |e| body + e + 1);
-            (&text[..start + 1], &text[end..])
-        }
-        None => match text.find("\n## Peers") {
-            Some(start) => (&text[..start + 1], &text[start + 1..]),
-            None => (text, ""),
-        },
-    };
-    let before = before.trim_end();
-    let separator = if before.is_empty() { "" } else { "\n\n" };
-    format!("{before}{separator}{}\n\n{after}", section.trim_end())
-        .trim_end()
-        .to_owned()
-        + "\n"
+    super::splice::splice(text, HEADING, section)
 }
 
 #[cfg(test)]
