@@ -45,10 +45,13 @@ pub(crate) const STRIDE_PAD: usize = 8;
 pub const MAX_SPLIT_THREADS: usize = 64;
 
 /// Grid cells from which an automatic thread count splits an apply, or `None`: never.
-/// `tribosim bench threads` measured the split slower than one thread at every grid from
-/// N = 256 to 2048 on 2 cores shared with other work (speed-up 0.67-0.86 at N >= 512, load
-/// average 6-8), so `auto` keeps one thread until a quiet machine shows where it pays.
-pub const SPLIT_MIN_CELLS: Option<usize> = None;
+/// `tribosim bench threads` on the idle 2-core machine (load average 1.1): two threads
+/// take 1/1.61, 1/1.61 and 1/1.65 of one thread's time at N = 512, 1024 and 2048, and gain
+/// nothing at 256 (1.03, rounds 0.90-1.91), where each pass is too short to pay for the
+/// threads' start and join. Under load from other work the split lost (0.67-0.86 at
+/// N >= 512, load average 6-8): the second thread waits for a busy core, which is why the
+/// service gives each of its workers one core's share.
+pub const SPLIT_MIN_CELLS: Option<usize> = Some(512 * 512);
 
 /// Runs of the process that solve at the same time (the service's workers): an automatic
 /// thread count shares the cores among them. A process property, not a scene's: the

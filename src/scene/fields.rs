@@ -411,7 +411,7 @@ pub(super) const THREADS: Field = Field {
     range: Range::AutoOrWhole(1, crate::contact::MAX_SPLIT_THREADS as u64),
     why: "more threads than cores only wait for each other",
     meaning: "Threads of each contact solve's FFT passes; the results do not depend on it. \
-              `auto`: one where the split does not pay (for now every grid), else the \
+              `auto`: one below 512 x 512 cells, where the split does not pay, else the \
               cores the process may use divided among the service's workers \
               (`docs/operations.md`).",
     feeds: "the apply of K in eqs. 10-12 (no value changes)",
