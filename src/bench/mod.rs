@@ -118,26 +118,37 @@ pub fn print(
         emit(&measured.rough, json, rough::table)?;
     }
     if let Some(path) = markdown {
-        let name = clap::ValueEnum::to_possible_value(&target)
-            .map_or_else(|| "all".to_owned(), |v| v.get_name().to_owned());
-        let command = format!(
-            "cargo run --release -- bench {name} --markdown {}",
-            path.display()
-        );
-        let machine = Machine::detect(path);
-        match (&measured.speed, target) {
-            (Some(studies), BenchTarget::Speed) => {
-                report::write_speed_section(path, studies, &machine, &command)?;
-                eprintln!("rewrote the speed section of {}", path.display());
-            }
-            (_, BenchTarget::Rough) => {
-                report::write_rough_section(path, &measured.rough, &machine, &command)?;
-                eprintln!("rewrote the rough-surface section of {}", path.display());
-            }
-            _ => {
-                let plots = report::write(path, &measured, &machine, &command)?;
-                eprintln!("wrote {} and {plots} plots", path.display());
-            }
+        write_markdown(path, target, &measured)?;
+    }
+    Ok(())
+}
+
+/// Writes what was `measured` for `target` to the report at `path`: the whole report, or
+/// only the section of a target that rewrites its own.
+fn write_markdown(
+    path: &Path,
+    target: BenchTarget,
+    measured: &Measurements,
+) -> Result<(), BenchError> {
+    let name = clap::ValueEnum::to_possible_value(&target)
+        .map_or_else(|| "all".to_owned(), |v| v.get_name().to_owned());
+    let command = format!(
+        "cargo run --release -- bench {name} --markdown {}",
+        path.display()
+    );
+    let machine = Machine::detect(path);
+    match (&measured.speed, target) {
+        (Some(studies), BenchTarget::Speed) => {
+            report::write_speed_section(path, studies, &machine, &command)?;
+            eprintln!("rewrote the speed section of {}", path.display());
+        }
+        (_, BenchTarget::Rough) => {
+            report::write_rough_section(path, &measured.rough, &machine, &command)?;
+            eprintln!("rewrote the rough-surface section of {}", path.display());
+        }
+        _ => {
+            let plots = report::write(path, measured, &machine, &command)?;
+            eprintln!("wrote {} and {plots} plots", path.display());
         }
     }
     Ok(())

@@ -132,7 +132,12 @@ pub(super) fn section(
         finest.peak_rss_bytes.map_or(f64::NAN, |b| b as f64 / 1e6),
         finest.n,
     ));
-    let coarser: Vec<&RoughRow> = rows.iter().filter(|r| r.n != finest.n).collect();
+    plots(report, rows, finest.n)
+}
+
+/// The log-log plots: each coarser grid's error against its time, and time against N.
+fn plots(report: &mut Report, rows: &[RoughRow], finest: usize) -> Result<(), BenchError> {
+    let coarser: Vec<&RoughRow> = rows.iter().filter(|r| r.n != finest).collect();
     report.plot(
         "rough-error",
         &LogLogPlot {
