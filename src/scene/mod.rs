@@ -42,7 +42,7 @@ pub use sections::{
     Numerics, PAPER_ARCHARD_CALIBRATION, PAPER_CYCLES, PAPER_HARDNESS_TABLE, STEP_CHANGE_BOUND,
     Switch, TestConditions, Wear,
 };
-pub use surface::{DEFAULT_HURST, SurfaceKind, SurfaceSpec};
+pub use surface::{DEFAULT_HURST, MAX_RMS_SLOPE, SurfaceKind, SurfaceSpec};
 
 /// One ball-on-disc test, as the user describes it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

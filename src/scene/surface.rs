@@ -20,6 +20,11 @@ pub enum SurfaceKind {
 /// measured engineering surfaces show (Persson, Tribol. Lett. 54 (2014) 99).
 pub const DEFAULT_HURST: f64 = 0.8;
 
+/// The largest rms slope a surface may have: above 1 the small-slope half-space theory of
+/// eqs. 5-10 does not hold. Bounds `rms_slope` when given, and the slope an `rms_height_um`
+/// gives on the grid.
+pub const MAX_RMS_SLOPE: f64 = 1.0;
+
 /// The disc's initial surface.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -43,7 +43,7 @@ pub use stepping::MAX_STEP;
 pub enum SimulationError {
     /// The scene has invalid fields, or describes a contact the simulation cannot run (all
     /// of the problems listed).
-    #[error("invalid scene: {0}")]
+    #[error(transparent)]
     Scene(#[from] SceneErrors),
     /// The contact core refused a material or the grid built from a scene that passed its
     /// checks: the scene's checks and the core disagree, a defect rather than bad input.

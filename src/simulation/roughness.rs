@@ -21,7 +21,7 @@
 use std::f64::consts::TAU;
 
 use crate::contact::Grid;
-use crate::scene::{SurfaceKind, SurfaceSpec};
+use crate::scene::{FieldError, MAX_RMS_SLOPE, SceneErrors, SurfaceKind, SurfaceSpec};
 use crate::surface::{HeightMap, Roughness, SelfAffine, Statistics, measured_fit_range};
 
 use super::{Model, ModelChoice, SimulationError};
@@ -113,6 +113,19 @@ fn synthetic(spec: &SurfaceSpec, grid: &Grid) -> Result<DiscSurface, SimulationE
     let map = generator.generate(grid.nx, grid.ny, grid.dx, grid.dy)?;
     let (fit_long, fit_short) = fit_range(&map, Some((long, short_used)));
     let statistics = Statistics::of(&map, fit_long, fit_short);
+    if spec.rms_height_um.is_some() && statistics.rms_slope > MAX_RMS_SLOPE {
+        return Err(SceneErrors(vec![FieldError::new(
+            "disc.surface.rms_height_um",
+            format!(
+                "gives an rms slope of {:.3} on the grid's {:.4} um cells, above \
+                 {MAX_RMS_SLOPE} (beyond it the small-slope half-space theory of eqs. 5-10 \
+                 does not hold); lower the height or lengthen the short cut-off",
+                statistics.rms_slope,
+                cell * 1e6
+            ),
+        )])
+        .into());
+    }
     let mut reason = format!(
         "synthetic self-affine, H = {hurst}, cut-offs {:.3} to {:.3} um, seed {}, generated on \
          the grid's cells and periodic over it: rms height {:.4} um, rms slope {:.4}",
@@ -225,6 +238,34 @@ mod tests {
     use super::*;
     use crate::scene::parse_scene_str;
     use crate::simulation::Setup;
+
+    #[test]
+    fn a_height_that_gives_a_slope_above_the_theorys_limit_is_refused_by_name() {
+        // 13 um rms over cut-offs of 4 and 50 um: an rms slope of about 4 (the rough-sphere
+        // case of docs/stability.md); 0.1 um on the same cut-offs stays near 0.03.
+        let scene = |rms_um: f64| {
+            parse_scene_str(&format!(
+                r#"{{"disc": {{"surface": {{"kind": "synthetic", "rms_height_um": {rms_um},
+                                           "short_cutoff_um": 4, "long_cutoff_um": 50}}}}}}"#
+            ))
+            .expect("valid")
+        };
+        match Setup::new(&scene(13.0)) {
+            Err(SimulationError::Scene(SceneErrors(errors))) => {
+                assert_eq!(errors.len(), 1);
+                assert_eq!(errors[0].path, "disc.surface.rms_height_um");
+                assert!(
+                    errors[0].message.contains("rms slope"),
+                    "{}",
+                    errors[0].message
+                );
+            }
+            other => panic!("expected the height refused, got {other:?}"),
+        }
+        let setup = Setup::new(&scene(0.1)).expect("runs");
+        let slope = setup.surface.expect("rough").statistics.rms_slope;
+        assert!(slope < MAX_RMS_SLOPE, "{slope}");
+    }
 
     #[test]
     fn a_grid_too_coarse_for_the_short_cut_off_says_so_and_filters() {

@@ -1,5 +1,6 @@
 //! The descriptors of `disc.surface`, the disc's initial roughness (see [`super::FIELDS`]).
 
+use crate::scene::MAX_RMS_SLOPE;
 use crate::scene::field::{Field, Range};
 
 /// `disc.surface`.
@@ -41,7 +42,7 @@ pub(in crate::scene) const SURFACE_RMS_HEIGHT: Field = Field {
 pub(in crate::scene) const SURFACE_RMS_SLOPE: Field = Field {
     path: "disc.surface.rms_slope",
     unit: "",
-    range: Range::Closed(1e-4, 1.0),
+    range: Range::Closed(1e-4, MAX_RMS_SLOPE),
     why: "above 1 the small-slope half-space theory of eqs. 5-10 does not hold",
     meaning: "Synthetic: root mean square gradient, by forward differences over the cells \
               (give it or `rms_height_um`).",
