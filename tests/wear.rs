@@ -147,10 +147,11 @@ fn paper_scene_yields_first_then_wears_by_archard() {
 #[test]
 fn corrosion_follows_eq18_and_faraday_in_the_users_units() {
     // Hand formulas in the scene's units (V, A/cm2, cm2, g/mol, g/cm3), independent of the
-    // SI conversions inside.
+    // SI conversions inside. Every cycle solved, so the last two records are one cycle
+    // apart and the last one dissolves at its own anodic area throughout.
     let s = scene(
         r#"{"preset": "dalmau2018-316l", "overrides": {
-            "test": {"cycles": 40}, "numerics": {"grid": 48}}}"#,
+            "test": {"cycles": 40}, "numerics": {"grid": 48, "cycle_step": 1}}}"#,
     );
     let result = simulate(&s);
     let last = result.cycles.last().expect("records");

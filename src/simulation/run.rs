@@ -143,9 +143,17 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let (solution, separation) = self.solve_contact(cycle, cap)?;
         // Yielding truncates the rows under capped cells (eq. 13); one Archard pass without
         // its k / H (eqs. 15-16).
+        let worn_before = self.groove.area_m2();
         let yielded = self
             .groove
             .yield_under(&self.grid, &solution, &separation, cap);
+        // A cut smaller than the step bound's share of the groove changes it less than a
+        // step may; only a larger one (the yield groove of the first cycles) restarts the
+        // stepping. Paper scene `{}`: 462 solves instead of 488, with the same errors
+        // against solving every cycle (volume +1.94e-4 against +1.89e-4, WAC -1.49e-3
+        // against -1.54e-3).
+        let cut = self.groove.area_m2() - worn_before;
+        let reshaped = yielded && cut > setup.scene.numerics.cycle_step_bound * worn_before;
         let pass = pass_pressure_integral(&self.grid, &solution.pressure);
         // A step never passes a record cycle, so that cycle is solved; nor the first cycle
         // of a new Archard regime, whose wear rate the step was not chosen for.
@@ -166,7 +174,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             let numerics = &setup.scene.numerics;
             self.stepper = Stepper::new(numerics.cycle_step, numerics.cycle_step_bound);
         }
-        let step = self.stepper.next(cycle, stop, yielded, &pass);
+        let step = self.stepper.next(cycle, stop, reshaped, &pass);
         self.max_step = self.max_step.max(step);
         // The profile update (eq. 17): the pass at this cycle's hardness, after the yielding.
         self.groove

@@ -38,8 +38,9 @@ impl Stepper {
     }
 
     /// Cycles the solve at `cycle` stands for (itself included), given its per-pass wear
-    /// profile and whether any pressure sat at the cap. Never steps past `total`, so the last
-    /// cycle is always solved.
+    /// profile and whether yielding reshaped the groove (`plastic`: a cut larger than the
+    /// step bound's share of it). Never steps past `total`, so the last cycle is always
+    /// solved.
     pub fn next(&mut self, cycle: u64, total: u64, plastic: bool, profile: &[f64]) -> u64 {
         let wanted = match self.mode {
             CycleStep::EveryCycle => 1,
