@@ -107,6 +107,20 @@ enum Spectrum {
     Complex(Vec<Complex<f64>>),
 }
 
+/// The complex-to-real transform of one padded row's half spectrum `row` into `real`.
+fn inverse_row(plans: &mut Plans, row: &mut [Complex<f64>], real: &mut [f64]) {
+    // The DC and Nyquist bins of a real signal are real; round-off leaves tiny imaginary
+    // parts that realfft rejects.
+    row[0].im = 0.0;
+    if let Some(nyquist) = row.last_mut() {
+        nyquist.im = 0.0;
+    }
+    plans
+        .row_inverse
+        .process_with_scratch(row, real, &mut plans.real_scratch)
+        .expect("imaginary parts of DC and Nyquist zeroed above");
+}
+
 /// `column *= spectrum` over the column that starts at `start` in the spectrum's layout.
 fn multiply(spectrum: &Spectrum, column: &mut [Complex<f64>], start: usize) {
     let range = start..start + column.len();
@@ -302,14 +316,7 @@ impl Operator for DcFft {
             for slot in 0..rows {
                 let iy = first + slot;
                 let row = &mut self.row_block[slot * self.half..(slot + 1) * self.half];
-                // The DC and Nyquist bins of a real signal are real; round-off leaves tiny
-                // imaginary parts that realfft rejects.
-                row[0].im = 0.0;
-                row[nx].im = 0.0;
-                self.plans
-                    .row_inverse
-                    .process_with_scratch(row, &mut self.row_real, &mut self.plans.real_scratch)
-                    .expect("imaginary parts of DC and Nyquist zeroed above");
+                inverse_row(&mut self.plans, row, &mut self.row_real);
                 output[iy * nx..(iy + 1) * nx].copy_from_slice(&self.row_real[..nx]);
             }
         }

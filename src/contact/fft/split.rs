@@ -14,7 +14,7 @@
 
 use rustfft::num_complex::Complex;
 
-use super::{BLOCK, Spectrum, multiply};
+use super::{BLOCK, Spectrum, inverse_row, multiply};
 use crate::contact::plans::Plans;
 
 /// The per-thread state and the shared row-spectrum buffer of a split apply.
@@ -201,14 +201,7 @@ impl Worker {
             }
             for (slot, out) in rows.chunks_exact_mut(nx).enumerate() {
                 let row = &mut self.row_block[slot * half..(slot + 1) * half];
-                // The DC and Nyquist bins of a real signal are real; round-off leaves tiny
-                // imaginary parts that realfft rejects.
-                row[0].im = 0.0;
-                row[nx].im = 0.0;
-                self.plans
-                    .row_inverse
-                    .process_with_scratch(row, &mut self.row_real, &mut self.plans.real_scratch)
-                    .expect("imaginary parts of DC and Nyquist zeroed above");
+                inverse_row(&mut self.plans, row, &mut self.row_real);
                 out.copy_from_slice(&self.row_real[..nx]);
             }
         }
