@@ -94,19 +94,19 @@ impl Groove {
     /// The roughness as yielding has left it, `min(r, c)`, at each cell of `grid` (the grid
     /// the groove is on): m above the original mean plane, the groove `D` left out.
     pub fn roughness_m(&self, grid: &Grid) -> Vec<f64> {
-        let mut heights = Vec::with_capacity(grid.len());
-        for (iy, &c) in self.ceiling_m.iter().enumerate() {
-            match &self.roughness {
-                Some(r) => {
-                    let row = r.row(iy, grid.ny);
-                    heights.extend(
-                        (0..grid.nx).map(|ix| row[periodic_index(ix, grid.nx, r.nx)].min(c)),
-                    );
-                }
-                None => heights.extend(std::iter::repeat_n(c.min(0.0), grid.nx)),
-            }
+        (0..grid.len())
+            .map(|i| self.roughness_at(grid, i))
+            .collect()
+    }
+
+    /// [`Self::roughness_m`] at cell `i` of `grid` alone.
+    fn roughness_at(&self, grid: &Grid, i: usize) -> f64 {
+        let (ix, iy) = (i % grid.nx, i / grid.nx);
+        let c = self.ceiling_m[iy];
+        match &self.roughness {
+            Some(r) => r.row(iy, grid.ny)[periodic_index(ix, grid.nx, r.nx)].min(c),
+            None => c.min(0.0),
         }
-        heights
     }
 
     /// The separation of the undeformed surfaces: the ball's height plus the disc's depth
@@ -138,7 +138,7 @@ impl Groove {
         separation: &[f64],
         cap: f64,
     ) -> bool {
-        let surface = self.roughness_m(grid);
+        // Only the capped cells' heights are needed: most cycles have none.
         let mut ceiling = self.ceiling_m.clone();
         let mut yielded = false;
         for (i, &p) in solution.pressure.iter().enumerate() {
@@ -147,7 +147,7 @@ impl Groove {
                 yielded |= gap < 0.0;
                 // A capped cell the solver left a hair short of contact was pressed to its
                 // own surface.
-                let level = surface[i] + gap.min(0.0);
+                let level = self.roughness_at(grid, i) + gap.min(0.0);
                 let row = &mut ceiling[i / grid.nx];
                 *row = row.min(level);
             }
