@@ -180,12 +180,23 @@ def our_rough(row):
     )
 
 
-def measure_rough(peer, case, reps, budget_s, cap_s, expected_s):
+def beyond_cap(previous_s, cap_s):
+    """Why a peer is not run on a grid, or None: four times its time on the grid below (an
+    FFT solve's cost grows a little faster than the cell count) beyond `cap_s`."""
+    if previous_s is None:
+        return None
+    expected_s = 4 * previous_s
+    if expected_s <= cap_s:
+        return None
+    return f"not run: expected about {expected_s:.0f} s, beyond the {cap_s:g} s cap"
+
+
+def measure_rough(peer, case, reps, budget_s, cap_s, previous_s):
     """Median over up to `reps` cold runs (fewer once `budget_s` is spent); not run at all
-    when `expected_s`, four times the previous grid's time, is beyond `cap_s`."""
+    when its time on the grid below, `previous_s`, says it would take beyond `cap_s`."""
     out = RoughMeasurement(peer.name, case["n"])
-    if expected_s is not None and expected_s > cap_s:
-        out.failure = f"not run: expected about {expected_s:.0f} s, beyond the {cap_s:g} s cap"
+    out.failure = beyond_cap(previous_s, cap_s)
+    if out.failure:
         return out
     walls, solves, cpus = [], [], []
     try:
@@ -224,8 +235,7 @@ def run_rough(args, peers):
         found = []
         for peer in peers:
             print(f"rough N = {n}: {peer.name} ...", file=sys.stderr)
-            expected = None if last[peer.name] is None else 4 * last[peer.name]
-            m = measure_rough(peer, case, args.reps, args.budget, args.rough_cap, expected)
+            m = measure_rough(peer, case, args.reps, args.budget, args.cap, last[peer.name])
             last[peer.name] = m.wall_s if m.wall_s is not None else float("inf")
             found.append(m)
         groups[n] = (our_rough(rows[n]), found)
@@ -302,7 +312,7 @@ operator's displacement. "area vs ours" and "gap vs ours" are a peer's value ove
 each answer. Times as for the smooth cases: construction plus solve, median over up to
 {args.reps} cold runs (fewer once {args.budget:g} s are spent; ours those of `bench rough`:
 one at N >= 1024); a peer is not run on a grid when four times its time on the grid below
-exceeds {args.rough_cap:g} s.
+exceeds {args.cap:g} s.
 
 {markdown_table(header, lines)}
 

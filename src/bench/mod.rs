@@ -55,6 +55,25 @@ fn median_time(reps: usize, mut f: impl FnMut()) -> f64 {
     times[times.len() / 2]
 }
 
+/// The median times of `a` and `b` run alternately `reps` times each, so that load from
+/// other work falls on both alike.
+fn median_times_alternating(reps: usize, mut a: impl FnMut(), mut b: impl FnMut()) -> (f64, f64) {
+    let (mut first, mut second) = (Vec::new(), Vec::new());
+    for _ in 0..reps.max(1) {
+        let start = Instant::now();
+        a();
+        first.push(start.elapsed().as_secs_f64());
+        let start = Instant::now();
+        b();
+        second.push(start.elapsed().as_secs_f64());
+    }
+    let median = |mut times: Vec<f64>| {
+        times.sort_by(f64::total_cmp);
+        times[times.len() / 2]
+    };
+    (median(first), median(second))
+}
+
 /// Runs the chosen benchmark and prints it as a table or as JSON lines; with `markdown`, also
 /// writes the report there and its plots beside it; with `surfaces`, the rough study writes
 /// the height array of each grid there.

@@ -52,6 +52,17 @@ pub fn coarse_start(
     Ok(Some(prolong(&coarse, &grid, &solution.pressure)))
 }
 
+/// The start of a cold solve: [`coarse_start`]'s pressure, or `None` (the uniform start)
+/// when the grid does not halve or a coarse level fails: a failed coarse solve only loses
+/// the starting guess, never the fine solve, which reports its own errors.
+pub fn cold_start(
+    problem: &ContactProblem,
+    pair: &ElasticPair,
+    options: &SolverOptions,
+) -> Option<Vec<f64>> {
+    coarse_start(problem, pair, options).ok().flatten()
+}
+
 /// The mean of each 2 x 2 block of fine cells.
 fn restrict(fine: &Grid, coarse: &Grid, field: &[f64]) -> Vec<f64> {
     let mut out = vec![0.0; coarse.len()];

@@ -28,7 +28,7 @@ pub mod solver;
 mod window;
 
 pub use check::{Verification, verify};
-pub use coarse::{COARSE_TOLERANCE, COARSEST_CELLS, coarse_start};
+pub use coarse::{COARSE_TOLERANCE, COARSEST_CELLS, coarse_start, cold_start};
 pub use coupled::{CoupledSolver, solve_coupled};
 pub use error::{ContactError, ElasticConstant};
 pub(crate) use fft::{BLOCK, STRIDE_PAD};

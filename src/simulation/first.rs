@@ -4,7 +4,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::contact::{ContactError, ContactProblem, ContactSolution, Grid, coarse_start};
+use crate::contact::{ContactError, ContactProblem, ContactSolution, Grid, cold_start};
 use crate::scene::{DomainSize, Scene};
 
 use super::growth::widen;
@@ -79,10 +79,7 @@ fn solve_growing(setup: &mut Setup, cap: f64) -> Result<(Grid, ContactSolution),
             load_n: setup.scene.load_n(),
             yield_pressure_pa: cap,
         };
-        // A failed coarse solve only loses the starting guess: the solve starts cold then.
-        let start = coarse_start(&problem, &setup.pair, &setup.options)
-            .ok()
-            .flatten();
+        let start = cold_start(&problem, &setup.pair, &setup.options);
         let solved = setup
             .solver(&grid)
             .solve(&problem, &setup.options, start.as_deref());

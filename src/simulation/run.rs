@@ -20,7 +20,7 @@ use std::time::Instant;
 
 use crate::contact::{
     ContactError, ContactProblem, ContactSolution, ContactSolver, Grid, MARGIN_FRACTION,
-    MIN_MARGIN, Window, WindowedSolver, coarse_start,
+    MIN_MARGIN, Window, WindowedSolver, cold_start,
 };
 use crate::scene::{DomainSize, Scene};
 use crate::surface::{HeightMap, count_islands};
@@ -201,12 +201,10 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             load_n: self.setup.scene.load_n(),
             yield_pressure_pa: cap,
         };
-        // A failed coarse solve only loses the starting guess: the solve starts cold then.
-        let start = self.history.guess(cycle, cap).or_else(|| {
-            coarse_start(&problem, &self.setup.pair, &self.setup.options)
-                .ok()
-                .flatten()
-        });
+        let start = self
+            .history
+            .guess(cycle, cap)
+            .or_else(|| cold_start(&problem, &self.setup.pair, &self.setup.options));
         let solved = self
             .solver
             .solve(&problem, &self.setup.options, start.as_deref());

@@ -18,7 +18,7 @@ use serde::Serialize;
 
 use crate::contact::{
     ContactError, ContactProblem, ContactSolution, DcFft, ElasticPair, Grid, Hertz, Kernel,
-    Material, SolverOptions, solve,
+    Material, SolverOptions, cold_start, solve,
 };
 
 mod table;
@@ -26,7 +26,7 @@ mod table;
 pub use table::{table, tolerance_table};
 
 use super::fft_pair::FftPair;
-use super::median_time;
+use super::{median_time, median_times_alternating};
 
 /// Side of the square domain, m.
 pub const DOMAIN_M: f64 = 0.256e-3;
@@ -222,23 +222,31 @@ pub struct ContactRow {
     pub case: ContactCase,
     /// Cells per side.
     pub n: usize,
-    /// Kernel and operator construction plus solve, s (median).
+    /// Kernel and operator construction plus the cold solve, s (median).
     pub wall_s: f64,
     /// Runs behind each median.
     pub runs: usize,
     /// Kernel and operator construction, s (median).
     pub build_s: f64,
-    /// Solve alone, s (median).
+    /// The cold solve alone, s (median): the coarse-to-fine start
+    /// ([`crate::contact::cold_start`], coarse operators and solves included) and the
+    /// solve on this grid.
     pub solve_s: f64,
-    /// CG iterations.
+    /// CG iterations on this grid (the coarse levels' not counted).
     pub iterations: usize,
-    /// Operator applications.
+    /// Operator applications on this grid.
     pub applies: usize,
+    /// The same solve from the uniform pressure, s (median, run alternately with the cold
+    /// solve).
+    pub uniform_solve_s: f64,
+    /// CG iterations from the uniform pressure.
+    pub uniform_iterations: usize,
     /// The residual reached (the relative residual of [`crate::contact::solver`]).
     pub residual: f64,
     /// One padded 2N x 2N forward + inverse real FFT, s (median, same run).
     pub fft_pair_s: f64,
-    /// Time per iteration in FFT pairs: `solve_s / iterations / fft_pair_s`.
+    /// Time per iteration in FFT pairs, from the uniform start (every iteration on this
+    /// grid): `uniform_solve_s / uniform_iterations / fft_pair_s`.
     pub iteration_per_fft_pair: f64,
     /// `p_max / p0 - 1` (`hertz`) or `p_max / Y - 1` (`capped`).
     pub err_pmax: f64,
@@ -375,6 +383,9 @@ pub fn grid_rows(sizes: &[usize], capped: &Reference) -> Result<Vec<ContactRow>,
     Ok(rows)
 }
 
+/// One grid of a case: the cold solve as the simulation's first cycle and `tribosim
+/// contact` make it (from the coarse-to-fine start), timed alternately with the solve from
+/// the uniform pressure.
 fn grid_row(setup: &Setup, capped: &Reference) -> Result<ContactRow, ContactError> {
     let (n, reps) = (setup.grid.nx, repetitions(setup.grid.nx));
     let problem = setup.problem();
@@ -382,11 +393,22 @@ fn grid_row(setup: &Setup, capped: &Reference) -> Result<ContactRow, ContactErro
     let build_s = median_time(reps, || {
         std::hint::black_box(setup.operator());
     });
-    let mut operator = setup.operator();
-    let solution = solve(&mut operator, &problem, &options, None)?;
-    let solve_s = median_time(reps, || {
-        std::hint::black_box(solve(&mut operator, &problem, &options, None).ok());
-    });
+    let (mut operator, mut uniform_operator) = (setup.operator(), setup.operator());
+    let cold = |operator: &mut DcFft| {
+        let start = cold_start(&problem, &setup.pair, &options);
+        solve(operator, &problem, &options, start.as_deref())
+    };
+    let solution = cold(&mut operator)?;
+    let uniform = solve(&mut uniform_operator, &problem, &options, None)?;
+    let (solve_s, uniform_solve_s) = median_times_alternating(
+        reps,
+        || {
+            std::hint::black_box(cold(&mut operator).ok());
+        },
+        || {
+            std::hint::black_box(solve(&mut uniform_operator, &problem, &options, None).ok());
+        },
+    );
     let mut pair_fft = FftPair::new(n);
     let fft_pair_s = median_time(4 * reps, || pair_fft.round_trip());
     let measures = Measures::of(&solution, &setup.grid, setup.case.yield_pressure_pa());
@@ -402,9 +424,11 @@ fn grid_row(setup: &Setup, capped: &Reference) -> Result<ContactRow, ContactErro
         solve_s,
         iterations: solution.iterations,
         applies: solution.operator_applies,
+        uniform_solve_s,
+        uniform_iterations: uniform.iterations,
         residual: solution.residual,
         fft_pair_s,
-        iteration_per_fft_pair: solve_s / solution.iterations as f64 / fft_pair_s,
+        iteration_per_fft_pair: uniform_solve_s / uniform.iterations as f64 / fft_pair_s,
         err_pmax: errors.pmax,
         err_area: errors.area,
         err_delta: errors.delta,

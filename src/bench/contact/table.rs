@@ -12,7 +12,7 @@ fn header(case: ContactCase, reference: &Reference) -> String {
     };
     match case {
         ContactCase::Hertz => format!(
-            "Hertz, paper case {}; errors against {against}\n",
+            "Hertz, paper case {}; solve s from the coarse-to-fine start, uniform s from the uniform pressure; errors against {against}\n",
             paper_case()
         ),
         ContactCase::Capped => format!(
@@ -35,16 +35,18 @@ pub fn table(rows: &[ContactRow]) -> String {
             continue;
         };
         out += &header(case, &first.reference);
-        out += "     N   wall s  build s  solve s  iters  applies  FFT pair ms  iter/pair   err p_max    err area   err delta  err plastic\n";
+        out += "     N   wall s  build s  solve s  iters  applies  uniform s  iters  FFT pair ms  iter/pair   err p_max    err area   err delta  err plastic\n";
         for r in rows.iter().filter(|r| r.case == case) {
             out += &format!(
-                "{:>6} {:>8.4} {:>8.4} {:>8.4} {:>6} {:>8} {:>12.3} {:>10.2} {:>+11.3e} {:>+11.3e} {:>+11.3e} {:>12}\n",
+                "{:>6} {:>8.4} {:>8.4} {:>8.4} {:>6} {:>8} {:>10.4} {:>6} {:>12.3} {:>10.2} {:>+11.3e} {:>+11.3e} {:>+11.3e} {:>12}\n",
                 r.n,
                 r.wall_s,
                 r.build_s,
                 r.solve_s,
                 r.iterations,
                 r.applies,
+                r.uniform_solve_s,
+                r.uniform_iterations,
                 r.fft_pair_s * 1e3,
                 r.iteration_per_fft_pair,
                 r.err_pmax,
