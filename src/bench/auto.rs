@@ -142,7 +142,7 @@ pub fn auto_studies() -> Result<AutoStudies, BenchError> {
 
 /// The auto domain (`base`) against fixed ones at the quick grid's cells.
 fn domain_rows(base: &SimulationResult) -> Result<Vec<WearRow>, SimulationError> {
-    let quick = paper_scene_with(|s| s.numerics.grid = GridSize::Cells(QUICK_GRID))?;
+    let quick = paper_scene_with(|s| s.numerics.grid = GridSize::Cells(QUICK_GRID));
     let cell_um = first_grid(&quick)?.dx * 1e6;
     let fixed = FIXED_DOMAIN_CELLS
         .into_iter()
@@ -225,9 +225,9 @@ fn plasticity_rows(
 fn auto_grid() -> Result<AutoGrid, SimulationError> {
     let sized = first_grid(&paper_scene_with(|s| {
         s.numerics.grid = GridSize::Cells(QUICK_GRID);
-    })?)?;
+    }))?;
     let radius = sized.nx as f64 * sized.dx / DOMAIN_PER_CONTACT_RADIUS;
-    let grid = first_grid(&paper_scene_with(|_| {})?)?;
+    let grid = first_grid(&paper_scene_with(|_| {}))?;
     Ok(AutoGrid {
         cells: grid.nx,
         cell_um: grid.dx * 1e6,

@@ -9,8 +9,7 @@ use serde::Serialize;
 
 use crate::contact::Grid;
 use crate::scene::{
-    CycleStep, DALMAU2018_316L, DomainSize, FieldError, GridSize, Scene, SceneErrors,
-    TestConditions, presets,
+    CycleStep, DALMAU2018_316L, DomainSize, GridSize, Scene, TestConditions, dalmau2018_316l,
 };
 use crate::simulation::{
     MAX_STEP, STEP_CHANGE_BOUND, Setup, SimulationError, SimulationResult, run,
@@ -129,30 +128,22 @@ pub struct WearRow {
 pub(super) const STUDY_CYCLES: u64 = 300;
 
 /// The scene every study starts from: the `dalmau2018-316l` preset at [`STUDY_CYCLES`].
-pub fn paper_scene() -> Result<Scene, SceneErrors> {
-    presets()
-        .into_iter()
-        .find(|p| p.name == DALMAU2018_316L)
-        .map(|p| Scene {
-            test: TestConditions {
-                cycles: STUDY_CYCLES,
-                ..p.scene.test
-            },
-            ..p.scene
-        })
-        .ok_or_else(|| {
-            SceneErrors(vec![FieldError::new(
-                "preset",
-                format!("no preset `{DALMAU2018_316L}`"),
-            )])
-        })
+pub fn paper_scene() -> Scene {
+    let preset = dalmau2018_316l();
+    Scene {
+        test: TestConditions {
+            cycles: STUDY_CYCLES,
+            ..preset.test
+        },
+        ..preset
+    }
 }
 
 /// The paper scene with `change` applied.
-pub(super) fn paper_scene_with(change: impl FnOnce(&mut Scene)) -> Result<Scene, SceneErrors> {
-    let mut scene = paper_scene()?;
+pub(super) fn paper_scene_with(change: impl FnOnce(&mut Scene)) -> Scene {
+    let mut scene = paper_scene();
     change(&mut scene);
-    Ok(scene)
+    scene
 }
 
 /// Checks `scene` as a parsed scene would be checked, and runs it.
@@ -165,7 +156,7 @@ pub(super) fn simulate(scene: &Scene) -> Result<SimulationResult, SimulationErro
 pub(super) fn simulate_with(
     change: impl FnOnce(&mut Scene),
 ) -> Result<SimulationResult, SimulationError> {
-    simulate(&paper_scene_with(change)?)
+    simulate(&paper_scene_with(change))
 }
 
 /// The first grid the simulation sets up for `scene`.
@@ -252,7 +243,7 @@ fn cycle_step_rows() -> Result<Vec<WearRow>, SimulationError> {
 fn grid_rows() -> Result<Vec<WearRow>, SimulationError> {
     let mut runs = Vec::new();
     for n in GRID_STUDY_CELLS {
-        let scene = paper_scene_with(|s| s.numerics.grid = GridSize::Cells(n))?;
+        let scene = paper_scene_with(|s| s.numerics.grid = GridSize::Cells(n));
         let cell_um = first_grid(&scene)?.dx * 1e6;
         runs.push((n, cell_um, simulate(&scene)?));
     }
@@ -412,23 +403,18 @@ mod tests {
         let built = paper_scene_with(|s| {
             s.test.cycles = 3600;
             s.numerics.grid = GridSize::Cells(64);
-        })
-        .expect("preset");
+        });
         let json = r#"{"test": {"cycles": 3600}, "numerics": {"grid": 64}}"#;
         assert_eq!(built, parsed(json));
         let built = paper_scene_with(|s| {
             s.numerics.grid = GridSize::Cells(256);
             s.numerics.domain_um = DomainSize::Micrometres(256.0);
             s.numerics.cycle_step = CycleStep::EveryCycle;
-        })
-        .expect("preset");
+        });
         let json = r#"{"test": {"cycles": 300},
             "numerics": {"grid": 256, "domain_um": 256, "cycle_step": 1}}"#;
         assert_eq!(built, parsed(json));
-        assert_eq!(
-            paper_scene().expect("preset"),
-            parsed(r#"{"test": {"cycles": 300}}"#)
-        );
+        assert_eq!(paper_scene(), parsed(r#"{"test": {"cycles": 300}}"#));
     }
 
     /// The grid study names each grid by its cell size, taken from the simulation's own
@@ -437,7 +423,7 @@ mod tests {
     fn grid_settings_name_the_cells_of_the_committed_report() {
         let committed = include_str!("../../docs/accuracy.md");
         for n in GRID_STUDY_CELLS {
-            let scene = paper_scene_with(|s| s.numerics.grid = GridSize::Cells(n)).expect("preset");
+            let scene = paper_scene_with(|s| s.numerics.grid = GridSize::Cells(n));
             let cell_um = first_grid(&scene).expect("sets up").dx * 1e6;
             let setting = format!("| {n} cells, {cell_um:.2} um");
             assert!(committed.contains(&setting), "{setting}");

@@ -551,7 +551,7 @@ mod tests {
     /// The capped case's constants are the paper scene's first hardness and yield factor.
     #[test]
     fn the_cap_is_the_paper_scenes_first_yield_pressure() {
-        let scene = super::super::wear::paper_scene().expect("preset");
+        let scene = super::super::wear::paper_scene();
         let table = scene
             .disc
             .hardness_table

@@ -327,7 +327,7 @@ mod tests {
     #[test]
     fn the_prose_from_the_constants_is_the_committed_reports() {
         let committed = include_str!("../../../docs/accuracy.md");
-        let scene = paper_scene().expect("preset");
+        let scene = paper_scene();
         let cycles = scene.test.cycles;
         let mut blocks = vec![
             contact::intro(),
