@@ -24,11 +24,9 @@ import json
 import os
 import platform
 import re
-import statistics
 import subprocess
 import sys
 import tempfile
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -263,45 +261,21 @@ class ContactMechanicsPeer:
 
 
 @dataclass
-class Measurement:
-    solver: str
-    case: str
-    n: int
-    wall_s: float | None = None
-    solve_s: float | None = None
-    runs: int | None = None
-    cpu_per_wall: float | None = None
-    iterations: int | None = None
-    residual: float | None = None
+class Measurement(peers_rough.Timing):
+    case: str = ""
     errors: dict = field(default_factory=dict)
-    failure: str | None = None
     uniform_wall_s: float | None = None
 
 
 def measure(peer, case, n, reference, reps, budget_s):
     """Median over up to `reps` cold runs (fewer once `budget_s` is spent) of construction
     (model, kernel, operator) plus solve; errors from the last run."""
-    out = Measurement(peer.name, case, n)
-    walls, solves, cpus = [], [], []
-    try:
-        while len(walls) < reps and sum(walls) < budget_s:
-            cpu, start = time.process_time(), time.perf_counter()
-            state = peer.build(case, n)
-            built = time.perf_counter()
-            peer.solve(state)
-            end = time.perf_counter()
-            walls.append(end - start)
-            solves.append(end - built)
-            cpus.append(time.process_time() - cpu)
-    except Exception as error:  # a peer's failure is a result to report, not a crash
-        out.failure = f"{type(error).__name__}: {error}"
+    out = Measurement(solver=peer.name, n=n, case=case)
+    state = peers_rough.timed_runs(out, lambda: peer.build(case, n), peer.solve, reps, budget_s)
+    if out.failure:
         return out
     outcome = peer.outcome(state)
     dx, h = grid(n)
-    out.wall_s = statistics.median(walls)
-    out.solve_s = statistics.median(solves)
-    out.runs = len(walls)
-    out.cpu_per_wall = sum(cpus) / sum(walls)
     out.iterations = outcome.iterations
     out.residual = residual(outcome, h, cap_pa(case))
     out.errors = errors(measures(outcome, h, dx, cap_pa(case)), reference)
@@ -515,7 +489,7 @@ def smooth(args, load):
             for peer in peers:
                 print(f"{case} N = {n}: {peer.name} ...", file=sys.stderr)
                 skipped = peers_rough.beyond_cap(last[peer.name], args.cap)
-                m = (Measurement(peer.name, case, n, failure=skipped) if skipped
+                m = (Measurement(solver=peer.name, n=n, case=case, failure=skipped) if skipped
                      else measure(peer, case, n, reference, args.reps, args.budget))
                 last[peer.name] = m.wall_s if m.wall_s is not None else float("inf")
                 found.append(m)

@@ -133,7 +133,8 @@ class ContactMechanicsRough:
 
 
 @dataclass
-class RoughMeasurement:
+class Timing:
+    """A solver's cold runs on one grid: the fields the smooth and rough tables share."""
     solver: str
     n: int
     wall_s: float | None = None
@@ -141,10 +142,39 @@ class RoughMeasurement:
     runs: int | None = None
     cpu_per_wall: float | None = None
     iterations: int | None = None
-    area_fraction: float | None = None
-    mean_gap_m: float | None = None
     residual: float | None = None
     failure: str | None = None
+
+
+@dataclass
+class RoughMeasurement(Timing):
+    area_fraction: float | None = None
+    mean_gap_m: float | None = None
+
+
+def timed_runs(out, build, solve, reps, budget_s):
+    """Up to `reps` cold runs of `build()` then `solve(state)` (fewer once `budget_s` is
+    spent): their median wall, solve and CPU share into `out`. The last state, or None with
+    `out.failure` set when the peer raised (a peer's failure is a result to report)."""
+    walls, solves, cpus, state = [], [], [], None
+    try:
+        while len(walls) < reps and sum(walls) < budget_s:
+            cpu, start = time.process_time(), time.perf_counter()
+            state = build()
+            built = time.perf_counter()
+            solve(state)
+            end = time.perf_counter()
+            walls.append(end - start)
+            solves.append(end - built)
+            cpus.append(time.process_time() - cpu)
+    except Exception as error:  # a peer's failure is a result to report, not a crash
+        out.failure = f"{type(error).__name__}: {error}"
+        return None
+    out.wall_s = statistics.median(walls)
+    out.solve_s = statistics.median(solves)
+    out.runs = len(walls)
+    out.cpu_per_wall = sum(cpus) / sum(walls)
+    return state
 
 
 def ours_rough(binary, surfaces):
@@ -198,26 +228,13 @@ def measure_rough(peer, case, reps, budget_s, cap_s, previous_s):
     out.failure = beyond_cap(previous_s, cap_s)
     if out.failure:
         return out
-    walls, solves, cpus = [], [], []
-    try:
-        while len(walls) < reps and sum(walls) < budget_s:
-            cpu, start = time.process_time(), time.perf_counter()
-            state = peer.build(case)
-            built = time.perf_counter()
-            peer.solve(case, state)
-            end = time.perf_counter()
-            walls.append(end - start)
-            solves.append(end - built)
-            cpus.append(time.process_time() - cpu)
-    except Exception as error:  # a peer's failure is a result to report, not a crash
-        out.failure = f"{type(error).__name__}: {error}"
+    state = timed_runs(
+        out, lambda: peer.build(case), lambda st: peer.solve(case, st), reps, budget_s
+    )
+    if out.failure:
         return out
     p, u, iterations = peer.outcome(case, state)
     found = rough_measures(p, u, case["heights"])
-    out.wall_s = statistics.median(walls)
-    out.solve_s = statistics.median(solves)
-    out.runs = len(walls)
-    out.cpu_per_wall = sum(cpus) / sum(walls)
     out.iterations = iterations
     out.area_fraction = found["area_fraction"]
     out.mean_gap_m = found["mean_gap_m"]

@@ -2,7 +2,8 @@
 //! read, listed, read back and deleted; refusals naming the problem (422) or the limit
 //! (413); a scene naming a stored surface runs and its result carries the map's statistics;
 //! an unknown id is refused at `disc.surface.id`; a surface in use cannot be deleted; stored
-//! surfaces survive a kill -9, and a damaged one is quarantined rather than served.
+//! surfaces survive a kill -9, and a damaged one is quarantined rather than served; a
+//! cancelled measured run's partial result carries the surface's statistics too.
 
 mod common;
 
@@ -348,4 +349,60 @@ async fn a_measured_scene_runs_on_its_stored_surface_which_survives_a_restart() 
     let deleted = client.delete(&surface_url).send().await.expect("DELETE");
     assert_eq!(deleted.status(), 204);
     assert!(!dir.path().join("surfaces").join(&id).exists());
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_stopped_measured_run_keeps_its_surface_statistics_in_the_partial_result() {
+    let dir = TempDir::new("surface-partial");
+    let client = reqwest::Client::new();
+    let mut server = ServerProcess::start(dir.path());
+    let base = server.base.clone();
+    let (status, surface) = upload(&client, &base, "", "text/plain", xyz().into()).await;
+    assert_eq!(status, 201, "{surface}");
+    let id = surface["id"].as_str().expect("id");
+    // Every cycle solved, and far more cycles than the test waits for: still running when
+    // cancelled.
+    let mut scene = measured_scene(id, 300_000);
+    scene["overrides"]["numerics"]["cycle_step"] = json!(1);
+    let job = submit(&client, &base, &scene).await;
+    let job_id = job["id"].as_str().expect("id").to_owned();
+    wait_for_job(&client, &base, &job_id, |job| {
+        job["cycles_done"].as_u64() >= Some(3)
+    })
+    .await;
+    let job_url = format!("{base}/api/v1/jobs/{job_id}");
+    let response = client.delete(&job_url).send().await.expect("DELETE");
+    assert_eq!(response.status(), 202);
+    let job = wait_for_job(&client, &base, &job_id, is_final).await;
+    assert_eq!(job["status"], "cancelled", "{job}");
+
+    let partial = get_json(&client, &format!("{job_url}/result")).await;
+    assert_eq!(partial["complete"], false, "{partial}");
+    let cycles = partial["cycles"].as_array().expect("cycles");
+    assert_eq!(
+        cycles.len() as u64,
+        job["cycles_done"].as_u64().expect("done")
+    );
+    // The partial result describes the surface as the full one does: the upload's
+    // statistics to the bit, and the map on the grid.
+    assert!(surface["statistics"]["rms_height_um"].as_f64().is_some());
+    assert_eq!(
+        partial["surface"]["measured"], surface["statistics"],
+        "{partial}"
+    );
+    assert!(
+        partial["surface"]["on_grid"]["rms_height_um"]
+            .as_f64()
+            .is_some(),
+        "{partial}"
+    );
+
+    server.kill_9();
+    let server = ServerProcess::start(dir.path());
+    let again = get_json(
+        &client,
+        &server.url(&format!("/api/v1/jobs/{job_id}/result")),
+    )
+    .await;
+    assert_eq!(again, partial);
 }
