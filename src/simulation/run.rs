@@ -114,7 +114,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             groove: setup.unworn_disc(),
             stepper: Stepper::new(scene.numerics.cycle_step, scene.numerics.cycle_step_bound),
             record_cycles: scene.record_cycles(),
-            history: WarmStart::default(),
+            history: WarmStart::new(setup.pair.reduced_modulus_pa, grid.dx.min(grid.dy)),
             cell: scene.corrosion.as_ref().map(Cell::new),
             grows: scene.numerics.domain_um == DomainSize::Auto,
             models: setup.models.clone(),
@@ -183,7 +183,14 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let reading = self.corrode(cycle, &solution, hardness_pa)?;
         self.record(cycle, &solution, cap, reading, on_cycle);
         self.wear_skipped(cycle, step, &pass, reading.as_ref());
-        self.grow_if_crowded(cycle, solution.pressure);
+        // The gap of the solve, for the warm start's extrapolation of cells entering contact.
+        let gap: Vec<f64> = solution
+            .displacement
+            .iter()
+            .zip(&separation)
+            .map(|(u, h)| u + h - solution.approach_m)
+            .collect();
+        self.grow_if_crowded(cycle, solution.pressure, gap);
         Ok(step)
     }
 
@@ -222,8 +229,10 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             let edge_ring = (0..self.grid.len())
                 .map(|i| f64::from(u8::from(self.grid.is_edge(i))))
                 .collect();
-            self.grow_if_crowded(cycle, edge_ring);
-            self.history = WarmStart::default();
+            // The history is forgotten right after: no gap to keep.
+            let no_gap = vec![0.0; self.grid.len()];
+            self.grow_if_crowded(cycle, edge_ring, no_gap);
+            self.history.forget();
             if (self.grid.nx, self.grid.ny) != before {
                 return self.solve_contact(cycle, cap);
             }
@@ -314,8 +323,8 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
     }
 
     /// Grows an auto domain whose contact came near its edge, carrying the pressure and the
-    /// groove over; keeps the pressure for the next warm start.
-    fn grow_if_crowded(&mut self, cycle: u64, mut pressure: Vec<f64>) {
+    /// groove over; keeps the pressure and its `gap` for the next warm start.
+    fn grow_if_crowded(&mut self, cycle: u64, mut pressure: Vec<f64>, mut gap: Vec<f64>) {
         let crowded = near_edges(&self.grid, &pressure);
         let wider = (self.grows && (crowded.0 || crowded.1))
             .then(|| widen(&self.grid, crowded))
@@ -328,6 +337,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 ny: self.grid.ny,
             };
             pressure = old.embed(&wider, &pressure);
+            gap = old.embed(&wider, &gap);
             self.groove = self.groove.widened(&wider);
             self.grid = wider;
             self.window_fraction_sum += self.solver.window_fraction_sum();
@@ -347,7 +357,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 ),
             });
         }
-        self.history.push(cycle, pressure);
+        self.history.push(cycle, pressure, &gap);
     }
 
     /// The result: the last pressure map, the run's own model choices and the totals.
