@@ -157,6 +157,10 @@ struct PolonskyKeer<'a> {
     residual: f64,
     /// The load of the last measure, in pressure units.
     load: f64,
+    /// The free cells of the last measure.
+    free_cells: f64,
+    /// The sum of the search direction over the free cells of the last measure.
+    free_t: f64,
 }
 
 impl<'a> PolonskyKeer<'a> {
@@ -212,27 +216,49 @@ impl<'a> PolonskyKeer<'a> {
             tau_last: 0.0,
             residual: f64::INFINITY,
             load: 0.0,
+            free_cells: 0.0,
+            free_t: 0.0,
         })
     }
 
     /// One fused pass: the approach, the gap, the free mask, the gap on the free cells
-    /// (into `r`, unused until the next apply), the load and the relative residual.
+    /// (into `r`, unused until the next apply), the load, the relative residual, and the
+    /// free cells' count and sum of the old direction that [`Self::direction`] needs.
     /// Returns the approach.
+    ///
+    /// The last two sums ride on this pass rather than taking two of their own: the passes
+    /// are memory-bound at N = 2048 (4.2M cells), where each saved read of a grid is about
+    /// 1% of the rough solve (`cargo test --release --test stability_rough -- --ignored
+    /// --nocapture bench_rough_solve`, old and new builds interleaved).
     fn measure(&mut self) -> f64 {
         let cap = self.cap;
         let delta = approach(&self.p, &self.u, self.separation, cap);
-        let (p, u, h) = (&self.p[..], &self.u[..], self.separation);
+        let (p, u, h, t) = (&self.p[..], &self.u[..], self.separation, &self.t[..]);
         let (g, free, r) = (&mut self.g[..], &mut self.free[..], &mut self.r[..]);
-        let (mut residual, mut load) = (Residual::default(), 0.0);
-        for i in 0..p.len() {
+        let (mut residual, mut load, mut free_cells) = (Residual::default(), 0.0, 0usize);
+        // Returns `free * t` of cell `i`, summed as `dot` sums (four accumulators).
+        let mut cell = |i: usize| {
             let (pi, gi) = (p[i], u[i] + h[i] - delta);
             g[i] = gi;
             load += pi;
             let bound = Bound::of(pi, cap);
             residual.add(bound, u[i], gi);
-            free[i] = if bound == Bound::Free { 1.0 } else { 0.0 };
-            r[i] = free[i] * gi;
+            let fi = if bound == Bound::Free { 1.0 } else { 0.0 };
+            free_cells += usize::from(bound == Bound::Free);
+            free[i] = fi;
+            r[i] = fi * gi;
+            fi * t[i]
+        };
+        let whole = p.len() - p.len() % 4;
+        let mut acc = [0.0; 4];
+        for first in (0..whole).step_by(4) {
+            for (k, a) in acc.iter_mut().enumerate() {
+                *a += cell(first + k);
+            }
         }
+        let tail: f64 = (whole..p.len()).map(&mut cell).sum();
+        self.free_t = acc.iter().sum::<f64>() + tail;
+        self.free_cells = free_cells as f64;
         self.residual = residual.value();
         self.load = load;
         delta
@@ -283,12 +309,11 @@ impl<'a> PolonskyKeer<'a> {
     /// step keeps the load. (`g` sums to zero by the choice of delta, up to round-off.)
     /// Returns `g.t`, positive when the direction descends.
     fn direction(&mut self, operator: &mut dyn Operator) -> f64 {
-        let n_free = sum(&self.free);
-        let t_old_sum = dot(&self.free, &self.t);
+        let (n_free, t_old_sum) = (self.free_cells, self.free_t);
         let (rho, z_sum) = match operator.preconditioner() {
             Some(inverse) => {
                 inverse.apply(&self.r, &mut self.z);
-                (dot(&self.r, &self.z), dot(&self.free, &self.z))
+                dot2((&self.r, &self.z), (&self.free, &self.z))
             }
             None => (dot(&self.r, &self.r), sum(&self.r)),
         };
@@ -308,10 +333,7 @@ impl<'a> PolonskyKeer<'a> {
         } else {
             &self.g
         };
-        for ((ti, &si), &fi) in self.t.iter_mut().zip(source).zip(&self.free) {
-            *ti = fi * (si + beta * *ti - t_mean);
-        }
-        dot(&self.g, &self.t)
+        update_direction(&mut self.t, source, &self.free, &self.g, beta, t_mean)
     }
 
     /// The free cells cannot move: at most one is free (a load-preserving step over one cell
@@ -345,7 +367,7 @@ impl<'a> PolonskyKeer<'a> {
     fn step_length(&mut self, operator: &mut dyn Operator, num: f64) -> f64 {
         operator.apply(&self.t, &mut self.r);
         self.applies += 1;
-        let den = dot(&self.t, &self.r);
+        let (den, tt) = dot2((&self.t, &self.r), (&self.t, &self.t));
         let tau = if den > 0.0 { num / den } else { self.tau_last };
         if tau > 0.0 {
             self.tau_last = tau;
@@ -359,7 +381,7 @@ impl<'a> PolonskyKeer<'a> {
         let rate = if !self.preconditioned {
             tau
         } else if den > 0.0 {
-            dot(&self.t, &self.t) / den
+            tt / den
         } else {
             self.entry_rate
         };
@@ -422,6 +444,56 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
             acc[k] += x[k] * y[k];
         }
     }
+    acc.iter().sum::<f64>() + tail
+}
+
+/// `(a.b, c.d)` in one pass, each summed as [`dot`] sums it (so equal to two calls to the
+/// last bit): the grids are read once where two passes read `t` or `z` twice.
+fn dot2((a, b): (&[f64], &[f64]), (c, d): (&[f64], &[f64])) -> (f64, f64) {
+    let (mut ab, mut cd) = ([0.0; 4], [0.0; 4]);
+    let whole = a.len() - a.len() % 4;
+    for first in (0..whole).step_by(4) {
+        let (a, b, c, d) = (
+            &a[first..first + 4],
+            &b[first..first + 4],
+            &c[first..first + 4],
+            &d[first..first + 4],
+        );
+        for k in 0..4 {
+            ab[k] += a[k] * b[k];
+            cd[k] += c[k] * d[k];
+        }
+    }
+    let tail_ab: f64 = (whole..a.len()).map(|i| a[i] * b[i]).sum();
+    let tail_cd: f64 = (whole..a.len()).map(|i| c[i] * d[i]).sum();
+    (
+        ab.iter().sum::<f64>() + tail_ab,
+        cd.iter().sum::<f64>() + tail_cd,
+    )
+}
+
+/// `t = free (source + beta t - mean)`, the conjugate direction over the free cells,
+/// returning `g.t` summed as [`dot`] sums it, in the same pass.
+fn update_direction(
+    t: &mut [f64],
+    source: &[f64],
+    free: &[f64],
+    g: &[f64],
+    beta: f64,
+    mean: f64,
+) -> f64 {
+    let mut acc = [0.0; 4];
+    let mut cell = |i: usize| {
+        t[i] = free[i] * (source[i] + beta * t[i] - mean);
+        g[i] * t[i]
+    };
+    let whole = g.len() - g.len() % 4;
+    for first in (0..whole).step_by(4) {
+        for (k, a) in acc.iter_mut().enumerate() {
+            *a += cell(first + k);
+        }
+    }
+    let tail: f64 = (whole..g.len()).map(&mut cell).sum();
     acc.iter().sum::<f64>() + tail
 }
 
