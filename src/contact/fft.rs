@@ -28,7 +28,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rustfft::num_complex::Complex;
 
-use self::split::Split;
+pub(crate) use self::split::Split;
 use super::influence::{Kernel, Symmetry};
 use super::operator::{Operator, Preconditioner};
 use super::plans::Plans;
@@ -107,13 +107,15 @@ enum Spectrum {
     Complex(Vec<Complex<f64>>),
 }
 
-/// The complex-to-real transform of one padded row's half spectrum `row` into `real`.
-fn inverse_row(plans: &mut Plans, row: &mut [Complex<f64>], real: &mut [f64]) {
-    // The DC and Nyquist bins of a real signal are real; round-off leaves tiny imaginary
-    // parts that realfft rejects.
+/// The complex-to-real transform of one row's half spectrum `row` into `real`.
+pub(crate) fn inverse_row(plans: &mut Plans, row: &mut [Complex<f64>], real: &mut [f64]) {
+    // The DC and (at an even length) Nyquist bins of a real signal are real; round-off
+    // leaves tiny imaginary parts that realfft rejects.
     row[0].im = 0.0;
-    if let Some(nyquist) = row.last_mut() {
-        nyquist.im = 0.0;
+    if real.len().is_multiple_of(2) {
+        if let Some(nyquist) = row.last_mut() {
+            nyquist.im = 0.0;
+        }
     }
     plans
         .row_inverse
@@ -193,10 +195,12 @@ impl DcFft {
         }
     }
 
-    /// The same operator applying on `threads` threads (1: on the caller's thread alone).
-    /// The preconditioner stays on one thread: its transform is a quarter of the padded one.
+    /// The same operator applying on `threads` threads (1: on the caller's thread alone),
+    /// its preconditioner too.
     pub fn threaded(mut self, threads: usize) -> Self {
-        self.split = (threads > 1).then(|| Split::new(threads, &self.plans, self.nx, self.ny));
+        let row_len = 2 * self.nx;
+        self.split = (threads > 1).then(|| Split::new(threads, &self.plans, row_len, self.ny));
+        self.inverse = self.inverse.map(|inverse| inverse.threaded(threads));
         self
     }
 
@@ -285,8 +289,12 @@ impl Operator for DcFft {
         assert_eq!(input.len(), nx * ny, "input does not match the grid");
         assert_eq!(output.len(), nx * ny, "output does not match the grid");
         if let Some(split) = &mut self.split {
-            let shape = (nx, ny, self.stride);
-            split.apply(shape, &self.spectrum, &mut self.columns, input, output);
+            let (spectrum, stride) = (&self.spectrum, self.stride);
+            let product = |k: usize, column: &mut [Complex<f64>]| {
+                multiply(spectrum, column, k * stride);
+            };
+            let shape = (nx, ny, self.col_len, stride);
+            split.apply(shape, &product, &mut self.columns, input, output);
             return;
         }
         for first in (0..ny).step_by(BLOCK) {
