@@ -226,37 +226,56 @@ impl<'a> PolonskyKeer<'a> {
     /// free cells' count and sum of the old direction that [`Self::direction`] needs.
     /// Returns the approach.
     ///
-    /// The last two sums ride on this pass rather than taking two of their own: the passes
-    /// are memory-bound at N = 2048 (4.2M cells), where each saved read of a grid is about
-    /// 1% of the rough solve (`cargo test --release --test stability_rough -- --ignored
-    /// --nocapture bench_rough_solve`, old and new builds interleaved).
+    /// The last two sums ride on this pass rather than taking two of their own, as the other
+    /// sums ride on [`dot2`] and [`update_direction`]: the passes are memory-bound at
+    /// N = 2048 (4.2M cells). Measured by `perf record` of `cargo test --release --test
+    /// stability_rough -- --ignored --nocapture bench_rough_solve` (a count of samples, so
+    /// load-independent): the solver's own samples per sample of the FFT library's fell
+    /// from 1.29 to 1.00 at N = 2048, a fifth of the passes' time, and from 0.50 to 0.47 on
+    /// the Hertz N = 256 solve (`--test contact -- --ignored hertz_256_solve_time`).
     fn measure(&mut self) -> f64 {
         let cap = self.cap;
         let delta = approach(&self.p, &self.u, self.separation, cap);
         let (p, u, h, t) = (&self.p[..], &self.u[..], self.separation, &self.t[..]);
         let (g, free, r) = (&mut self.g[..], &mut self.free[..], &mut self.r[..]);
         let (mut residual, mut load, mut free_cells) = (Residual::default(), 0.0, 0usize);
-        // Returns `free * t` of cell `i`, summed as `dot` sums (four accumulators).
-        let mut cell = |i: usize| {
-            let (pi, gi) = (p[i], u[i] + h[i] - delta);
-            g[i] = gi;
+        // Returns `free * t` of the cell, summed as `dot` sums (four accumulators, over
+        // slices of four so the inner loop has no bounds checks).
+        let mut cell = |pi: f64, ui: f64, hi: f64, ti: f64, out: (&mut f64, &mut f64, &mut f64)| {
+            let gi = ui + hi - delta;
+            *out.0 = gi;
             load += pi;
             let bound = Bound::of(pi, cap);
-            residual.add(bound, u[i], gi);
+            residual.add(bound, ui, gi);
             let fi = if bound == Bound::Free { 1.0 } else { 0.0 };
             free_cells += usize::from(bound == Bound::Free);
-            free[i] = fi;
-            r[i] = fi * gi;
-            fi * t[i]
+            *out.1 = fi;
+            *out.2 = fi * gi;
+            fi * ti
         };
         let whole = p.len() - p.len() % 4;
         let mut acc = [0.0; 4];
         for first in (0..whole).step_by(4) {
-            for (k, a) in acc.iter_mut().enumerate() {
-                *a += cell(first + k);
+            let range = first..first + 4;
+            let (p, u, h, t) = (
+                &p[range.clone()],
+                &u[range.clone()],
+                &h[range.clone()],
+                &t[range.clone()],
+            );
+            let (g, free, r) = (
+                &mut g[range.clone()],
+                &mut free[range.clone()],
+                &mut r[range],
+            );
+            for k in 0..4 {
+                acc[k] += cell(p[k], u[k], h[k], t[k], (&mut g[k], &mut free[k], &mut r[k]));
             }
         }
-        let tail: f64 = (whole..p.len()).map(&mut cell).sum();
+        let mut tail = 0.0;
+        for i in whole..p.len() {
+            tail += cell(p[i], u[i], h[i], t[i], (&mut g[i], &mut free[i], &mut r[i]));
+        }
         self.free_t = acc.iter().sum::<f64>() + tail;
         self.free_cells = free_cells as f64;
         self.residual = residual.value();
@@ -482,18 +501,28 @@ fn update_direction(
     beta: f64,
     mean: f64,
 ) -> f64 {
-    let mut acc = [0.0; 4];
-    let mut cell = |i: usize| {
-        t[i] = free[i] * (source[i] + beta * t[i] - mean);
-        g[i] * t[i]
-    };
     let whole = g.len() - g.len() % 4;
+    let mut acc = [0.0; 4];
+    // Slices of four, so the inner loop has no bounds checks and vectorises (an indexed
+    // loop over the whole grids did not, and made the Hertz N = 256 solve slower).
     for first in (0..whole).step_by(4) {
-        for (k, a) in acc.iter_mut().enumerate() {
-            *a += cell(first + k);
+        let range = first..first + 4;
+        let (t, source, free, g) = (
+            &mut t[range.clone()],
+            &source[range.clone()],
+            &free[range.clone()],
+            &g[range],
+        );
+        for k in 0..4 {
+            t[k] = free[k] * (source[k] + beta * t[k] - mean);
+            acc[k] += g[k] * t[k];
         }
     }
-    let tail: f64 = (whole..g.len()).map(&mut cell).sum();
+    let mut tail = 0.0;
+    for i in whole..g.len() {
+        t[i] = free[i] * (source[i] + beta * t[i] - mean);
+        tail += g[i] * t[i];
+    }
     acc.iter().sum::<f64>() + tail
 }
 

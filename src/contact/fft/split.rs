@@ -210,8 +210,13 @@ impl Worker {
             }
             for (slot, out) in rows.chunks_exact_mut(nx).enumerate() {
                 let row = &mut self.row_block[slot * half..(slot + 1) * half];
-                inverse_row(&mut self.plans, row, &mut self.row_real);
-                out.copy_from_slice(&self.row_real[..nx]);
+                if self.row_real.len() == nx {
+                    // Unpadded: the row transforms straight into the output.
+                    inverse_row(&mut self.plans, row, out);
+                } else {
+                    inverse_row(&mut self.plans, row, &mut self.row_real);
+                    out.copy_from_slice(&self.row_real[..nx]);
+                }
             }
         }
     }
