@@ -76,6 +76,18 @@ pub fn split_threads(requested: Option<usize>, cells: usize) -> usize {
     })
 }
 
+/// The threads of an unpadded (periodic) transform of `cells` cells beside an apply split
+/// `threads` ways: `threads` once the transform is as long as the DC-FFT's on a grid of
+/// [`SPLIT_MIN_CELLS`] (whose padded transform has four times its cells), else one. By
+/// that measurement, shorter passes do not pay for the threads' start and join.
+pub(crate) fn periodic_threads(threads: usize, cells: usize) -> usize {
+    if SPLIT_MIN_CELLS.is_some_and(|min| cells >= 4 * min) {
+        threads
+    } else {
+        1
+    }
+}
+
 /// The DC-FFT convolution operator of one kernel on one grid.
 pub struct DcFft {
     nx: usize,
@@ -195,12 +207,16 @@ impl DcFft {
         }
     }
 
-    /// The same operator applying on `threads` threads (1: on the caller's thread alone),
-    /// its preconditioner too.
+    /// The same operator applying on `threads` threads (1: on the caller's thread alone);
+    /// its preconditioner too where its transform, a quarter of the apply's, is long enough
+    /// (`periodic_threads`).
     pub fn threaded(mut self, threads: usize) -> Self {
         let row_len = 2 * self.nx;
         self.split = (threads > 1).then(|| Split::new(threads, &self.plans, row_len, self.ny));
-        self.inverse = self.inverse.map(|inverse| inverse.threaded(threads));
+        let inverse_threads = periodic_threads(threads, self.nx * self.ny);
+        self.inverse = self
+            .inverse
+            .map(|inverse| inverse.threaded(inverse_threads));
         self
     }
 
@@ -422,6 +438,19 @@ mod tests {
                 assert_eq!(a, b);
             }
         }
+    }
+
+    #[test]
+    fn a_periodic_transform_splits_from_four_times_the_dc_fft_threshold() {
+        // Its transform has the cells of a DC-FFT grid of a quarter of them.
+        if let Some(min) = SPLIT_MIN_CELLS {
+            assert_eq!(periodic_threads(3, 4 * min), 3);
+            assert_eq!(periodic_threads(3, 4 * min - 1), 1);
+        }
+        let grid = Grid::square(32, 32e-6).expect("valid");
+        let op = DcFft::new(&Kernel::normal(&grid, &pair(0.21, 0.28, 205e9))).threaded(2);
+        let inverse = op.inverse.as_ref().map(FourierInverse::threads);
+        assert_eq!((op.threads(), inverse), (2, Some(1)));
     }
 
     #[test]

@@ -6,7 +6,7 @@
 //! is studied; its exact inverse is the preconditioner. The mean displacement (q = 0) is
 //! left at zero: the approach absorbs it.
 
-use super::fft::split_threads;
+use super::fft::{periodic_threads, split_threads};
 use super::operator::{Operator, Preconditioner};
 use super::precondition::FourierInverse;
 
@@ -22,7 +22,8 @@ pub struct PeriodicHalfSpace {
 impl PeriodicHalfSpace {
     /// The operator on `nx` x `ny` cells of `dx` x `dy` m, for the reduced modulus
     /// `reduced_modulus_pa` (E*, eq. 6), on the automatic thread count of
-    /// [`split_threads`] (no scene chooses one for it).
+    /// [`split_threads`] for a transform of its length (`periodic_threads`: from 1024 x
+    /// 1024 cells; no scene chooses one for it).
     pub fn new(nx: usize, ny: usize, dx: f64, dy: f64, reduced_modulus_pa: f64) -> Self {
         let e = reduced_modulus_pa;
         Self {
@@ -33,7 +34,7 @@ impl PeriodicHalfSpace {
             }),
             inverse: FourierInverse::multiplier(nx, ny, (dx, dy), |qx, qy| e * qx.hypot(qy) / 2.0),
         }
-        .threaded(split_threads(None, nx * ny))
+        .threaded(periodic_threads(split_threads(None, nx * ny), nx * ny))
     }
 
     /// The same operator, its apply and preconditioner on `threads` threads (1: on the
