@@ -524,3 +524,37 @@ fn preconditioning_changes_the_path_not_the_answer() {
     // Measured: 22 preconditioned iterations against 27 plain ones.
     assert!(with.iterations < plain.iterations);
 }
+
+/// The cold solve time of the paper's Hertz case at N = 256 (`tribosim bench contact`'s first
+/// table), median of 21 solves on one operator, for comparing two builds of the solver. Speed
+/// is printed, never asserted: `cargo test --release --test contact -- --ignored --nocapture
+/// hertz_256_solve_time`.
+#[test]
+#[ignore = "a timing, not a test"]
+fn hertz_256_solve_time() {
+    let pair = paper_pair();
+    let grid = Grid::square(256, DOMAIN_M).expect("valid");
+    let separation = grid.sample(|x, y| hertz(&pair, LOAD_N).separation_m(x, y));
+    let mut op = DcFft::new(&Kernel::normal(&grid, &pair));
+    let problem = ContactProblem {
+        grid,
+        separation: &separation,
+        load_n: LOAD_N,
+        yield_pressure_pa: f64::INFINITY,
+    };
+    let mut times: Vec<f64> = (0..21)
+        .map(|_| {
+            let started = std::time::Instant::now();
+            let solution =
+                solve(&mut op, &problem, &SolverOptions::default(), None).expect("converges");
+            let elapsed = started.elapsed().as_secs_f64();
+            println!(
+                "{} iterations, {} applies",
+                solution.iterations, solution.operator_applies
+            );
+            elapsed
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    println!("Hertz N = 256: median {:.4} s", times[10]);
+}

@@ -366,3 +366,51 @@ fn unrefused_spikes_would_carry_the_load_alone() {
     assert!(rough.checked);
     assert!(rough.solution.contact_area_m2(&grid) > LOAD_N / cap);
 }
+
+/// The solve time of `tribosim bench rough`'s finest contact (or of its grid `ROUGH_N`), for
+/// comparing two builds of the solver: the bench's surface (seed 1, rms slope 0.1, Hurst
+/// 0.8, 8 cells per short cut-off, 4 long cut-offs across 0.256 mm) at `p / (E* h')` 0.015,
+/// cold, at the default tolerance, on the operator's automatic threads or `ROUGH_THREADS`.
+/// Speed is printed, never asserted; run `cargo test --release --test stability_rough --
+/// --ignored --nocapture bench_rough_solve` under `/usr/bin/time -f "%U %S %M"` for its CPU
+/// time and peak memory.
+#[test]
+#[ignore = "a timing, not a test: about 20 s at N = 2048"]
+fn bench_rough_solve() {
+    let n: usize = std::env::var("ROUGH_N").map_or(2048, |v| v.parse().expect("a grid size"));
+    let domain = common::physics::DOMAIN_M;
+    let finest = Grid::square(2048, domain).expect("valid");
+    let map = self_affine(
+        &finest,
+        Roughness::RmsSlope(0.1),
+        8.0 * finest.dx,
+        domain / 4.0,
+    );
+    let grid = Grid::square(n, domain).expect("valid");
+    let heights = grid.sample(|x, y| map.height_at(x, y));
+    let top = heights.iter().fold(f64::MIN, |m, &h| m.max(h));
+    let separation: Vec<f64> = heights.iter().map(|h| top - h).collect();
+    let e = paper_pair().reduced_modulus_pa;
+    let problem = ContactProblem {
+        grid,
+        separation: &separation,
+        load_n: 0.015 * e * tribosim::surface::rms_slope(&map) * grid.area(),
+        yield_pressure_pa: f64::INFINITY,
+    };
+    let mut operator = PeriodicHalfSpace::new(n, n, grid.dx, grid.dy, e);
+    if let Ok(threads) = std::env::var("ROUGH_THREADS") {
+        operator = operator.threaded(threads.parse().expect("a thread count"));
+    }
+    let threads = operator.threads();
+    let started = std::time::Instant::now();
+    let solution =
+        solve(&mut operator, &problem, &SolverOptions::default(), None).expect("converges");
+    println!(
+        "N = {n} on {threads} threads: solve {:.3} s, {} iterations, {} applies, residual {:e}, area {:.6}",
+        started.elapsed().as_secs_f64(),
+        solution.iterations,
+        solution.operator_applies,
+        solution.residual,
+        solution.contact_area_m2(&grid) / grid.area()
+    );
+}

@@ -28,7 +28,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rustfft::num_complex::Complex;
 
-use self::split::Split;
+pub(crate) use self::split::Split;
 use super::influence::{Kernel, Symmetry};
 use super::operator::{Operator, Preconditioner};
 use super::plans::Plans;
@@ -76,6 +76,18 @@ pub fn split_threads(requested: Option<usize>, cells: usize) -> usize {
     })
 }
 
+/// The threads of an unpadded (periodic) transform of `cells` cells beside an apply split
+/// `threads` ways: `threads` once the transform is as long as the DC-FFT's on a grid of
+/// [`SPLIT_MIN_CELLS`] (whose padded transform has four times its cells), else one. By
+/// that measurement, shorter passes do not pay for the threads' start and join.
+pub(crate) fn periodic_threads(threads: usize, cells: usize) -> usize {
+    if SPLIT_MIN_CELLS.is_some_and(|min| cells >= 4 * min) {
+        threads
+    } else {
+        1
+    }
+}
+
 /// The DC-FFT convolution operator of one kernel on one grid.
 pub struct DcFft {
     nx: usize,
@@ -107,13 +119,15 @@ enum Spectrum {
     Complex(Vec<Complex<f64>>),
 }
 
-/// The complex-to-real transform of one padded row's half spectrum `row` into `real`.
-fn inverse_row(plans: &mut Plans, row: &mut [Complex<f64>], real: &mut [f64]) {
-    // The DC and Nyquist bins of a real signal are real; round-off leaves tiny imaginary
-    // parts that realfft rejects.
+/// The complex-to-real transform of one row's half spectrum `row` into `real`.
+pub(crate) fn inverse_row(plans: &mut Plans, row: &mut [Complex<f64>], real: &mut [f64]) {
+    // The DC and (at an even length) Nyquist bins of a real signal are real; round-off
+    // leaves tiny imaginary parts that realfft rejects.
     row[0].im = 0.0;
-    if let Some(nyquist) = row.last_mut() {
-        nyquist.im = 0.0;
+    if real.len().is_multiple_of(2) {
+        if let Some(nyquist) = row.last_mut() {
+            nyquist.im = 0.0;
+        }
     }
     plans
         .row_inverse
@@ -193,10 +207,16 @@ impl DcFft {
         }
     }
 
-    /// The same operator applying on `threads` threads (1: on the caller's thread alone).
-    /// The preconditioner stays on one thread: its transform is a quarter of the padded one.
+    /// The same operator applying on `threads` threads (1: on the caller's thread alone);
+    /// its preconditioner too where its transform, a quarter of the apply's, is long enough
+    /// (`periodic_threads`).
     pub fn threaded(mut self, threads: usize) -> Self {
-        self.split = (threads > 1).then(|| Split::new(threads, &self.plans, self.nx, self.ny));
+        let row_len = 2 * self.nx;
+        self.split = (threads > 1).then(|| Split::new(threads, &self.plans, row_len, self.ny));
+        let inverse_threads = periodic_threads(threads, self.nx * self.ny);
+        self.inverse = self
+            .inverse
+            .map(|inverse| inverse.threaded(inverse_threads));
         self
     }
 
@@ -285,8 +305,12 @@ impl Operator for DcFft {
         assert_eq!(input.len(), nx * ny, "input does not match the grid");
         assert_eq!(output.len(), nx * ny, "output does not match the grid");
         if let Some(split) = &mut self.split {
-            let shape = (nx, ny, self.stride);
-            split.apply(shape, &self.spectrum, &mut self.columns, input, output);
+            let (spectrum, stride) = (&self.spectrum, self.stride);
+            let product = |k: usize, column: &mut [Complex<f64>]| {
+                multiply(spectrum, column, k * stride);
+            };
+            let shape = (nx, ny, self.col_len, stride);
+            split.apply(shape, &product, &mut self.columns, input, output);
             return;
         }
         for first in (0..ny).step_by(BLOCK) {
@@ -414,6 +438,19 @@ mod tests {
                 assert_eq!(a, b);
             }
         }
+    }
+
+    #[test]
+    fn a_periodic_transform_splits_from_four_times_the_dc_fft_threshold() {
+        // Its transform has the cells of a DC-FFT grid of a quarter of them.
+        if let Some(min) = SPLIT_MIN_CELLS {
+            assert_eq!(periodic_threads(3, 4 * min), 3);
+            assert_eq!(periodic_threads(3, 4 * min - 1), 1);
+        }
+        let grid = Grid::square(32, 32e-6).expect("valid");
+        let op = DcFft::new(&Kernel::normal(&grid, &pair(0.21, 0.28, 205e9))).threaded(2);
+        let inverse = op.inverse.as_ref().map(FourierInverse::threads);
+        assert_eq!((op.threads(), inverse), (2, Some(1)));
     }
 
     #[test]

@@ -46,6 +46,10 @@ use super::operator::Operator;
 use super::problem::{ContactProblem, ContactSolution, ContactSolver, SolverOptions};
 use super::residual::{Bound, Residual, approach};
 
+mod sums;
+
+use sums::{dot, dot2, sum, update_direction};
+
 /// Relative load error accepted at convergence. Summing N^2 pressures in f64 errs by up to
 /// N^2 * 1.1e-16 in the worst case (1.2e-10 at N = 1024), typically sqrt(N^2) times that;
 /// 1e-11 is met after the final rescale and stays far inside the 1e-9 the contact tests
@@ -157,6 +161,10 @@ struct PolonskyKeer<'a> {
     residual: f64,
     /// The load of the last measure, in pressure units.
     load: f64,
+    /// The free cells of the last measure.
+    free_cells: f64,
+    /// The sum of the search direction over the free cells of the last measure.
+    free_t: f64,
 }
 
 impl<'a> PolonskyKeer<'a> {
@@ -212,27 +220,68 @@ impl<'a> PolonskyKeer<'a> {
             tau_last: 0.0,
             residual: f64::INFINITY,
             load: 0.0,
+            free_cells: 0.0,
+            free_t: 0.0,
         })
     }
 
     /// One fused pass: the approach, the gap, the free mask, the gap on the free cells
-    /// (into `r`, unused until the next apply), the load and the relative residual.
+    /// (into `r`, unused until the next apply), the load, the relative residual, and the
+    /// free cells' count and sum of the old direction that [`Self::direction`] needs.
     /// Returns the approach.
+    ///
+    /// The last two sums ride on this pass rather than taking two of their own, as the other
+    /// sums ride on [`dot2`] and [`update_direction`]: the passes are memory-bound at
+    /// N = 2048 (4.2M cells). Measured by `perf record` of `cargo test --release --test
+    /// stability_rough -- --ignored --nocapture bench_rough_solve` (a count of samples, so
+    /// load-independent): the solver's own samples per sample of the FFT library's fell
+    /// from 1.29 to 1.00 at N = 2048, a fifth of the passes' time, and from 0.50 to 0.47 on
+    /// the Hertz N = 256 solve (`--test contact -- --ignored hertz_256_solve_time`).
     fn measure(&mut self) -> f64 {
         let cap = self.cap;
         let delta = approach(&self.p, &self.u, self.separation, cap);
-        let (p, u, h) = (&self.p[..], &self.u[..], self.separation);
+        let (p, u, h, t) = (&self.p[..], &self.u[..], self.separation, &self.t[..]);
         let (g, free, r) = (&mut self.g[..], &mut self.free[..], &mut self.r[..]);
-        let (mut residual, mut load) = (Residual::default(), 0.0);
-        for i in 0..p.len() {
-            let (pi, gi) = (p[i], u[i] + h[i] - delta);
-            g[i] = gi;
+        let (mut residual, mut load, mut free_cells) = (Residual::default(), 0.0, 0usize);
+        // Returns `free * t` of the cell, summed as `dot` sums (four accumulators, over
+        // slices of four so the inner loop has no bounds checks).
+        let mut cell = |pi: f64, ui: f64, hi: f64, ti: f64, out: (&mut f64, &mut f64, &mut f64)| {
+            let gi = ui + hi - delta;
+            *out.0 = gi;
             load += pi;
             let bound = Bound::of(pi, cap);
-            residual.add(bound, u[i], gi);
-            free[i] = if bound == Bound::Free { 1.0 } else { 0.0 };
-            r[i] = free[i] * gi;
+            residual.add(bound, ui, gi);
+            let fi = if bound == Bound::Free { 1.0 } else { 0.0 };
+            free_cells += usize::from(bound == Bound::Free);
+            *out.1 = fi;
+            *out.2 = fi * gi;
+            fi * ti
+        };
+        let whole = p.len() - p.len() % 4;
+        let mut acc = [0.0; 4];
+        for first in (0..whole).step_by(4) {
+            let range = first..first + 4;
+            let (p, u, h, t) = (
+                &p[range.clone()],
+                &u[range.clone()],
+                &h[range.clone()],
+                &t[range.clone()],
+            );
+            let (g, free, r) = (
+                &mut g[range.clone()],
+                &mut free[range.clone()],
+                &mut r[range],
+            );
+            for k in 0..4 {
+                acc[k] += cell(p[k], u[k], h[k], t[k], (&mut g[k], &mut free[k], &mut r[k]));
+            }
         }
+        let mut tail = 0.0;
+        for i in whole..p.len() {
+            tail += cell(p[i], u[i], h[i], t[i], (&mut g[i], &mut free[i], &mut r[i]));
+        }
+        self.free_t = acc.iter().sum::<f64>() + tail;
+        self.free_cells = free_cells as f64;
         self.residual = residual.value();
         self.load = load;
         delta
@@ -283,12 +332,11 @@ impl<'a> PolonskyKeer<'a> {
     /// step keeps the load. (`g` sums to zero by the choice of delta, up to round-off.)
     /// Returns `g.t`, positive when the direction descends.
     fn direction(&mut self, operator: &mut dyn Operator) -> f64 {
-        let n_free = sum(&self.free);
-        let t_old_sum = dot(&self.free, &self.t);
+        let (n_free, t_old_sum) = (self.free_cells, self.free_t);
         let (rho, z_sum) = match operator.preconditioner() {
             Some(inverse) => {
                 inverse.apply(&self.r, &mut self.z);
-                (dot(&self.r, &self.z), dot(&self.free, &self.z))
+                dot2((&self.r, &self.z), (&self.free, &self.z))
             }
             None => (dot(&self.r, &self.r), sum(&self.r)),
         };
@@ -308,10 +356,7 @@ impl<'a> PolonskyKeer<'a> {
         } else {
             &self.g
         };
-        for ((ti, &si), &fi) in self.t.iter_mut().zip(source).zip(&self.free) {
-            *ti = fi * (si + beta * *ti - t_mean);
-        }
-        dot(&self.g, &self.t)
+        update_direction(&mut self.t, source, &self.free, &self.g, beta, t_mean)
     }
 
     /// The free cells cannot move: at most one is free (a load-preserving step over one cell
@@ -345,7 +390,7 @@ impl<'a> PolonskyKeer<'a> {
     fn step_length(&mut self, operator: &mut dyn Operator, num: f64) -> f64 {
         operator.apply(&self.t, &mut self.r);
         self.applies += 1;
-        let den = dot(&self.t, &self.r);
+        let (den, tt) = dot2((&self.t, &self.r), (&self.t, &self.t));
         let tau = if den > 0.0 { num / den } else { self.tau_last };
         if tau > 0.0 {
             self.tau_last = tau;
@@ -359,7 +404,7 @@ impl<'a> PolonskyKeer<'a> {
         let rate = if !self.preconditioned {
             tau
         } else if den > 0.0 {
-            dot(&self.t, &self.t) / den
+            tt / den
         } else {
             self.entry_rate
         };
@@ -403,39 +448,6 @@ impl<'a> PolonskyKeer<'a> {
         self.fresh = bounds_hit || entered;
         self.restart = entered;
     }
-}
-
-/// Dot product with four independent accumulators: a single running sum is a serial chain
-/// of additions (kept on the stack), a third of the solver's own time at N = 256 in a profile of
-/// `tribosim bench contact`.
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut acc = [0.0; 4];
-    let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
-    let tail: f64 = a4
-        .remainder()
-        .iter()
-        .zip(b4.remainder())
-        .map(|(x, y)| x * y)
-        .sum();
-    for (x, y) in a4.zip(b4) {
-        for k in 0..4 {
-            acc[k] += x[k] * y[k];
-        }
-    }
-    acc.iter().sum::<f64>() + tail
-}
-
-/// Sum with four independent accumulators, as [`dot`].
-fn sum(a: &[f64]) -> f64 {
-    let mut acc = [0.0; 4];
-    let chunks = a.chunks_exact(4);
-    let tail: f64 = chunks.remainder().iter().sum();
-    for x in chunks {
-        for k in 0..4 {
-            acc[k] += x[k];
-        }
-    }
-    acc.iter().sum::<f64>() + tail
 }
 
 /// Scales the cells below the cap so the total is `target`; cells pushed over the cap are

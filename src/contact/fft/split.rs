@@ -1,6 +1,7 @@
-//! The DC-FFT apply with its three passes split across threads: the forward row transforms
-//! by rows, the column transforms and the kernel product by columns, the inverse row
-//! transforms by rows. Each pass is a `std::thread::scope`: its end is the barrier the next
+//! A 2D FFT convolution with its three passes split across threads: the forward row
+//! transforms by rows, the column transforms and the kernel product by columns, the inverse
+//! row transforms by rows. It serves the DC-FFT apply (rows and columns zero-padded to twice
+//! the grid) and the periodic [`crate::contact::FourierInverse`] (no padding). Each pass is a `std::thread::scope`: its end is the barrier the next
 //! pass needs, and each thread owns a contiguous slice of the buffer it writes, so no
 //! locking and no unsafe code is needed. Spawning costs a few tens of microseconds per pass
 //! against milliseconds of work per apply from N = 256 on. The threads do not share
@@ -14,14 +15,19 @@
 
 use rustfft::num_complex::Complex;
 
-use super::{BLOCK, Spectrum, inverse_row, multiply};
+use super::{BLOCK, inverse_row};
 use crate::contact::plans::Plans;
 
 /// The per-thread state and the shared row-spectrum buffer of a split apply.
-pub(super) struct Split {
+pub(crate) struct Split {
     workers: Vec<Worker>,
     spectra: Vec<Complex<f64>>,
+    /// Half-spectrum row length `row_len / 2 + 1`.
+    half: usize,
 }
+
+/// The product of column `k` of the spectrum with the kernel's, in place.
+pub(crate) type ColumnProduct<'a> = &'a (dyn Fn(usize, &mut [Complex<f64>]) + Sync);
 
 /// One thread's scratch.
 struct Worker {
@@ -41,33 +47,36 @@ struct Shape {
 }
 
 impl Split {
-    /// Scratch for `threads` threads on an operator of the grid `nx` x `ny` whose column
-    /// stride is `stride`, with copies of `plans`' transforms.
-    pub(super) fn new(threads: usize, plans: &Plans, nx: usize, ny: usize) -> Self {
-        let half = nx + 1;
+    /// Scratch for `threads` threads on `ny` rows transformed at length `row_len` (the
+    /// grid's `nx`, or more when zero-padded), with copies of `plans`' transforms.
+    pub(crate) fn new(threads: usize, plans: &Plans, row_len: usize, ny: usize) -> Self {
+        let half = row_len / 2 + 1;
         Self {
             workers: (0..threads)
                 .map(|_| Worker {
                     plans: plans.clone(),
-                    row_real: vec![0.0; 2 * nx],
+                    row_real: vec![0.0; row_len],
                     row_block: vec![Complex::default(); BLOCK * half],
                 })
                 .collect(),
             spectra: vec![Complex::default(); ny * half],
+            half,
         }
     }
 
     /// The number of threads.
-    pub(super) fn threads(&self) -> usize {
+    pub(crate) fn threads(&self) -> usize {
         self.workers.len()
     }
 
-    /// `output = K input` with the kernel `spectrum`, using `columns` (the operator's
-    /// transposed work buffer of `nx + 1` columns `stride` apart) for the column pass.
-    pub(super) fn apply(
+    /// `output = K input` on the `nx` x `ny` grid, the columns transformed at length
+    /// `col_len` (`ny`, or more when zero-padded), `product` multiplying each by the
+    /// kernel's spectrum, using `columns` (the operator's transposed work buffer of
+    /// half-spectrum columns `stride` apart) for the column pass.
+    pub(crate) fn apply(
         &mut self,
-        (nx, ny, stride): (usize, usize, usize),
-        spectrum: &Spectrum,
+        (nx, ny, col_len, stride): (usize, usize, usize, usize),
+        product: ColumnProduct,
         columns: &mut [Complex<f64>],
         input: &[f64],
         output: &mut [f64],
@@ -75,8 +84,8 @@ impl Split {
         let shape = Shape {
             nx,
             ny,
-            half: nx + 1,
-            col_len: 2 * ny,
+            half: self.half,
+            col_len,
             stride,
         };
         let threads = self.workers.len();
@@ -98,7 +107,7 @@ impl Split {
                 .zip(columns.chunks_mut(cols * stride))
                 .enumerate(),
             |(i, (worker, columns))| {
-                worker.columns(shape, spectrum, spectra, i * cols, columns);
+                worker.columns(shape, product, spectra, i * cols, columns);
             },
         );
         let columns = &*columns;
@@ -152,7 +161,7 @@ impl Worker {
     fn columns(
         &mut self,
         shape: Shape,
-        spectrum: &Spectrum,
+        product: ColumnProduct,
         spectra: &[Complex<f64>],
         first: usize,
         columns: &mut [Complex<f64>],
@@ -173,7 +182,7 @@ impl Worker {
                 self.plans
                     .col_forward
                     .process_with_scratch(column, &mut self.plans.complex_scratch);
-                multiply(spectrum, column, (k0 + j) * stride);
+                product(k0 + j, column);
                 self.plans
                     .col_inverse
                     .process_with_scratch(column, &mut self.plans.complex_scratch);
@@ -201,8 +210,13 @@ impl Worker {
             }
             for (slot, out) in rows.chunks_exact_mut(nx).enumerate() {
                 let row = &mut self.row_block[slot * half..(slot + 1) * half];
-                inverse_row(&mut self.plans, row, &mut self.row_real);
-                out.copy_from_slice(&self.row_real[..nx]);
+                if self.row_real.len() == nx {
+                    // Unpadded: the row transforms straight into the output.
+                    inverse_row(&mut self.plans, row, out);
+                } else {
+                    inverse_row(&mut self.plans, row, &mut self.row_real);
+                    out.copy_from_slice(&self.row_real[..nx]);
+                }
             }
         }
     }
