@@ -5,8 +5,9 @@
 # Hertz and capped cases, then the rough cases on the very same height arrays
 # (scripts/peers_rough.py; the peers at N = 2048 take minutes each).
 # Usage: scripts/peers.sh [peers.py options, e.g. --sizes 64 128 --reps 5, --only rough]
-# Run it on an otherwise idle machine: the times are the point. It takes 10 to 15 minutes,
-# most of it Tamaas's KatoSaturated at N = 256 and 512 (thousands of iterations).
+# Run it on an otherwise idle machine: the times are the point. The smooth cases take about
+# 20 minutes, most of it Tamaas's KatoSaturated on the capped case (thousands of
+# iterations), the rough ones about as long again, most of it the peers at N = 2048.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

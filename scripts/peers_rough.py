@@ -308,6 +308,11 @@ def rough_markdown(groups, rows, peers, args, run, markdown_table):
     finest = max(rows)
     criteria = "\n".join(f"- **{p.name}**: {p.criterion}" for p in peers)
     sizes = ", ".join(str(n) for n in groups)
+    split = [n for n in groups if rows[n].get("threads", 1) > 1]
+    threads_note = (
+        f"{rows[split[0]]['threads']} threads from N = {split[0]} on" if split
+        else "one thread on every grid here"
+    )
     return f"""{HEADING}
 
 Measured {run} by `scripts/peers.sh --only rough` (the rough cases of `scripts/peers.sh`,
@@ -326,7 +331,9 @@ contact), computed the same way for all three from each answer's pressure and it
 operator's displacement. "area vs ours" and "gap vs ours" are a peer's value over ours minus
 1: near zero when the three solved the same discrete problem to comparable accuracy.
 "residual (ours)" is our stopping measure (worst complementarity violation over max |u|) on
-each answer. Times as for the smooth cases: construction plus solve, median over up to
+each answer. Ours splits its FFT passes over {threads_note} (`numerics.threads` auto, the
+`threads` of `bench rough`'s rows); a peer's "cpu / wall" near 1 on a quiet machine says it
+ran on one core. Times as for the smooth cases: construction plus solve, median over up to
 {args.reps} cold runs (fewer once {args.budget:g} s are spent; ours those of `bench rough`:
 one at N >= 1024); a peer is not run on a grid when four times its time on the grid below
 exceeds {args.cap:g} s.

@@ -86,8 +86,12 @@ pub struct RoughRow {
     /// The solve alone, s (median).
     pub solve_s: f64,
     /// CPU time of the solve's thread, s (median; `None` where it cannot be read): its own
-    /// work, which other work on a shared machine does not inflate as much.
+    /// work, which other work on a shared machine does not inflate as much. With
+    /// `threads` > 1 the split's other threads are not in it.
     pub solve_cpu_s: Option<f64>,
+    /// Threads the operator's FFT passes are split over (`numerics.threads` auto: from
+    /// 1024 x 1024 cells on the periodic operator, over the cores the process may use).
+    pub threads: usize,
     /// Runs behind each median.
     pub runs: usize,
     /// One application of the operator, s (median).
@@ -180,6 +184,7 @@ pub fn rough_rows(surfaces: Option<&Path>) -> Result<Vec<RoughRow>, BenchError> 
             wall_s: build_s + solve_s,
             solve_s,
             solve_cpu_s,
+            threads: operator.threads(),
             runs: reps,
             apply_s,
             fft_pair_s,
@@ -291,10 +296,10 @@ pub fn table(rows: &[RoughRow]) -> String {
             rows.last().map_or(0, |r| r.n)
         );
     }
-    out += "     N  cells/short  area frac  mean gap um   err area    err gap  iters  applies  wall s  solve CPU s  apply ms  iter/pair  peak MB\n";
+    out += "     N  cells/short  area frac  mean gap um   err area    err gap  iters  applies  wall s  threads  solve CPU s  apply ms  iter/pair  peak MB\n";
     for r in rows {
         out += &format!(
-            "{:>6} {:>12.2} {:>10.5} {:>12.5} {:>+10.2e} {:>+10.2e} {:>6} {:>8} {:>7.3} {:>12} {:>9.2} {:>10.2} {:>8}\n",
+            "{:>6} {:>12.2} {:>10.5} {:>12.5} {:>+10.2e} {:>+10.2e} {:>6} {:>8} {:>7.3} {:>7} {:>12} {:>9.2} {:>10.2} {:>8}\n",
             r.n,
             r.cells_per_short_cutoff,
             r.area_fraction,
@@ -304,6 +309,7 @@ pub fn table(rows: &[RoughRow]) -> String {
             r.iterations,
             r.applies,
             r.wall_s,
+            r.threads,
             r.solve_cpu_s
                 .map_or("n/a".to_owned(), |c| format!("{c:.3}")),
             r.apply_s * 1e3,

@@ -37,8 +37,9 @@ pub(super) fn intro(machine: &Machine, command: &str) -> String {
          slope), a few percent of real contact area. Real area counts the cells with p > 0; \
          the mean gap is the mean over all cells of K p + h - delta. Errors are against the \
          N = {finest} grid; times are operator construction plus solve (medians of up to 5 \
-         cold runs, one at N >= 1024), \"apply\" one application of the operator, \"per FFT \
-         pair\" an iteration's time in padded 2N x 2N FFT round trips (the contact study's \
+         cold runs, one at N >= 1024), \"threads\" those the operator's FFT passes are split over \
+         (`numerics.threads` auto; \"solve CPU s\" is the calling thread's alone), \"apply\" \
+         one application of the operator, \"per FFT pair\" an iteration's time in padded 2N x 2N FFT round trips (the contact study's \
          yardstick). Measured by `{command}` on {}, on {} ({} cores){commit}; the machine may \
          be shared with other work.\n",
         DOMAIN_M / (finest / CELLS_PER_SHORT_CUTOFF) as f64 * 1e6,
@@ -69,6 +70,7 @@ fn cells(r: &RoughRow, finest: usize) -> Vec<String> {
         r.iterations.to_string(),
         r.applies.to_string(),
         sig(r.wall_s, 3),
+        r.threads.to_string(),
         r.solve_cpu_s.map_or("n/a".to_owned(), |c| sig(c, 3)),
         sig(r.apply_s * 1e3, 3),
         sig(r.applies as f64 * r.apply_s, 3),
@@ -108,6 +110,7 @@ pub(super) fn section(
             "iterations",
             "applies",
             "wall s",
+            "threads",
             "solve CPU s",
             "apply ms",
             "applies x apply s",
@@ -199,6 +202,7 @@ mod tests {
             wall_s: n as f64 / 100.0,
             solve_s: n as f64 / 100.0,
             solve_cpu_s: None,
+            threads: 2,
             runs: 1,
             apply_s: 0.1,
             fft_pair_s: 0.2,
