@@ -136,7 +136,8 @@ pub(super) fn body(report: &mut Report, studies: &SpeedStudies) {
          {WARM_ROUNDS} times each; wall and CPU time (the run's thread alone, which other work \
          on the machine does not inflate as much) are the medians. The changes are those of \
          the final wear volume, deepest point and potential against the previous default's \
-         run. Extrapolating the pressure of the last two solves is kept as it was.\n"
+         run. Both warm-start each solve from the last two solves' `p - c g` extrapolated in \
+         the cycle number (`src/simulation/warm.rs`, which gives that start's own gain).\n"
     ));
     report.push(&table(
         &[
