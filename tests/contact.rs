@@ -525,8 +525,9 @@ fn preconditioning_changes_the_path_not_the_answer() {
     assert!(with.iterations < plain.iterations);
 }
 
-/// The cold solve time of the paper's Hertz case at N = 256 (`tribosim bench contact`'s first
-/// table), median of 21 solves on one operator, for comparing two builds of the solver. Speed
+/// The solve time of the paper's Hertz case at N = 256 from the uniform pressure (the
+/// uniform-start column of `tribosim bench contact`'s first table), median of 21 solves on one
+/// operator, for comparing two builds of the solver. Speed
 /// is printed, never asserted: `cargo test --release --test contact -- --ignored --nocapture
 /// hertz_256_solve_time`.
 #[test]
