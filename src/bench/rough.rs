@@ -239,13 +239,7 @@ fn timed_solves(
 /// The mean over all cells of the gap `K p + h - delta`: zero in contact, the separation
 /// the deformed surfaces keep elsewhere.
 fn mean_gap(solution: &ContactSolution, separation: &[f64]) -> f64 {
-    let sum: f64 = solution
-        .displacement
-        .iter()
-        .zip(separation)
-        .map(|(u, h)| u + h - solution.approach_m)
-        .sum();
-    sum / separation.len() as f64
+    solution.gap_m(separation).iter().sum::<f64>() / separation.len() as f64
 }
 
 /// The median time of one operator application to the solution's pressure.

@@ -109,6 +109,16 @@ impl ContactSolution {
             .count();
         capped as f64 * grid.cell_area()
     }
+
+    /// The gap `u + h - delta` of each cell over the `separation` it was solved on, m: zero
+    /// in contact, the distance the deformed surfaces keep elsewhere.
+    pub fn gap_m(&self, separation: &[f64]) -> Vec<f64> {
+        self.displacement
+            .iter()
+            .zip(separation)
+            .map(|(u, h)| u + h - self.approach_m)
+            .collect()
+    }
 }
 
 /// A way of solving contact problems on one grid.

@@ -185,12 +185,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         self.record(cycle, &solution, cap, reading, on_cycle);
         self.wear_skipped(cycle, step, &pass, reading.as_ref());
         // The gap of the solve, for the warm start's extrapolation of cells entering contact.
-        let gap: Vec<f64> = solution
-            .displacement
-            .iter()
-            .zip(&separation)
-            .map(|(u, h)| u + h - solution.approach_m)
-            .collect();
+        let gap = solution.gap_m(&separation);
         self.grow_if_crowded(cycle, solution.pressure, gap);
         Ok(step)
     }
