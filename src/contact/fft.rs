@@ -22,12 +22,14 @@
 //! dropped is round-off; the direct-summation test bounds the result). Nothing is allocated
 //! per apply.
 
+mod sparse;
 mod split;
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rustfft::num_complex::Complex;
 
+use self::sparse::KernelRows;
 pub(crate) use self::split::Split;
 use super::influence::{Kernel, Symmetry};
 use super::operator::{Operator, Preconditioner};
@@ -109,6 +111,8 @@ pub struct DcFft {
     inverse: Option<FourierInverse>,
     /// The passes split across threads (`None`: one thread).
     split: Option<Split>,
+    /// The kernel in real space, for updates at a few cells (`None` on large grids).
+    sparse: Option<KernelRows>,
 }
 
 /// The kernel spectrum, stored by what it can hold: real for an even kernel, imaginary for
@@ -168,6 +172,7 @@ impl DcFft {
         if kernel.symmetry() == Symmetry::EvenInX {
             op.inverse = Some(FourierInverse::new(kernel));
         }
+        op.sparse = KernelRows::of(&[kernel]);
         op
     }
 
@@ -185,6 +190,7 @@ impl DcFft {
         if first.symmetry() == Symmetry::EvenInX {
             op.inverse = Some(FourierInverse::new(first));
         }
+        op.sparse = KernelRows::of(&[first, second]);
         op
     }
 
@@ -204,6 +210,7 @@ impl DcFft {
             row_block: vec![Complex::default(); BLOCK * half],
             inverse: None,
             split: None,
+            sparse: None,
         }
     }
 
@@ -298,6 +305,12 @@ impl Operator for DcFft {
         self.inverse
             .as_mut()
             .map(|inverse| inverse as &mut dyn Preconditioner)
+    }
+
+    fn add_sparse(&mut self, cells: &[(usize, f64)], output: &mut [f64]) -> bool {
+        self.sparse
+            .as_ref()
+            .is_some_and(|sparse| sparse.add(cells, output))
     }
 
     fn apply(&mut self, input: &[f64], output: &mut [f64]) {

@@ -20,6 +20,13 @@ pub trait Operator {
         None
     }
 
+    /// Adds the operator applied to a field that is zero except at `cells` (index and value)
+    /// to `output`, when the operator can do that for less than an apply; false (the
+    /// default), with `output` untouched, when it cannot.
+    fn add_sparse(&mut self, _cells: &[(usize, f64)], _output: &mut [f64]) -> bool {
+        false
+    }
+
     /// Whether the operator wraps around the grid's edges (a periodic surface), so a
     /// contact on the edge cells is as valid as anywhere; `false` (the default) for the
     /// half-space operators, whose edge cells stand for a domain that ends there.
