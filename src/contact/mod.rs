@@ -44,5 +44,5 @@ pub use plans::fft_friendly;
 pub use precondition::FourierInverse;
 pub use problem::{ContactProblem, ContactSolution, ContactSolver, SolverOptions};
 pub use residual::complementarity_residual;
-pub use solver::{NormalSolver, solve};
+pub use solver::{NormalSolver, UPDATE_ROUNDOFF, solve};
 pub use window::{MARGIN_FRACTION, MIN_MARGIN, WindowedSolver};
