@@ -449,7 +449,7 @@ impl<'a> PolonskyKeer<'a> {
         let (t, r, g) = (&self.t[..], &self.r[..], &self.g[..]);
         let changes = &mut self.changes;
         changes.clear();
-        let (mut entered, mut highest) = (false, 0.0f64);
+        let (mut entered, mut highest, mut load) = (false, 0.0f64, 0.0);
         for i in 0..p.len() {
             let pi = &mut p[i];
             if *pi > 0.0 && *pi < cap {
@@ -470,22 +470,23 @@ impl<'a> PolonskyKeer<'a> {
                 entered = true;
             }
             highest = highest.max(*pi);
+            load += *pi;
             u[i] -= tau * r[i];
         }
         self.updates += 1;
         if !self.changes.is_empty() {
-            self.restore_load(operator, highest);
+            self.restore_load(operator, highest, load);
         }
         self.restart = entered;
     }
 
     /// Brings the load back to the target after the recorded changes (`highest`: the
-    /// largest pressure now). With no cell at the cap before or after, the rescale is one
+    /// largest pressure now, `load` their sum). With no cell at the cap before or after, the rescale is one
     /// factor `s` on every pressure, so `u = K p` becomes `s (u + K d)` with `d` the
     /// recorded changes: a sparse update where the operator offers one. Otherwise the load
     /// is restored by [`rescale_to_load`] and `u` recomputed.
-    fn restore_load(&mut self, operator: &mut dyn Operator, highest: f64) {
-        let scale = self.target / sum(&self.p);
+    fn restore_load(&mut self, operator: &mut dyn Operator, highest: f64, load: f64) {
+        let scale = self.target / load;
         if highest < self.cap
             && scale * highest < self.cap
             && operator.add_sparse(&self.changes, &mut self.u)
