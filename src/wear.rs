@@ -94,19 +94,28 @@ impl Groove {
     /// The roughness as yielding has left it, `min(r, c)`, at each cell of `grid` (the grid
     /// the groove is on): m above the original mean plane, the groove `D` left out.
     pub fn roughness_m(&self, grid: &Grid) -> Vec<f64> {
-        (0..grid.len())
-            .map(|i| self.roughness_at(grid, i))
+        (0..grid.ny)
+            .flat_map(|iy| self.roughness_row(grid, iy))
             .collect()
     }
 
     /// [`Self::roughness_m`] at cell `i` of `grid` alone.
     fn roughness_at(&self, grid: &Grid, i: usize) -> f64 {
-        let (ix, iy) = (i % grid.nx, i / grid.nx);
+        self.roughness_row(grid, i / grid.nx)
+            .nth(i % grid.nx)
+            .expect("a cell of the grid")
+    }
+
+    /// [`Self::roughness_m`] along row `iy` of `grid`: the row's ceiling and roughness are
+    /// looked up once, not per cell.
+    fn roughness_row(&self, grid: &Grid, iy: usize) -> impl Iterator<Item = f64> + '_ {
         let c = self.ceiling_m[iy];
-        match &self.roughness {
-            Some(r) => r.row(iy, grid.ny)[periodic_index(ix, grid.nx, r.nx)].min(c),
+        let row = self.roughness.as_ref().map(|r| (r.row(iy, grid.ny), r.nx));
+        let nx = grid.nx;
+        (0..nx).map(move |ix| match row {
+            Some((heights, period)) => heights[periodic_index(ix, nx, period)].min(c),
             None => c.min(0.0),
-        }
+        })
     }
 
     /// The separation of the undeformed surfaces: the ball's height plus the disc's depth
