@@ -9,10 +9,10 @@
 //! extrapolation keeps every cell unloaded in both solves unloaded, so the cells the
 //! widening groove brings into contact at the rim can only enter during the solve, a few
 //! per iteration; a closing gap extrapolates past zero and enters them in the guess.
-//! Paper scene `{}` (`tribosim run`, `summary.iterations / summary.solves`): 7.3 iterations
-//! a solve instead of 8.05, 12.2 operator applies instead of 13.6. The iterations barely
-//! depend on `c` between 0.03 and 0.2 `E* / dx` (7.3 to 7.5), and rise again beyond
-//! (8.1 at 1, 8.8 at 3: large guessed pressures at the rim leave contact again).
+//! Paper scene `{}` (`tribosim run`, `summary.iterations / summary.solves`): 6.3 iterations
+//! a solve instead of 7.0 with the pressure extrapolated (`c = 0`). The iterations barely
+//! depend on `c` between 0.03 and 0.2 `E* / dx` (6.3 to 6.5), and rise again beyond (7.3 at
+//! 1, 7.9 at 3: large guessed pressures at the rim leave contact again).
 
 /// The contact stiffness `c` of `q = p - c g`, as a fraction of `E* / dx` (the pressure per
 /// gap of one cell pressed alone is about `E* / dx`; within a contact its neighbours'
