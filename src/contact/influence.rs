@@ -173,10 +173,21 @@ impl Kernel {
 
     /// The coefficient for offset `(di, dj)`.
     pub fn value(&self, di: isize, dj: isize) -> f64 {
-        let row = (dj + self.ny as isize - 1) as usize;
-        let col = (di + self.nx as isize - 1) as usize;
-        self.values[row * (2 * self.nx - 1) + col]
+        self.values[offset_index(self.nx, self.ny, di, dj)]
     }
+
+    /// Every coefficient, offset `(di, dj)` at [`offset_index`].
+    pub(crate) fn values(&self) -> &[f64] {
+        &self.values
+    }
+}
+
+/// Where a kernel of an `nx` x `ny` grid keeps offset `(di, dj)`: row `dj + ny - 1` of
+/// `2 nx - 1` offsets, so the offsets `di = a..b` of one `dj` are contiguous.
+pub(crate) fn offset_index(nx: usize, ny: usize, di: isize, dj: isize) -> usize {
+    let row = (dj + ny as isize - 1) as usize;
+    let col = (di + nx as isize - 1) as usize;
+    row * (2 * nx - 1) + col
 }
 
 #[cfg(test)]

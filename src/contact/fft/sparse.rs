@@ -4,7 +4,7 @@
 //! (truncated at a bound, or re-entering), and this brings the displacement along without
 //! another apply.
 
-use super::super::influence::Kernel;
+use super::super::influence::{Kernel, offset_index};
 
 /// The most grid cells for which the real-space kernel is kept: four times the grid's
 /// cells (every offset), 8 MB at 512 x 512. Beyond it the kernel's memory would rival the
@@ -20,8 +20,7 @@ pub(crate) const MAX_CELLS: usize = 512 * 512;
 /// kernel in cache and the solver's updates do not.
 const CELLS_PER_LOG2: f64 = 2.5;
 
-/// The kernel in real space: the coefficient of offset `(di, dj)` at
-/// `(dj + ny - 1) (2 nx - 1) + di + nx - 1`, as [`Kernel::value`] reads it.
+/// The kernel in real space, laid out as [`Kernel`] keeps it ([`offset_index`]).
 #[derive(Debug, Clone)]
 pub(crate) struct KernelRows {
     nx: usize,
@@ -34,16 +33,15 @@ pub(crate) struct KernelRows {
 impl KernelRows {
     /// The sum of `kernels`, if its grid is small enough to keep it ([`MAX_CELLS`]).
     pub(crate) fn of(kernels: &[&Kernel]) -> Option<Self> {
-        let (nx, ny) = kernels.first()?.shape();
+        let (first, rest) = kernels.split_first()?;
+        let (nx, ny) = first.shape();
         if nx * ny > MAX_CELLS {
             return None;
         }
-        let (width, height) = (2 * nx - 1, 2 * ny - 1);
-        let mut values = vec![0.0; width * height];
-        for kernel in kernels {
-            for (k, value) in values.iter_mut().enumerate() {
-                let (di, dj) = ((k % width) as isize, (k / width) as isize);
-                *value += kernel.value(di - nx as isize + 1, dj - ny as isize + 1);
+        let mut values = first.values().to_vec();
+        for kernel in rest {
+            for (sum, &value) in values.iter_mut().zip(kernel.values()) {
+                *sum += value;
             }
         }
         let padded = (4 * nx * ny) as f64;
@@ -62,12 +60,11 @@ impl KernelRows {
             return false;
         }
         let (nx, ny) = (self.nx, self.ny);
-        let width = 2 * nx - 1;
         for &(j, value) in cells {
-            let (jx, jy) = (j % nx, j / nx);
+            let (jx, jy) = ((j % nx) as isize, (j / nx) as isize);
             for (iy, row) in output.chunks_exact_mut(nx).enumerate() {
                 // Offsets (ix - jx, iy - jy) for ix = 0..nx: one contiguous run of the kernel.
-                let start = (iy + ny - 1 - jy) * width + nx - 1 - jx;
+                let start = offset_index(nx, ny, -jx, iy as isize - jy);
                 let kernel = &self.values[start..start + nx];
                 for (out, &k) in row.iter_mut().zip(kernel) {
                     *out += value * k;
