@@ -25,6 +25,17 @@ struct Solved {
 }
 
 fn solve_sphere(n: usize, domain_m: f64, load_n: f64, cap: f64) -> Result<Solved, ContactError> {
+    solve_sphere_with(n, domain_m, load_n, cap, &SolverOptions::default())
+}
+
+/// [`solve_sphere`] at `options`.
+fn solve_sphere_with(
+    n: usize,
+    domain_m: f64,
+    load_n: f64,
+    cap: f64,
+    options: &SolverOptions,
+) -> Result<Solved, ContactError> {
     let pair = paper_pair();
     let grid = Grid::square(n, domain_m)?;
     let separation = grid.sample(|x, y| hertz(&pair, load_n).separation_m(x, y));
@@ -35,11 +46,10 @@ fn solve_sphere(n: usize, domain_m: f64, load_n: f64, cap: f64) -> Result<Solved
         load_n,
         yield_pressure_pa: cap,
     };
-    let options = SolverOptions::default();
-    let solution = solve(&mut op, &problem, &options, None)?;
+    let solution = solve(&mut op, &problem, options, None)?;
     let check = verify(&mut op, &problem, &solution);
     assert!(
-        check.passes(check_tolerance(&options), LOAD_CHECK),
+        check.passes(check_tolerance(options), LOAD_CHECK),
         "independent check failed: {check:?}"
     );
     Ok(Solved {
@@ -569,23 +579,16 @@ fn an_updated_displacement_drifts_from_a_fresh_one_by_round_off_only() {
     // factor of about 160 to spare, with the cap and without, and across the sparse
     // updates of the truncated and re-entering cells.
     let pair = paper_pair();
+    // The tightest tolerance a scene may ask for still leaves room for the drift.
+    let options = SolverOptions {
+        tolerance: 1e-10,
+        ..SolverOptions::default()
+    };
     for n in [64, 256] {
         for cap in [f64::INFINITY, 900e6] {
-            let grid = Grid::square(n, DOMAIN_M).expect("valid");
-            let separation = grid.sample(|x, y| hertz(&pair, LOAD_N).separation_m(x, y));
+            let Solved { grid, solution, .. } =
+                solve_sphere_with(n, DOMAIN_M, LOAD_N, cap, &options).expect("converges");
             let mut op = DcFft::new(&Kernel::normal(&grid, &pair));
-            let problem = ContactProblem {
-                grid,
-                separation: &separation,
-                load_n: LOAD_N,
-                yield_pressure_pa: cap,
-            };
-            // The tightest tolerance a scene may ask for still leaves room for the drift.
-            let options = SolverOptions {
-                tolerance: 1e-10,
-                ..SolverOptions::default()
-            };
-            let solution = solve(&mut op, &problem, &options, None).expect("converges");
             let mut fresh = vec![0.0; grid.len()];
             op.apply(&solution.pressure, &mut fresh);
             let scale = fresh.iter().fold(0.0f64, |m, v| m.max(v.abs()));
