@@ -42,6 +42,16 @@ fn normal_antiderivative(x: f64, y: f64) -> f64 {
     x_asinh(x, y) + x_asinh(y, x)
 }
 
+/// [`normal_antiderivative`] where `x, y > 0`, all [`Kernel::build`] evaluates: each
+/// `asinh(t)` as `ln_1p(t + t^2 / (1 + sqrt(1 + t^2)))`, the two terms sharing one square
+/// root `r` (each `asinh` computes its own `hypot`). The normal kernel's build at N = 256
+/// took 5.2 ms instead of 7.8 ms (`kernel_build_time` below, before the quadrant copy of
+/// [`Kernel::build`]), the two forms at most 2.3 ulp apart.
+fn normal_antiderivative_positive(x: f64, y: f64) -> f64 {
+    let r = (x * x + y * y).sqrt();
+    x * (y / x + y * y / (x * (r + x))).ln_1p() + y * (x / y + x * x / (y * (r + y))).ln_1p()
+}
+
 /// Antiderivative of `X / r^2`: `X atan(Y / X) + (Y / 2) ln(X^2 + Y^2)`. The single-argument
 /// arctangent is the right branch: `X atan(Y / X)` is continuous across `X = 0`, while an
 /// `atan2` form jumps there and gives wrong values inside the cell.
@@ -92,7 +102,11 @@ impl Kernel {
     /// corners, so `F` is evaluated once per corner of the `2nx x 2ny` corner lattice
     /// (4x fewer transcendental calls than four corners per offset), and only on the
     /// quadrant `x, y > 0`: the lattice is symmetric about both axes and `F` has the
-    /// parities `x_parity`, `y_parity` (+1 even, -1 odd), another 4x.
+    /// parities `x_parity`, `y_parity` (+1 even, -1 odd), another 4x. The corner sums are
+    /// formed on the quadrant of offsets `>= 0` alone and copied out by the kernel's
+    /// parities, so no lattice of all the corners is built: 2.2 ms instead of 5.2 ms at
+    /// N = 256, 9.1 instead of 23 ms at 512 (`kernel_build_time`; `perf` gave a quarter of
+    /// the old build to the page faults of that 2 MB lattice at N = 256).
     fn build(
         grid: &Grid,
         antiderivative: impl Fn(f64, f64) -> f64,
@@ -107,37 +121,38 @@ impl Kernel {
             Symmetry::OddInX
         };
         let (nx, ny) = (grid.nx, grid.ny);
-        let (cx, cy) = (2 * nx, 2 * ny);
-        // Corner (k, l) sits at ((k - nx + 1/2) dx, (l - ny + 1/2) dy): x + a and x - a of
-        // the neighbouring offsets. Mirror index and sign for the quadrant lookup:
-        let mirror = |k: usize, n: usize, parity: f64| {
-            if k >= n {
-                (k - n, 1.0)
-            } else {
-                (n - 1 - k, parity)
-            }
-        };
-        let mut quadrant = Vec::with_capacity(nx * ny);
+        // `F` at the corners of the quadrant, `corner[l * nx + k]` at ((k + 1/2) dx,
+        // (l + 1/2) dy): the corners x + a and y + b of offset (k, l).
+        let mut corner = Vec::with_capacity(nx * ny);
         for l in 0..ny {
             let y = (l as f64 + 0.5) * grid.dy;
-            quadrant.extend((0..nx).map(|k| antiderivative((k as f64 + 0.5) * grid.dx, y)));
+            corner.extend((0..nx).map(|k| antiderivative((k as f64 + 0.5) * grid.dx, y)));
         }
-        let mut corners = Vec::with_capacity(cx * cy);
-        for l in 0..cy {
-            let (ql, sy) = mirror(l, ny, y_parity);
-            corners.extend((0..cx).map(|k| {
-                let (qk, sx) = mirror(k, nx, x_parity);
-                sx * sy * quadrant[ql * nx + qk]
-            }));
-        }
-        let at = |k: usize, l: usize| corners[l * cx + k];
-        let mut values = Vec::with_capacity((cx - 1) * (cy - 1));
-        for l in 0..cy - 1 {
-            for k in 0..cx - 1 {
-                // Offset (k - nx + 1, l - ny + 1): x + a is corner k + 1, x - a is corner k.
-                let sum = at(k + 1, l + 1) - at(k + 1, l) - at(k, l + 1) + at(k, l);
-                values.push(scale * sum);
+        // The corner before the first is its mirror image: `F(-x, y) = x_parity F(x, y)`.
+        let before = |index: usize, parity: f64| match index {
+            0 => (0, parity),
+            _ => (index - 1, 1.0),
+        };
+        // The kernel on the offsets `(k, l) >= 0`, row by row.
+        let mut quadrant = Vec::with_capacity(nx * ny);
+        for l in 0..ny {
+            let (below, sy) = before(l, y_parity);
+            for k in 0..nx {
+                let (left, sx) = before(k, x_parity);
+                let sum =
+                    corner[l * nx + k] - sy * corner[below * nx + k] - sx * corner[l * nx + left]
+                        + sx * sy * corner[below * nx + left];
+                quadrant.push(scale * sum);
             }
+        }
+        // The other three quadrants by the kernel's parities, the opposite of F's.
+        let (kx, ky) = (-x_parity, -y_parity);
+        let mut values = Vec::with_capacity((2 * nx - 1) * (2 * ny - 1));
+        for dj in -(ny as isize - 1)..ny as isize {
+            let row = &quadrant[dj.unsigned_abs() * nx..][..nx];
+            let sign = if dj < 0 { ky } else { 1.0 };
+            values.extend(row[1..].iter().rev().map(|&v| kx * sign * v));
+            values.extend(row.iter().map(|&v| sign * v));
         }
         Self {
             nx,
@@ -150,7 +165,7 @@ impl Kernel {
     /// The normal (Boussinesq) kernel: `I_n / (pi E*)`, metres per pascal.
     pub fn normal(grid: &Grid, pair: &ElasticPair) -> Self {
         let scale = 1.0 / (std::f64::consts::PI * pair.reduced_modulus_pa);
-        Self::build(grid, normal_antiderivative, (-1.0, -1.0), scale)
+        Self::build(grid, normal_antiderivative_positive, (-1.0, -1.0), scale)
     }
 
     /// The friction coupling kernel for `q_x = mu p`: `(1/2) delta_nu mu I_c / (2 pi G*)`,
@@ -328,6 +343,48 @@ mod tests {
         for (x, y) in [(0.3, -0.2), (0.8, 0.1), (2.0, 3.0), (-3.0, -1.5)] {
             let ours = coupling_integral(x, y, 0.5, 0.35);
             assert!((appendix(x, y, 0.5, 0.35) + ours).abs() < 1e-13 * (1.0 + ours.abs()));
+        }
+    }
+
+    #[test]
+    fn the_positive_quadrant_form_equals_the_asinh_form() {
+        // Both forms round a handful of operations: measured at most 2.3 ulp apart over
+        // the corners of an N = 512 kernel, so 4 ulp of the value bound them.
+        for i in -30..=30 {
+            for j in -30..=30 {
+                let (x, y) = (10f64.powf(i as f64 / 5.0), 10f64.powf(j as f64 / 5.0));
+                let (fast, reference) = (
+                    normal_antiderivative_positive(x, y),
+                    normal_antiderivative(x, y),
+                );
+                assert!(
+                    (fast - reference).abs() <= 4.0 * f64::EPSILON * reference.abs(),
+                    "({x}, {y}): {fast} vs {reference}"
+                );
+            }
+        }
+    }
+
+    /// The normal kernel's build at N = 256 and 512, medians of 31. Speed is printed, never
+    /// asserted: `cargo test --release --lib -- --ignored --nocapture kernel_build_time`.
+    #[test]
+    #[ignore = "a timing, not a test"]
+    fn kernel_build_time() {
+        let pair = ElasticPair::new(
+            crate::contact::Material::new(210e9, 0.3).expect("valid"),
+            crate::contact::Material::new(210e9, 0.3).expect("valid"),
+        );
+        for n in [256, 512] {
+            let grid = Grid::new(n, n, 1e-6, 1e-6).expect("valid");
+            let mut times: Vec<f64> = (0..31)
+                .map(|_| {
+                    let started = std::time::Instant::now();
+                    std::hint::black_box(Kernel::normal(&grid, &pair));
+                    started.elapsed().as_secs_f64()
+                })
+                .collect();
+            times.sort_by(f64::total_cmp);
+            println!("N = {n}: Kernel::normal median {:.2} ms", times[15] * 1e3);
         }
     }
 
