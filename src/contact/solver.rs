@@ -140,6 +140,37 @@ pub fn solve(
     })
 }
 
+/// One cell of [`PolonskyKeer::advance`]: a free cell steps by `-tau t` and is truncated at
+/// the bound it crosses, a wrongly bounded cell re-enters at `rate` per unit of gap
+/// (setting `entered`). Returns how far the cell moved other than along the step, if it
+/// did.
+fn step_cell(
+    pi: &mut f64,
+    (ti, gi): (f64, f64),
+    (tau, rate, cap): (f64, f64, f64),
+    entered: &mut bool,
+) -> Option<f64> {
+    if *pi > 0.0 && *pi < cap {
+        let stepped = *pi - tau * ti;
+        *pi = stepped.clamp(0.0, cap);
+        (stepped <= 0.0 || stepped >= cap).then_some(*pi - stepped)
+    } else if *pi <= 0.0 && gi < 0.0 {
+        let new = (-rate * gi).min(cap);
+        let by = new - *pi;
+        *pi = new;
+        *entered = true;
+        Some(by)
+    } else if *pi >= cap && gi > 0.0 {
+        let new = (cap - rate * gi).max(0.0);
+        let by = new - *pi;
+        *pi = new;
+        *entered = true;
+        Some(by)
+    } else {
+        None
+    }
+}
+
 /// The state of one solve between iterations. The work vectors are allocated once, at the
 /// start.
 struct PolonskyKeer<'a> {
@@ -449,30 +480,27 @@ impl<'a> PolonskyKeer<'a> {
         let (t, r, g) = (&self.t[..], &self.r[..], &self.g[..]);
         let changes = &mut self.changes;
         changes.clear();
-        let (mut entered, mut highest, mut load) = (false, 0.0f64, 0.0);
+        let mut entered = false;
+        // The largest pressure and the load in four lanes: one running maximum (with
+        // `f64::max`'s NaN test) and one sum are serial chains through every cell. In
+        // `perf` samples of cold Hertz N = 256 solves (coarse start included), the solver's
+        // own per sample of the FFT library's fell from 0.64 to 0.57.
+        let (mut highest, mut load) = ([0.0f64; 4], [0.0; 4]);
         for i in 0..p.len() {
-            let pi = &mut p[i];
-            if *pi > 0.0 && *pi < cap {
-                let stepped = *pi - tau * t[i];
-                *pi = stepped.clamp(0.0, cap);
-                if stepped <= 0.0 || stepped >= cap {
-                    changes.push((i, *pi - stepped));
-                }
-            } else if *pi <= 0.0 && g[i] < 0.0 {
-                let new = (-rate * g[i]).min(cap);
-                changes.push((i, new - *pi));
-                *pi = new;
-                entered = true;
-            } else if *pi >= cap && g[i] > 0.0 {
-                let new = (cap - rate * g[i]).max(0.0);
-                changes.push((i, new - *pi));
-                *pi = new;
-                entered = true;
+            if let Some(by) = step_cell(&mut p[i], (t[i], g[i]), (tau, rate, cap), &mut entered) {
+                changes.push((i, by));
             }
-            highest = highest.max(*pi);
-            load += *pi;
             u[i] -= tau * r[i];
+            let (pi, lane) = (p[i], i % 4);
+            highest[lane] = if pi > highest[lane] {
+                pi
+            } else {
+                highest[lane]
+            };
+            load[lane] += pi;
         }
+        let highest = highest.iter().fold(0.0f64, |m, &v| m.max(v));
+        let load = load.iter().sum::<f64>();
         self.updates += 1;
         if !self.changes.is_empty() {
             self.restore_load(operator, highest, load);
