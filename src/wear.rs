@@ -94,9 +94,14 @@ impl Groove {
     /// The roughness as yielding has left it, `min(r, c)`, at each cell of `grid` (the grid
     /// the groove is on): m above the original mean plane, the groove `D` left out.
     pub fn roughness_m(&self, grid: &Grid) -> Vec<f64> {
-        (0..grid.ny)
-            .flat_map(|iy| self.roughness_row(grid, iy))
-            .collect()
+        // Row by row into a buffer of the final length: collecting the rows' `flat_map`
+        // grew the vector as it went, with no exact size hint (`perf`: most of the time
+        // of building the separation, 3% of a paper-scene run).
+        let mut heights = Vec::with_capacity(grid.len());
+        for iy in 0..grid.ny {
+            heights.extend(self.roughness_row(grid, iy));
+        }
+        heights
     }
 
     /// [`Self::roughness_m`] at cell `i` of `grid` alone.
