@@ -164,7 +164,7 @@ impl DcFft {
     /// Plans the transforms and computes the spectrum of `kernel`.
     pub fn new(kernel: &Kernel) -> Self {
         let mut op = Self::planned(kernel.shape());
-        let spectrum = op.kernel_spectrum(kernel);
+        let spectrum = op.kernel_spectrum(|di, dj| kernel.value(di, dj));
         op.spectrum = match kernel.symmetry() {
             Symmetry::EvenInX => Spectrum::Real(spectrum.iter().map(|c| c.re).collect()),
             Symmetry::OddInX => Spectrum::Imaginary(spectrum.iter().map(|c| c.im).collect()),
@@ -181,10 +181,8 @@ impl DcFft {
     pub fn sum(first: &Kernel, second: &Kernel) -> Self {
         assert_eq!(first.shape(), second.shape(), "kernel shapes differ");
         let mut op = Self::planned(first.shape());
-        let mut spectrum = op.kernel_spectrum(first);
-        for (s, t) in spectrum.iter_mut().zip(op.kernel_spectrum(second)) {
-            *s += t;
-        }
+        // The transform is linear: one of the summed kernel, not the sum of two.
+        let spectrum = op.kernel_spectrum(|di, dj| first.value(di, dj) + second.value(di, dj));
         op.spectrum = Spectrum::Complex(spectrum);
         // The normal kernel dominates the sum (the coupling carries mu delta-nu / 2).
         if first.symmetry() == Symmetry::EvenInX {
@@ -234,8 +232,9 @@ impl DcFft {
 
     /// The kernel arranged by wrap-around on the padded grid (index `i < n` holds offset
     /// `i`, `i > n` holds offset `i - 2n`; the entry at `i = n` multiplies only padding and
-    /// is set to zero, which also keeps odd kernels odd), transformed.
-    fn kernel_spectrum(&mut self, kernel: &Kernel) -> Vec<Complex<f64>> {
+    /// is set to zero, which also keeps odd kernels odd), transformed; `kernel(di, dj)` is
+    /// the coefficient of offset `(di, dj)`.
+    fn kernel_spectrum(&mut self, kernel: impl Fn(isize, isize) -> f64) -> Vec<Complex<f64>> {
         let (nx, ny) = (self.nx, self.ny);
         let offset = |i: usize, n: usize| -> Option<isize> {
             match i.cmp(&n) {
@@ -249,7 +248,7 @@ impl DcFft {
             let dj = offset(iy, ny);
             for (ix, value) in self.row_real.iter_mut().enumerate() {
                 *value = match (offset(ix, nx), dj) {
-                    (Some(di), Some(dj)) => scale * kernel.value(di, dj),
+                    (Some(di), Some(dj)) => scale * kernel(di, dj),
                     _ => 0.0,
                 };
             }
