@@ -31,7 +31,7 @@ use rustfft::num_complex::Complex;
 
 use self::sparse::KernelRows;
 pub(crate) use self::split::Split;
-use super::influence::{Kernel, Symmetry};
+use super::influence::{Kernel, Symmetry, offset_index};
 use super::operator::{Operator, Preconditioner};
 use super::plans::Plans;
 use super::precondition::FourierInverse;
@@ -164,10 +164,11 @@ impl DcFft {
     /// Plans the transforms and computes the spectrum of `kernel`.
     pub fn new(kernel: &Kernel) -> Self {
         let mut op = Self::planned(kernel.shape());
-        let spectrum = op.kernel_spectrum(|di, dj| kernel.value(di, dj));
+        op.kernel_spectrum(&[kernel]);
+        let columns = &op.columns;
         op.spectrum = match kernel.symmetry() {
-            Symmetry::EvenInX => Spectrum::Real(spectrum.iter().map(|c| c.re).collect()),
-            Symmetry::OddInX => Spectrum::Imaginary(spectrum.iter().map(|c| c.im).collect()),
+            Symmetry::EvenInX => Spectrum::Real(columns.iter().map(|c| c.re).collect()),
+            Symmetry::OddInX => Spectrum::Imaginary(columns.iter().map(|c| c.im).collect()),
         };
         if kernel.symmetry() == Symmetry::EvenInX {
             op.inverse = Some(FourierInverse::new(kernel));
@@ -182,8 +183,8 @@ impl DcFft {
         assert_eq!(first.shape(), second.shape(), "kernel shapes differ");
         let mut op = Self::planned(first.shape());
         // The transform is linear: one of the summed kernel, not the sum of two.
-        let spectrum = op.kernel_spectrum(|di, dj| first.value(di, dj) + second.value(di, dj));
-        op.spectrum = Spectrum::Complex(spectrum);
+        op.kernel_spectrum(&[first, second]);
+        op.spectrum = Spectrum::Complex(op.columns.clone());
         // The normal kernel dominates the sum (the coupling carries mu delta-nu / 2).
         if first.symmetry() == Symmetry::EvenInX {
             op.inverse = Some(FourierInverse::new(first));
@@ -230,27 +231,34 @@ impl DcFft {
         self.split.as_ref().map_or(1, Split::threads)
     }
 
-    /// The kernel arranged by wrap-around on the padded grid (index `i < n` holds offset
-    /// `i`, `i > n` holds offset `i - 2n`; the entry at `i = n` multiplies only padding and
-    /// is set to zero, which also keeps odd kernels odd), transformed; `kernel(di, dj)` is
-    /// the coefficient of offset `(di, dj)`.
-    fn kernel_spectrum(&mut self, kernel: impl Fn(isize, isize) -> f64) -> Vec<Complex<f64>> {
+    /// The sum of `kernels` arranged by wrap-around on the padded grid (index `i < n` holds
+    /// offset `i`, `i > n` holds offset `i - 2n`; the entry at `i = n` multiplies only
+    /// padding and is set to zero, which also keeps odd kernels odd), transformed into
+    /// `columns`. Each padded row is copied from the kernels' rows of offsets as two slices.
+    fn kernel_spectrum(&mut self, kernels: &[&Kernel]) {
         let (nx, ny) = (self.nx, self.ny);
-        let offset = |i: usize, n: usize| -> Option<isize> {
-            match i.cmp(&n) {
-                std::cmp::Ordering::Less => Some(i as isize),
-                std::cmp::Ordering::Equal => None,
-                std::cmp::Ordering::Greater => Some(i as isize - 2 * n as isize),
-            }
-        };
         let scale = 1.0 / (4 * nx * ny) as f64;
         for iy in 0..self.col_len {
-            let dj = offset(iy, ny);
-            for (ix, value) in self.row_real.iter_mut().enumerate() {
-                *value = match (offset(ix, nx), dj) {
-                    (Some(di), Some(dj)) => scale * kernel(di, dj),
-                    _ => 0.0,
-                };
+            self.row_real.fill(0.0);
+            let dj = match iy.cmp(&ny) {
+                std::cmp::Ordering::Less => Some(iy as isize),
+                std::cmp::Ordering::Equal => None,
+                std::cmp::Ordering::Greater => Some(iy as isize - 2 * ny as isize),
+            };
+            for kernel in kernels {
+                let Some(dj) = dj else { break };
+                let start = offset_index(nx, ny, 1 - nx as isize, dj);
+                let offsets = &kernel.values()[start..start + 2 * nx - 1];
+                // Offsets 0..nx first, then -(nx - 1)..0 after the zero at nx.
+                let (negative, forward) = offsets.split_at(nx - 1);
+                let (head, tail) = self.row_real.split_at_mut(nx);
+                head.iter_mut()
+                    .zip(forward)
+                    .for_each(|(r, &k)| *r += scale * k);
+                tail[1..]
+                    .iter_mut()
+                    .zip(negative)
+                    .for_each(|(r, &k)| *r += scale * k);
             }
             self.forward_row(iy % BLOCK);
             if iy % BLOCK == BLOCK - 1 || iy + 1 == self.col_len {
@@ -262,7 +270,6 @@ impl DcFft {
                 .col_forward
                 .process_with_scratch(&mut column[..self.col_len], &mut self.plans.complex_scratch);
         }
-        self.columns.clone()
     }
 
     /// Real-to-complex transform of `row_real` into slot `slot` of the row block.
