@@ -6,8 +6,9 @@
 # (scripts/peers_rough.py; the peers at N = 2048 take minutes each).
 # Usage: scripts/peers.sh [peers.py options, e.g. --sizes 64 128 --reps 5, --only rough]
 # Run it on an otherwise idle machine: the times are the point. The smooth cases take about
-# 20 minutes, most of it Tamaas's KatoSaturated on the capped case (thousands of
-# iterations), the rough ones about as long again, most of it the peers at N = 2048.
+# half an hour, most of it Tamaas's KatoSaturated on the capped case (thousands of
+# iterations) and both peers on Hertz at N = 2048; the rough ones about 25 minutes, most of
+# it the peers at N = 2048.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
