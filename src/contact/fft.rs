@@ -245,20 +245,10 @@ impl DcFft {
                 std::cmp::Ordering::Equal => None,
                 std::cmp::Ordering::Greater => Some(iy as isize - 2 * ny as isize),
             };
-            for kernel in kernels {
-                let Some(dj) = dj else { break };
-                let start = offset_index(nx, ny, 1 - nx as isize, dj);
-                let offsets = &kernel.values()[start..start + 2 * nx - 1];
-                // Offsets 0..nx first, then -(nx - 1)..0 after the zero at nx.
-                let (negative, forward) = offsets.split_at(nx - 1);
-                let (head, tail) = self.row_real.split_at_mut(nx);
-                head.iter_mut()
-                    .zip(forward)
-                    .for_each(|(r, &k)| *r += scale * k);
-                tail[1..]
-                    .iter_mut()
-                    .zip(negative)
-                    .for_each(|(r, &k)| *r += scale * k);
+            if let Some(dj) = dj {
+                for kernel in kernels {
+                    add_wrapped_row(&mut self.row_real, kernel, dj, scale);
+                }
             }
             self.forward_row(iy % BLOCK);
             if iy % BLOCK == BLOCK - 1 || iy + 1 == self.col_len {
@@ -372,6 +362,23 @@ impl Operator for DcFft {
             }
         }
     }
+}
+
+/// Adds `scale` times the kernel's row of offsets `dj` to the padded row `row` by
+/// wrap-around: offsets `0..nx` first, then `-(nx - 1)..0` after the zero at `nx`; two
+/// slice copies, no lookup per entry.
+fn add_wrapped_row(row: &mut [f64], kernel: &Kernel, dj: isize, scale: f64) {
+    let (nx, ny) = kernel.shape();
+    let start = offset_index(nx, ny, 1 - nx as isize, dj);
+    let (negative, forward) = kernel.values()[start..start + 2 * nx - 1].split_at(nx - 1);
+    let (head, tail) = row.split_at_mut(nx);
+    head.iter_mut()
+        .zip(forward)
+        .for_each(|(r, &k)| *r += scale * k);
+    tail[1..]
+        .iter_mut()
+        .zip(negative)
+        .for_each(|(r, &k)| *r += scale * k);
 }
 
 #[cfg(test)]

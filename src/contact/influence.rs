@@ -103,12 +103,12 @@ impl Kernel {
     /// (4x fewer transcendental calls than four corners per offset), and only on the
     /// quadrant `x, y > 0`: the lattice is symmetric about both axes and `F` has the
     /// parities `x_parity`, `y_parity` (+1 even, -1 odd), another 4x; `symmetric` says
-    /// `F(x, y) = F(y, x)`, which halves the square part again on square cells. The corner sums are
-    /// formed on the quadrant of offsets `>= 0` alone and copied out by the kernel's
-    /// parities, so no lattice of all the corners is built: 2.2 ms instead of 5.2 ms at
-    /// N = 256, 9.1 instead of 23 ms at 512 (`kernel_build_time`; `perf` gave a quarter of
-    /// the old build to the page faults of that 2 MB lattice at N = 256); the mirrored
-    /// corners then took it to 1.3 and 5.7 ms.
+    /// `F(x, y) = F(y, x)`, which halves the square part again on square cells. The corner
+    /// sums are formed on the quadrant of offsets `>= 0` alone and copied out by the
+    /// kernel's parities: a lattice of all the corners would be 2 MB at N = 256, and `perf`
+    /// gave a quarter of a build that made one to its page faults. The normal kernel builds
+    /// in 1.3 ms at N = 256 and 5.7 ms at 512 (`kernel_build_time`), against 5.2 and 23 ms
+    /// with the whole lattice and no diagonal mirror.
     fn build(
         grid: &Grid,
         antiderivative: impl Fn(f64, f64) -> f64,
