@@ -21,7 +21,7 @@ use super::contact::{DOMAIN_M, paper_hertz};
 use super::error::BenchError;
 use super::fft_pair::FftPair;
 use super::median_time;
-use super::speed::{peak_rss_bytes, thread_cpu_s};
+use super::speed::{peak_rss_since, reset_peak_rss, thread_cpu_s};
 use crate::contact::{
     ContactProblem, ContactSolution, Grid, Operator, PeriodicHalfSpace, SolverOptions, solve,
 };
@@ -100,8 +100,8 @@ pub struct RoughRow {
     pub fft_pair_s: f64,
     /// `solve_s / iterations / fft_pair_s`.
     pub iteration_per_fft_pair: f64,
-    /// Peak resident memory of the process after this grid's solves, bytes (grids run
-    /// coarsest first, after the finest surface was generated).
+    /// Peak resident memory of the process during this grid's sampling and solves, bytes
+    /// (reset when the grid starts; the finest surface, generated first, is held throughout).
     pub peak_rss_bytes: Option<u64>,
     /// `area_fraction / reference - 1`.
     pub err_area: f64,
@@ -143,6 +143,7 @@ pub fn rough_rows(surfaces: Option<&Path>) -> Result<Vec<RoughRow>, BenchError> 
     let short = CELLS_PER_SHORT_CUTOFF as f64 * map.dx_m;
     let mut rows = Vec::new();
     for n in ROUGH_SIZES {
+        let reset = reset_peak_rss();
         let grid = Grid::square(n, DOMAIN_M)?;
         let heights = grid.sample(|x, y| map.height_at(x, y));
         let surface_file = match surfaces {
@@ -164,7 +165,7 @@ pub fn rough_rows(surfaces: Option<&Path>) -> Result<Vec<RoughRow>, BenchError> 
         });
         let mut operator = build();
         let (solution, solve_s, solve_cpu_s) = timed_solves(&mut operator, &problem, reps)?;
-        let peak_rss_bytes = peak_rss_bytes();
+        let peak_rss_bytes = peak_rss_since(reset);
         let apply_s = apply_time(&mut operator, &solution, reps);
         let mut fft = FftPair::new(n);
         let fft_pair_s = median_time(reps, || fft.round_trip());

@@ -98,9 +98,8 @@ pub struct CoarseRow {
     pub speedup: f64,
     /// `max |p - p_cold| / max p_cold`: both stop at the same tolerance.
     pub difference: f64,
-    /// Peak resident memory of the process after this grid's solves, bytes (Linux's
-    /// `VmHWM`; `None` where it cannot be read). The grids run smallest first, so the
-    /// largest grid's row is its own peak.
+    /// Peak resident memory of the process during this grid's solves, bytes (Linux's
+    /// `VmHWM`, reset when the grid starts; `None` where it cannot be reset or read).
     pub peak_rss_bytes: Option<u64>,
 }
 
@@ -172,6 +171,7 @@ pub fn coarse_rows() -> Result<Vec<CoarseRow>, BenchError> {
     let options = SolverOptions::default();
     let mut rows = Vec::new();
     for n in COARSE_STUDY_SIZES {
+        let reset = reset_peak_rss();
         let (grid, separation) = hertz_case(n)?;
         let problem = ContactProblem {
             grid,
@@ -203,14 +203,28 @@ pub fn coarse_rows() -> Result<Vec<CoarseRow>, BenchError> {
             coarse_to_fine_s,
             speedup: cold_s / coarse_to_fine_s,
             difference,
-            peak_rss_bytes: peak_rss_bytes(),
+            peak_rss_bytes: peak_rss_since(reset),
         });
     }
     Ok(rows)
 }
 
+/// Starts a measurement of peak memory: resets the process's peak resident memory to its
+/// current one (Linux: `5` written to `/proc/self/clear_refs`). Without the reset, a larger
+/// grid solved earlier in the process (`bench all` runs the contact study's N = 2048 before
+/// this one) would stand as every later row's peak. `false` where the reset is refused.
+pub(super) fn reset_peak_rss() -> bool {
+    std::fs::write("/proc/self/clear_refs", "5").is_ok()
+}
+
+/// The process's peak resident memory since [`reset_peak_rss`] (Linux's `VmHWM`), bytes;
+/// `None` when the reset was refused (`reset`), since the peak would then be the process's.
+pub(super) fn peak_rss_since(reset: bool) -> Option<u64> {
+    reset.then(peak_rss_bytes).flatten()
+}
+
 /// The process's peak resident memory so far (Linux's `VmHWM`), bytes.
-pub(super) fn peak_rss_bytes() -> Option<u64> {
+fn peak_rss_bytes() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;

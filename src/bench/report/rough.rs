@@ -123,8 +123,8 @@ pub(super) fn section(
         "At N = {}: {} s for the contact ({} s of CPU for the solve; {} iterations, {} operator \
          applications of {} ms: {} s of them, and one preconditioner application per \
          iteration at about the same cost), the process's peak resident memory {:.0} MB; \
-         \"peak MB\" is the process's after each grid's solves (coarsest first, after the \
-         N = {} surface was generated).\n",
+         \"peak MB\" is the process's during each grid's solves (reset when the grid starts; \
+         the N = {} surface, generated first, is held throughout).\n",
         finest.n,
         sig(finest.wall_s, 3),
         finest.solve_cpu_s.map_or("n/a".to_owned(), |c| sig(c, 3)),

@@ -161,9 +161,8 @@ pub(super) fn body(report: &mut Report, studies: &SpeedStudies) {
          (solved to {COARSE_TOLERANCE:.0e}, itself started from the grid of half its cells, \
          down to {COARSEST_CELLS} cells), interpolated bilinearly. The coarse-to-fine time \
          includes the coarse operators and solves; \"difference\" is max |p - p_cold| / \
-         max p_cold; \"peak bytes per cell\" is the process's peak resident memory after the \
-         grid's solves over N^2 (the grids run smallest first, so each row's peak is its own \
-         grid's, the last one the memory per cell at N = 2048).\n",
+         max p_cold; \"peak bytes per cell\" is the process's peak resident memory during the \
+         grid's solves (reset when the grid starts) over N^2.\n",
         sizes.join(", ")
     ));
     report.push(&table(
