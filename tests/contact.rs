@@ -212,6 +212,7 @@ fn iteration_limit_reports_the_residual_reached() {
     let options = SolverOptions {
         tolerance: 1e-8,
         max_iterations: 5,
+        ..SolverOptions::default()
     };
     let mut op = DcFft::new(&Kernel::normal(&grid, &pair));
     match solve(&mut op, &problem, &options, None) {

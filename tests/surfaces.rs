@@ -141,7 +141,7 @@ fn contact_fraction(map: &HeightMap, mean_pa: f64, e_pa: f64) -> (f64, usize) {
     let mut operator = PeriodicHalfSpace::new(n, n, PIXEL, PIXEL, e_pa);
     let options = SolverOptions {
         tolerance: 1e-8,
-        max_iterations: 2000,
+        ..SolverOptions::default()
     };
     let solution = solve(&mut operator, &problem, &options, None).expect("converges");
     let mask: Vec<bool> = solution.pressure.iter().map(|&p| p > 0.0).collect();

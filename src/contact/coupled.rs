@@ -65,6 +65,7 @@ pub fn solve_coupled(
         let budget = SolverOptions {
             max_iterations: options.max_iterations.saturating_sub(iterations).max(1),
             tolerance: (INNER_FLOOR * options.tolerance).max(INNER_FRACTION * residual.min(1.0)),
+            ..*options
         };
         let mut solution = solve(normal, &inner, &budget, warm.as_deref())
             .map_err(|e| as_outer_failure(e, iterations, options))?;

@@ -42,7 +42,7 @@ pub use periodic::PeriodicHalfSpace;
 pub(crate) use plans::Plans;
 pub use plans::fft_friendly;
 pub use precondition::FourierInverse;
-pub use problem::{ContactProblem, ContactSolution, ContactSolver, SolverOptions};
+pub use problem::{ContactProblem, ContactSolution, ContactSolver, Preconditioning, SolverOptions};
 pub use residual::complementarity_residual;
 pub use solver::{NormalSolver, UPDATE_ROUNDOFF, solve};
 pub use window::{MARGIN_FRACTION, MIN_MARGIN, WindowedSolver};

@@ -42,6 +42,9 @@ pub trait Preconditioner {
     /// `output = M^-1 input`. Takes `&mut self` so implementations keep their scratch
     /// buffers and allocate nothing per call.
     fn apply(&mut self, input: &[f64], output: &mut [f64]);
+
+    /// `M^-1`'s diagonal entry, the same on every cell: the inverse is a convolution.
+    fn diagonal(&self) -> f64;
 }
 
 /// Direct summation `u_I = sum_J K(I - J) p_J`, O(N^4): the reference the FFT operator is

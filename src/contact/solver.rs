@@ -26,7 +26,10 @@
 //! the inverse of the kernel wrapped onto the grid ([`super::FourierInverse`]), which
 //! undoes the `1 / |k|` spread of the half-space's spectrum. Measured on the paper's Hertz
 //! case (`tribosim bench contact`): 42 -> 21 iterations at N = 256, 72 -> 27 at N = 1024;
-//! a warm-started wear cycle of the paper scene: about 37 -> 9.
+//! a warm-started wear cycle of the paper scene: about 37 -> 9. By default
+//! ([`Preconditioning::FreeSet`]) `M^-1` is also corrected where it couples the free cells
+//! to the others, at the contact's edges (`free_set`): 6.3 -> 4.6 iterations a warm solve
+//! of the paper scene, 67 -> 35 on the rough flat at N = 2048.
 //!
 //! # Cost: one operator apply per iteration
 //! The displacement `u = K p` is updated as `u - tau K t`, reusing the `K t` that the step
@@ -52,13 +55,17 @@
 use super::error::ContactError;
 use super::grid::Grid;
 use super::operator::Operator;
-use super::problem::{ContactProblem, ContactSolution, ContactSolver, SolverOptions};
+use super::problem::{
+    ContactProblem, ContactSolution, ContactSolver, Preconditioning, SolverOptions,
+};
 use super::residual::{Bound, Residual, approach};
 
 mod bounds;
+mod free_set;
 mod sums;
 
 use bounds::{check_edges, rescale_to_load, violator_step};
+use free_set::FreeSetCorrection;
 use sums::{dot, dot2, sum, update_direction};
 
 /// Relative load error accepted at convergence. Summing N^2 pressures in f64 errs by up to
@@ -116,7 +123,7 @@ pub fn solve(
     warm_start: Option<&[f64]>,
 ) -> Result<ContactSolution, ContactError> {
     problem.validate(options)?;
-    let mut state = PolonskyKeer::start(operator, problem, warm_start)?;
+    let mut state = PolonskyKeer::start(operator, problem, options, warm_start)?;
     for iteration in 1..=options.max_iterations {
         let delta = state.measure();
         if state.residual <= options.tolerance {
@@ -196,6 +203,8 @@ struct PolonskyKeer<'a> {
     free: Vec<f64>,
     /// Whether the operator offers a preconditioner.
     preconditioned: bool,
+    /// The preconditioner's correction at the free set's edges, where chosen.
+    correction: Option<FreeSetCorrection>,
     /// Operator applications so far.
     applies: usize,
     /// Updates of `u` since it was last computed from `p` by an apply (0: fresh).
@@ -228,6 +237,7 @@ impl<'a> PolonskyKeer<'a> {
     fn start(
         operator: &mut dyn Operator,
         problem: &ContactProblem<'a>,
+        options: &SolverOptions,
         warm_start: Option<&[f64]>,
     ) -> Result<Self, ContactError> {
         let grid = problem.grid;
@@ -249,7 +259,11 @@ impl<'a> PolonskyKeer<'a> {
         rescale_to_load(&mut p, cap, target, h);
         let mut u = vec![0.0; n];
         operator.apply(&p, &mut u);
-        let preconditioned = operator.preconditioner().is_some();
+        let inverse = operator.preconditioner();
+        let preconditioned = inverse.is_some();
+        let correction = inverse
+            .filter(|_| options.preconditioning == Preconditioning::FreeSet)
+            .map(|inverse| FreeSetCorrection::new(inverse, n));
         Ok(Self {
             grid,
             separation: h,
@@ -267,6 +281,7 @@ impl<'a> PolonskyKeer<'a> {
             },
             free: vec![0.0; n],
             preconditioned,
+            correction,
             applies: 1,
             updates: 0,
             changes: Vec::new(),
@@ -299,6 +314,7 @@ impl<'a> PolonskyKeer<'a> {
         let (p, u, h, t) = (&self.p[..], &self.u[..], self.separation, &self.t[..]);
         let (g, free, r) = (&mut self.g[..], &mut self.free[..], &mut self.r[..]);
         let (mut residual, mut load, mut free_cells) = (Residual::default(), 0.0, 0usize);
+        let mut free_set_moved = false;
         // Returns `free * t` of the cell, summed as `dot` sums (four accumulators, over
         // slices of four so the inner loop has no bounds checks).
         let mut cell = |pi: f64, ui: f64, hi: f64, ti: f64, out: (&mut f64, &mut f64, &mut f64)| {
@@ -309,6 +325,7 @@ impl<'a> PolonskyKeer<'a> {
             residual.add(bound, ui, gi);
             let fi = if bound == Bound::Free { 1.0 } else { 0.0 };
             free_cells += usize::from(bound == Bound::Free);
+            free_set_moved |= (*out.1 > 0.5) != (bound == Bound::Free);
             *out.1 = fi;
             *out.2 = fi * gi;
             fi * ti
@@ -337,6 +354,9 @@ impl<'a> PolonskyKeer<'a> {
             tail += cell(p[i], u[i], h[i], t[i], (&mut g[i], &mut free[i], &mut r[i]));
         }
         self.free_t = acc.iter().sum::<f64>() + tail;
+        if let Some(correction) = self.correction.as_mut().filter(|_| free_set_moved) {
+            correction.free_set_changed();
+        }
         self.free_cells = free_cells as f64;
         self.residual = residual.value();
         self.load = load;
@@ -393,7 +413,12 @@ impl<'a> PolonskyKeer<'a> {
         let (n_free, t_old_sum) = (self.free_cells, self.free_t);
         let (rho, z_sum) = match operator.preconditioner() {
             Some(inverse) => {
-                inverse.apply(&self.r, &mut self.z);
+                match &mut self.correction {
+                    Some(correction) => {
+                        correction.apply(inverse, &self.free, &mut self.r, &mut self.z);
+                    }
+                    None => inverse.apply(&self.r, &mut self.z),
+                }
                 dot2((&self.r, &self.z), (&self.free, &self.z))
             }
             None => (dot(&self.r, &self.r), sum(&self.r)),
