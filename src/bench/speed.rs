@@ -1,14 +1,17 @@
 //! The solver's speed levers, each measured against the code without it in the same run:
 //!
 //! - warm solves in the cycle loop: the paper's 3600-cycle default scene `{}` at the
-//!   default tolerance against the previous default ([`PREVIOUS_TOLERANCE`]): iterations per
-//!   solve, wall time, and what the wear volume, depth and final potential move by;
+//!   default tolerance against the previous default ([`PREVIOUS_TOLERANCE`]), and at the
+//!   default tolerance preconditioned on the whole grid ([`Preconditioning::WholeGrid`]):
+//!   iterations per solve, wall time, and what the wear volume, depth and final potential
+//!   move by;
 //! - cold solves: the Hertz case from a coarse-to-fine start ([`crate::contact::coarse_start`])
 //!   against the uniform start, at [`COARSE_STUDY_SIZES`];
 //!   with the peak resident memory of the process after each grid (the memory per cell
 //!   at N = 2048);
 //! - threads: one apply against its FFT passes split across threads ([`super::threads`]).
 
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use serde::Serialize;
@@ -16,14 +19,16 @@ use serde::Serialize;
 use super::contact::{DOMAIN_M, paper_hertz};
 use super::error::BenchError;
 pub use super::threads::ThreadRow;
-use super::wear::simulate;
-use crate::contact::{ContactProblem, DcFft, Grid, Kernel, SolverOptions, coarse_start, solve};
+use crate::contact::{
+    ContactProblem, DcFft, Grid, Kernel, Preconditioning, SolverOptions, coarse_start, solve,
+};
 use crate::scene::{DEFAULT_TOLERANCE, Scene};
+use crate::simulation::{Setup, SimulationError, SimulationResult, run_setup};
 
 /// The scene default's tolerance before it was set by what the error needs.
 pub const PREVIOUS_TOLERANCE: f64 = 1e-8;
 
-/// Runs of each tolerance in the warm-solve study, alternating.
+/// Runs of each setting in the warm-solve study, alternating.
 pub const WARM_ROUNDS: usize = 3;
 
 /// Grid sides of the coarse-to-fine study.
@@ -54,13 +59,16 @@ pub fn print_json(studies: &SpeedStudies) -> Result<(), BenchError> {
     Ok(())
 }
 
-/// One tolerance of the warm-solve study on the default scene.
+/// One setting of the warm-solve study on the default scene.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct WarmRow {
     /// Always `speed_warm`.
     pub study: &'static str,
     /// The solver tolerance.
     pub tolerance: f64,
+    /// The solver's preconditioner (`free_set` or `whole_grid`).
+    #[serde(serialize_with = "preconditioning_name")]
+    pub preconditioning: Preconditioning,
     /// Contact solves of the run.
     pub solves: usize,
     /// CG iterations of the run.
@@ -104,16 +112,19 @@ pub struct CoarseRow {
 }
 
 /// The warm-solve study: the default scene at the previous and the current default
-/// tolerance, run alternately [`WARM_ROUNDS`] times; times are the medians.
+/// tolerance, and at the current one preconditioned on the whole grid, run alternately
+/// [`WARM_ROUNDS`] times; times are the medians.
 pub fn warm_rows() -> Result<Vec<WarmRow>, BenchError> {
-    let tolerances = [PREVIOUS_TOLERANCE, DEFAULT_TOLERANCE];
+    let settings = [
+        (PREVIOUS_TOLERANCE, Preconditioning::FreeSet),
+        (DEFAULT_TOLERANCE, Preconditioning::FreeSet),
+        (DEFAULT_TOLERANCE, Preconditioning::WholeGrid),
+    ];
     let mut runs = Vec::new();
     for _ in 0..WARM_ROUNDS {
-        for tolerance in tolerances {
-            let mut scene = Scene::default();
-            scene.numerics.tolerance = tolerance;
+        for setting in settings {
             let cpu = thread_cpu_s();
-            let result = simulate(&scene)?;
+            let result = warm_run(setting)?;
             let cpu_s = thread_cpu_s()
                 .zip(cpu)
                 .map(|(after, before)| after - before);
@@ -126,15 +137,16 @@ pub fn warm_rows() -> Result<Vec<WarmRow>, BenchError> {
         v.get(v.len() / 2).copied()
     };
     let base = runs[0].0.clone();
-    Ok(tolerances
+    Ok(settings
         .into_iter()
         .enumerate()
-        .map(|(k, tolerance)| {
+        .map(|(k, (tolerance, preconditioning))| {
             let s = &runs[k].0;
-            let mine = runs.iter().skip(k).step_by(tolerances.len());
+            let mine = runs.iter().skip(k).step_by(settings.len());
             WarmRow {
                 study: "speed_warm",
                 tolerance,
+                preconditioning,
                 solves: s.solves,
                 iterations: s.iterations,
                 iterations_per_solve: s.iterations as f64 / s.solves as f64,
@@ -147,6 +159,33 @@ pub fn warm_rows() -> Result<Vec<WarmRow>, BenchError> {
             }
         })
         .collect())
+}
+
+/// The name of a [`Preconditioning`] in the JSON rows and the report.
+pub fn preconditioning_label(preconditioning: Preconditioning) -> &'static str {
+    match preconditioning {
+        Preconditioning::FreeSet => "free_set",
+        Preconditioning::WholeGrid => "whole_grid",
+    }
+}
+
+fn preconditioning_name<S: serde::Serializer>(
+    preconditioning: &Preconditioning,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(preconditioning_label(*preconditioning))
+}
+
+/// The default scene at `tolerance` with `preconditioning`.
+fn warm_run(
+    (tolerance, preconditioning): (f64, Preconditioning),
+) -> Result<SimulationResult, BenchError> {
+    let mut scene = Scene::default();
+    scene.numerics.tolerance = tolerance;
+    scene.validate().map_err(SimulationError::from)?;
+    let mut setup = Setup::new(&scene)?;
+    setup.options.preconditioning = preconditioning;
+    Ok(run_setup(&setup, &mut |_| {}, &AtomicBool::new(false))?)
 }
 
 /// CPU time of the calling thread so far, s (Linux's `schedstat`; `None` elsewhere): the

@@ -57,9 +57,18 @@ pub fn run_with_surface(
     on_cycle: &mut dyn FnMut(&CycleRecord),
     cancel: &AtomicBool,
 ) -> Result<SimulationResult, SimulationError> {
-    let started = Instant::now();
     let setup = Setup::with_surface(scene, surface)?;
-    let mut state = Run::new(&setup, |grid: &Grid| setup.solver(grid));
+    run_setup(&setup, on_cycle, cancel)
+}
+
+/// [`run`] of a scene already set up, e.g. with its solver options changed.
+pub fn run_setup(
+    setup: &Setup,
+    on_cycle: &mut dyn FnMut(&CycleRecord),
+    cancel: &AtomicBool,
+) -> Result<SimulationResult, SimulationError> {
+    let started = Instant::now();
+    let mut state = Run::new(setup, |grid: &Grid| setup.solver(grid));
     let total = setup.scene.test.cycles;
     let mut cycle = 1;
     while cycle <= total {

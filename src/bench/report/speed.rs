@@ -4,7 +4,7 @@
 
 use crate::bench::speed::{
     COARSE_STUDY_SIZES, CoarseRow, PREVIOUS_TOLERANCE, SpeedStudies, ThreadRow, WARM_ROUNDS,
-    WarmRow,
+    WarmRow, preconditioning_label,
 };
 use crate::bench::threads::THREAD_ROUNDS;
 use crate::contact::{COARSE_TOLERANCE, COARSEST_CELLS, SPLIT_MIN_CELLS};
@@ -43,6 +43,7 @@ fn warm_cells(r: &WarmRow) -> Vec<String> {
     };
     vec![
         format!("{:.0e}", r.tolerance),
+        format!("`{}`", preconditioning_label(r.preconditioning)),
         r.solves.to_string(),
         r.iterations.to_string(),
         format!("{:.2}", r.iterations_per_solve),
@@ -130,10 +131,12 @@ pub(super) fn section(
 /// The section's studies, each with its words and table.
 pub(super) fn body(report: &mut Report, studies: &SpeedStudies) {
     report.push(&format!(
-        "### Warm solves: the tolerance the error needs\n\n\
+        "### Warm solves: the tolerance the error needs, the preconditioner's edges\n\n\
          The paper's 3600-cycle scene `{{}}` at the default tolerance ({DEFAULT_TOLERANCE:.0e}) \
-         against the previous default ({PREVIOUS_TOLERANCE:.0e}), run alternately \
-         {WARM_ROUNDS} times each; wall and CPU time (the run's thread alone, which other work \
+         against the previous default ({PREVIOUS_TOLERANCE:.0e}), and at the default \
+         tolerance with the preconditioner of the whole grid (`whole_grid`) instead of the \
+         default one corrected at the free set's edges (`free_set`, \
+         `src/contact/solver/free_set.rs`), run alternately {WARM_ROUNDS} times each; wall and CPU time (the run's thread alone, which other work \
          on the machine does not inflate as much) are the medians. The changes are those of \
          the final wear volume, deepest point and potential against the previous default's \
          run. Both warm-start each solve from the last two solves' `p - c g` extrapolated in \
@@ -142,6 +145,7 @@ pub(super) fn body(report: &mut Report, studies: &SpeedStudies) {
     report.push(&table(
         &[
             "tolerance",
+            "preconditioner",
             "solves",
             "iterations",
             "iterations per solve",
