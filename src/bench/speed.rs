@@ -6,7 +6,8 @@
 //!   iterations per solve, wall time, and what the wear volume, depth and final potential
 //!   move by;
 //! - cold solves: the Hertz case from a coarse-to-fine start ([`crate::contact::coarse_start`])
-//!   against the uniform start, at [`COARSE_STUDY_SIZES`];
+//!   against the uniform start, and with the whole-grid preconditioner, at
+//!   [`COARSE_STUDY_SIZES`];
 //!   with the peak resident memory of the process after each grid (the memory per cell
 //!   at N = 2048);
 //! - threads: one apply against its FFT passes split across threads ([`super::threads`]).
@@ -102,6 +103,11 @@ pub struct CoarseRow {
     pub fine_iterations: usize,
     /// Wall time of the coarse solves and the fine one, coarse operators included, s.
     pub coarse_to_fine_s: f64,
+    /// Iterations of the fine solve from the coarse start, preconditioned on the whole
+    /// grid ([`Preconditioning::WholeGrid`]).
+    pub whole_grid_iterations: usize,
+    /// Wall time of the coarse-to-fine solves preconditioned on the whole grid, s.
+    pub whole_grid_s: f64,
     /// `cold_s / coarse_to_fine_s`.
     pub speedup: f64,
     /// `max |p - p_cold| / max p_cold`: both stop at the same tolerance.
@@ -226,6 +232,14 @@ pub fn coarse_rows() -> Result<Vec<CoarseRow>, BenchError> {
         let start = coarse_start(&problem, &pair, &options)?;
         let fine = solve(&mut operator, &problem, &options, start.as_deref())?;
         let coarse_to_fine_s = started.elapsed().as_secs_f64();
+        let whole = SolverOptions {
+            preconditioning: Preconditioning::WholeGrid,
+            ..options
+        };
+        let started = Instant::now();
+        let start = coarse_start(&problem, &pair, &whole)?;
+        let whole_fine = solve(&mut operator, &problem, &whole, start.as_deref())?;
+        let whole_grid_s = started.elapsed().as_secs_f64();
         let peak = cold.max_pressure_pa();
         let difference = cold
             .pressure
@@ -240,6 +254,8 @@ pub fn coarse_rows() -> Result<Vec<CoarseRow>, BenchError> {
             cold_s,
             fine_iterations: fine.iterations,
             coarse_to_fine_s,
+            whole_grid_iterations: whole_fine.iterations,
+            whole_grid_s,
             speedup: cold_s / coarse_to_fine_s,
             difference,
             peak_rss_bytes: peak_rss_since(reset),

@@ -37,7 +37,7 @@ pub use grid::{Grid, Window};
 pub use hertz::Hertz;
 pub use influence::Kernel;
 pub use material::{ElasticPair, Material};
-pub use operator::{DenseOperator, Operator, Preconditioner, SumOperator};
+pub use operator::{DenseOperator, NEAR_REACH, Operator, Preconditioner, SumOperator};
 pub use periodic::PeriodicHalfSpace;
 pub(crate) use plans::Plans;
 pub use plans::fft_friendly;

@@ -45,7 +45,14 @@ pub trait Preconditioner {
 
     /// `M^-1`'s diagonal entry, the same on every cell: the inverse is a convolution.
     fn diagonal(&self) -> f64;
+
+    /// The response of `M^-1` to a unit value on one cell, within [`NEAR_REACH`] cells of it
+    /// along each axis: `(2 NEAR_REACH + 1)^2` entries, y-major, the diagonal in the middle.
+    fn near_field(&self) -> &[f64];
 }
+
+/// How far [`Preconditioner::near_field`] reaches, in cells.
+pub const NEAR_REACH: usize = 2;
 
 /// Direct summation `u_I = sum_J K(I - J) p_J`, O(N^4): the reference the FFT operator is
 /// tested against, and fast enough for grids of a few thousand cells.

@@ -19,7 +19,7 @@ use rustfft::num_complex::Complex;
 
 use super::fft::{BLOCK, STRIDE_PAD, Split, inverse_row};
 use super::influence::Kernel;
-use super::operator::Preconditioner;
+use super::operator::{NEAR_REACH, Preconditioner};
 use super::plans::Plans;
 
 /// The inverse of a kernel's periodic wrap on its own grid.
@@ -42,6 +42,8 @@ pub struct FourierInverse {
     row_block: Vec<Complex<f64>>,
     /// The passes split across threads (`None`: one thread).
     split: Option<Split>,
+    /// [`Preconditioner::near_field`].
+    near: Vec<f64>,
 }
 
 impl std::fmt::Debug for FourierInverse {
@@ -84,7 +86,7 @@ impl FourierInverse {
             .enumerate()
             .map(|(k, &s)| if k == 0 { 0.0 } else { scale / s.max(floor) })
             .collect();
-        inverse
+        inverse.with_near_field()
     }
 
     /// The multiplication by `symbol(qx, qy)` in Fourier space on an `nx` x `ny` grid of
@@ -109,7 +111,24 @@ impl FourierInverse {
                 }
             }
         }
-        Self::with_symbol(nx, ny, values)
+        Self::with_symbol(nx, ny, values).with_near_field()
+    }
+
+    /// Measures [`Preconditioner::near_field`]: the response to a unit value on cell 0,
+    /// read around it with the periodic wrap.
+    fn with_near_field(mut self) -> Self {
+        let (nx, ny) = (self.nx, self.ny);
+        let mut unit = vec![0.0; nx * ny];
+        unit[0] = 1.0;
+        let mut response = vec![0.0; nx * ny];
+        self.apply(&unit, &mut response);
+        let reach = NEAR_REACH as isize;
+        let wrap = |d: isize, n: usize| d.rem_euclid(n as isize) as usize;
+        self.near = (-reach..=reach)
+            .flat_map(|dy| (-reach..=reach).map(move |dx| (dx, dy)))
+            .map(|(dx, dy)| response[wrap(dy, ny) * nx + wrap(dx, nx)])
+            .collect();
+        self
     }
 
     /// The buffers of an `nx` x `ny` grid around `inverse_symbol`.
@@ -127,6 +146,7 @@ impl FourierInverse {
             row_real: vec![0.0; nx],
             row_block: vec![Complex::default(); BLOCK * half],
             split: None,
+            near: Vec::new(),
         }
     }
 
@@ -195,6 +215,10 @@ impl Preconditioner for FourierInverse {
                 weight * column.iter().sum::<f64>()
             })
             .sum()
+    }
+
+    fn near_field(&self) -> &[f64] {
+        &self.near
     }
 
     /// `output = M^-1 input`: the inverse of the wrapped kernel, without its mean.
@@ -302,8 +326,9 @@ mod tests {
         }
     }
 
-    /// The diagonal is the response of a cell to a unit value on itself, on even and odd
-    /// sizes and for a multiplier; the bound is the round-off of one FFT round trip.
+    /// The diagonal is the response of a cell to a unit value on itself, and the near field
+    /// its neighbours', on even and odd sizes and for a multiplier; the bound is the
+    /// round-off of one FFT round trip.
     #[test]
     fn diagonal_is_the_response_of_a_cell_to_itself() {
         for (nx, ny) in [(16, 12), (9, 14), (15, 7)] {
@@ -321,6 +346,20 @@ mod tests {
                 assert!(diagonal > 0.0);
                 let error = (response[cell] - diagonal).abs();
                 assert!(error <= 1e-12 * diagonal, "{nx}x{ny}: {error:e}");
+                // The near field is the same response around the cell, wrapped.
+                let (side, reach) = (2 * NEAR_REACH + 1, NEAR_REACH as isize);
+                for (k, &near) in inverse.near_field().iter().enumerate() {
+                    let (dx, dy) = ((k % side) as isize - reach, (k / side) as isize - reach);
+                    let x = (cell % nx) as isize + dx;
+                    let y = (cell / nx) as isize + dy;
+                    let at = y.rem_euclid(ny as isize) as usize * nx
+                        + x.rem_euclid(nx as isize) as usize;
+                    let error = (response[at] - near).abs();
+                    assert!(
+                        error <= 1e-12 * diagonal,
+                        "{nx}x{ny} ({dx}, {dy}): {error:e}"
+                    );
+                }
             }
         }
     }

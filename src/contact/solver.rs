@@ -263,7 +263,7 @@ impl<'a> PolonskyKeer<'a> {
         let preconditioned = inverse.is_some();
         let correction = inverse
             .filter(|_| options.preconditioning == Preconditioning::FreeSet)
-            .map(|inverse| FreeSetCorrection::new(inverse, n));
+            .map(|inverse| FreeSetCorrection::new(inverse, grid));
         Ok(Self {
             grid,
             separation: h,
@@ -314,7 +314,6 @@ impl<'a> PolonskyKeer<'a> {
         let (p, u, h, t) = (&self.p[..], &self.u[..], self.separation, &self.t[..]);
         let (g, free, r) = (&mut self.g[..], &mut self.free[..], &mut self.r[..]);
         let (mut residual, mut load, mut free_cells) = (Residual::default(), 0.0, 0usize);
-        let mut free_set_moved = false;
         // Returns `free * t` of the cell, summed as `dot` sums (four accumulators, over
         // slices of four so the inner loop has no bounds checks).
         let mut cell = |pi: f64, ui: f64, hi: f64, ti: f64, out: (&mut f64, &mut f64, &mut f64)| {
@@ -325,7 +324,6 @@ impl<'a> PolonskyKeer<'a> {
             residual.add(bound, ui, gi);
             let fi = if bound == Bound::Free { 1.0 } else { 0.0 };
             free_cells += usize::from(bound == Bound::Free);
-            free_set_moved |= (*out.1 > 0.5) != (bound == Bound::Free);
             *out.1 = fi;
             *out.2 = fi * gi;
             fi * ti
@@ -354,9 +352,6 @@ impl<'a> PolonskyKeer<'a> {
             tail += cell(p[i], u[i], h[i], t[i], (&mut g[i], &mut free[i], &mut r[i]));
         }
         self.free_t = acc.iter().sum::<f64>() + tail;
-        if let Some(correction) = self.correction.as_mut().filter(|_| free_set_moved) {
-            correction.free_set_changed();
-        }
         self.free_cells = free_cells as f64;
         self.residual = residual.value();
         self.load = load;

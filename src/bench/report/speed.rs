@@ -67,6 +67,8 @@ fn coarse_cells(r: &CoarseRow) -> Vec<String> {
         r.fine_iterations.to_string(),
         sig(r.coarse_to_fine_s, 3),
         format!("{:.2}", r.speedup),
+        r.whole_grid_iterations.to_string(),
+        sig(r.whole_grid_s, 3),
         format!("{:.1e}", r.difference),
         r.peak_rss_bytes.map_or("n/a".to_owned(), |b| {
             format!("{:.0}", b as f64 / (r.n * r.n) as f64)
@@ -164,7 +166,9 @@ pub(super) fn body(report: &mut Report, studies: &SpeedStudies) {
          pressure (cold) and from the pressure of the same contact on half the cells per side \
          (solved to {COARSE_TOLERANCE:.0e}, itself started from the grid of half its cells, \
          down to {COARSEST_CELLS} cells), interpolated bilinearly. The coarse-to-fine time \
-         includes the coarse operators and solves; \"difference\" is max |p - p_cold| / \
+         includes the coarse operators and solves; the `whole_grid` columns repeat it with \
+         the preconditioner of the whole grid (the warm study's). \"difference\" is \
+         max |p - p_cold| / \
          max p_cold; \"peak bytes per cell\" is the process's peak resident memory during the \
          grid's solves (reset when the grid starts) over N^2.\n",
         sizes.join(", ")
@@ -177,6 +181,8 @@ pub(super) fn body(report: &mut Report, studies: &SpeedStudies) {
             "fine iterations",
             "coarse-to-fine s",
             "speed-up",
+            "`whole_grid` fine iterations",
+            "`whole_grid` coarse-to-fine s",
             "difference",
             "peak bytes per cell",
         ],

@@ -19,13 +19,15 @@
 //!
 //! With `r` the gap on the free cells (zero elsewhere) and `z = A r`, the corrected
 //! direction is `A (r - s)` on `F`, where `s = z / max(rho, floor)` on `C`: one more apply
-//! of the inverse, and one for `rho` when the free set changed. Measured with
+//! of the inverse; `rho` follows the free set by the near field of the cells that moved
+//! (an apply of the inverse when many did). Measured with
 //! `tribosim run scenes/dalmau2018.json` (`summary.iterations / summary.solves`) and
 //! `tribosim bench rough` (N = 2048): 6.30 -> 4.65 iterations a warm solve, 67 -> 35 on
 //! the rough flat; `rho` kept from the solve's start instead gave 7.8 (the cells that left
 //! the free set carry the row sum of a free cell).
 
-use crate::contact::Preconditioner;
+use crate::contact::grid::Grid;
+use crate::contact::{NEAR_REACH, Preconditioner};
 
 /// The floor of the row sums, a share of the inverse's diagonal. Measured as above (warm
 /// iterations a solve / rough N = 2048 iterations): 0.5 gives 4.80 / 34, 0.25 gives 4.65 /
@@ -33,30 +35,34 @@ use crate::contact::Preconditioner;
 /// from an island overshoots).
 const ROW_SUM_FLOOR: f64 = 0.25;
 
-/// The row sums of the inverse over the cells out of the free set, and whether the free
-/// set moved since they were summed.
+/// The row sums of the inverse over the cells out of the free set, kept up to date with
+/// the free set.
 #[derive(Debug)]
 pub(super) struct FreeSetCorrection {
+    grid: Grid,
     /// `ROW_SUM_FLOOR` times the inverse's diagonal.
     floor: f64,
-    /// `A 1_F` (minus the row sums `rho`), for the free set of the last apply.
+    /// The inverse's [`Preconditioner::near_field`].
+    near: Vec<f64>,
+    /// `A 1_F` (minus the row sums `rho`) for the free set `free`.
     free_response: Vec<f64>,
-    stale: bool,
+    /// The free set `free_response` is for; empty before the first apply.
+    free: Vec<bool>,
+    /// The cells that joined (+1) or left (-1) the free set since the last apply.
+    moved: Vec<(usize, f64)>,
 }
 
 impl FreeSetCorrection {
-    /// The correction of `inverse` on a grid of `cells` cells.
-    pub(super) fn new(inverse: &dyn Preconditioner, cells: usize) -> Self {
+    /// The correction of `inverse` on `grid`.
+    pub(super) fn new(inverse: &dyn Preconditioner, grid: Grid) -> Self {
         Self {
+            grid,
             floor: ROW_SUM_FLOOR * inverse.diagonal(),
-            free_response: vec![0.0; cells],
-            stale: true,
+            near: inverse.near_field().to_vec(),
+            free_response: vec![0.0; grid.len()],
+            free: Vec::new(),
+            moved: Vec::new(),
         }
-    }
-
-    /// The free set changed: the row sums are summed afresh at the next apply.
-    pub(super) fn free_set_changed(&mut self) {
-        self.stale = true;
     }
 
     /// `z = (K_FF)^-1 r` approximately, on the free cells (`free`: 1 there, 0 elsewhere);
@@ -69,10 +75,7 @@ impl FreeSetCorrection {
         z: &mut [f64],
     ) {
         inverse.apply(r, z);
-        if self.stale {
-            inverse.apply(free, &mut self.free_response);
-            self.stale = false;
-        }
+        self.follow(inverse, free);
         let floor = self.floor;
         for ((ri, &zi), (&fi, &response)) in r
             .iter_mut()
@@ -83,5 +86,44 @@ impl FreeSetCorrection {
         }
         inverse.apply(r, z);
         r.iter_mut().zip(free).for_each(|(ri, &fi)| *ri *= fi);
+    }
+
+    /// Brings `A 1_F` to the free set `free`: by an apply of the inverse at the first call
+    /// or when many cells moved, otherwise by adding the near field of each cell that
+    /// moved. The near field leaves out the inverse's tail beyond [`NEAR_REACH`] cells (a
+    /// few hundredths of the diagonal, spread over the grid), and each solve starts afresh.
+    fn follow(&mut self, inverse: &mut dyn Preconditioner, free: &[f64]) {
+        let is_free = |f: f64| f > 0.5;
+        if self.free.len() != free.len() {
+            self.free = free.iter().map(|&f| is_free(f)).collect();
+            inverse.apply(free, &mut self.free_response);
+            return;
+        }
+        self.moved.clear();
+        for (i, (was, &now)) in self.free.iter_mut().zip(free).enumerate() {
+            if *was != is_free(now) {
+                *was = is_free(now);
+                self.moved.push((i, if *was { 1.0 } else { -1.0 }));
+            }
+        }
+        let side = 2 * NEAR_REACH + 1;
+        if self.moved.len() * side * side > self.grid.len() {
+            inverse.apply(free, &mut self.free_response);
+            return;
+        }
+        let (nx, ny) = (self.grid.nx as isize, self.grid.ny as isize);
+        let reach = NEAR_REACH as isize;
+        for &(cell, sign) in &self.moved {
+            let (x, y) = (
+                (cell % self.grid.nx) as isize,
+                (cell / self.grid.nx) as isize,
+            );
+            for (k, &a) in self.near.iter().enumerate() {
+                let dx = (k % side) as isize - reach;
+                let dy = (k / side) as isize - reach;
+                let at = (y + dy).rem_euclid(ny) * nx + (x + dx).rem_euclid(nx);
+                self.free_response[at as usize] += sign * a;
+            }
+        }
     }
 }
