@@ -35,8 +35,8 @@ pub enum Preconditioning {
     /// The inverse on the whole grid, restricted to the free cells.
     WholeGrid,
     /// The same, corrected at the edges of the free set (see [`super::solver`]): fewer
-    /// iterations for two more applies of the inverse (a quarter of an operator apply
-    /// each) per iteration.
+    /// iterations for one more apply of the inverse per iteration (a quarter of an
+    /// operator apply on the DC-FFT's grid, a whole one on the periodic grid).
     #[default]
     FreeSet,
 }

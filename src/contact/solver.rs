@@ -28,8 +28,8 @@
 //! case (`tribosim bench contact`): 42 -> 21 iterations at N = 256, 72 -> 27 at N = 1024;
 //! a warm-started wear cycle of the paper scene: about 37 -> 9. By default
 //! ([`Preconditioning::FreeSet`]) `M^-1` is also corrected where it couples the free cells
-//! to the others, at the contact's edges (`free_set`): 6.3 -> 4.6 iterations a warm solve
-//! of the paper scene, 67 -> 35 on the rough flat at N = 2048.
+//! to the others, at the contact's edges (`free_set`): 6.3 -> 4.7 iterations a warm solve
+//! of the paper scene, 67 -> 33 on the rough flat at N = 2048.
 //!
 //! # Cost: one operator apply per iteration
 //! The displacement `u = K p` is updated as `u - tau K t`, reusing the `K t` that the step

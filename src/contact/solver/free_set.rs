@@ -22,15 +22,17 @@
 //! of the inverse; `rho` follows the free set by the near field of the cells that moved
 //! (an apply of the inverse when many did). Measured with
 //! `tribosim run scenes/dalmau2018.json` (`summary.iterations / summary.solves`) and
-//! `tribosim bench rough` (N = 2048): 6.30 -> 4.65 iterations a warm solve, 67 -> 35 on
-//! the rough flat; `rho` kept from the solve's start instead gave 7.8 (the cells that left
-//! the free set carry the row sum of a free cell).
+//! `tribosim bench rough` (N = 2048): 6.30 -> 4.70 iterations a warm solve, 67 -> 33 on
+//! the rough flat (4.65 and 35 with `rho` summed afresh by an apply at every move); `rho`
+//! kept from the solve's start instead gave 7.8 (the cells that left the free set carry
+//! the row sum of a free cell).
 
 use crate::contact::grid::Grid;
 use crate::contact::{NEAR_REACH, Preconditioner};
 
-/// The floor of the row sums, a share of the inverse's diagonal. Measured as above (warm
-/// iterations a solve / rough N = 2048 iterations): 0.5 gives 4.80 / 34, 0.25 gives 4.65 /
+/// The floor of the row sums, a share of the inverse's diagonal. Measured as above, `rho`
+/// summed afresh at every move (warm iterations a solve / rough N = 2048 iterations): 0.5
+/// gives 4.80 / 34, 0.25 gives 4.65 /
 /// 35, 0.1 gives 4.49 / 38, 0.02 gives 4.76 / 516 (a large correction on the cells far
 /// from an island overshoots).
 const ROW_SUM_FLOOR: f64 = 0.25;
