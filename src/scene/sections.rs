@@ -47,12 +47,13 @@ pub const STEP_CHANGE_BOUND: f64 = 0.01;
 
 /// The default relative residual of the contact solves (`numerics.tolerance`): the loosest
 /// whose error stays below the auto grid's own. On the Hertz case at the auto density
-/// (N = 256, `tribosim bench contact`) 1e-6 leaves a pressure error of 3.3e-5 of p0 against
-/// the grid's 1.1e-4 (peak pressure), area and approach unchanged; 1e-4 leaves 1.1e-3.
+/// (N = 256, `tribosim bench contact`) 1e-6 leaves a pressure error of 2.0e-5 of p0 against
+/// the grid's 1.1e-4 (peak pressure), area and approach unchanged; 1e-4 leaves 2.4e-3.
 /// On the paper's 3600-cycle scene (`tribosim bench speed`) it changes the wear volume by
-/// -1.0e-4, the depth by -6.4e-5 and the final potential by 0.02 mV against 1e-8, as much as
-/// the cycle step errs against solving every cycle (9e-5): the two runs step differently
-/// (479 against 470 solves); 6.3 instead of 9.2 iterations per solve. The contact core's own
+/// -1.7e-5, the depth by -1.7e-5 and the final potential by 0.001 mV against 1e-8, less
+/// than the cycle step errs against solving every cycle (1.7e-4 in volume, `tribosim bench
+/// wear`): the two runs step differently (464 against 470 solves); 4.7 instead of 6.7
+/// iterations per solve. The contact core's own
 /// default ([`crate::contact::SolverOptions`]) stays 1e-8, the tolerance its benchmarks and peers run at.
 pub const DEFAULT_TOLERANCE: f64 = 1e-6;
 

@@ -121,8 +121,9 @@ pub(super) fn section(
     ));
     report.push(&format!(
         "At N = {}: {} s for the contact ({} s of CPU for the solve; {} iterations, {} operator \
-         applications of {} ms: {} s of them, and one preconditioner application per \
-         iteration at about the same cost), the process's peak resident memory {:.0} MB; \
+         applications of {} ms: {} s of them; the preconditioner, at about the same cost an \
+         application, takes two per iteration, three when many cells entered or left the \
+         free set), the process's peak resident memory {:.0} MB; \
          \"peak MB\" is the process's during each grid's solves (reset when the grid starts; \
          the N = {} surface, generated first, is held throughout).\n",
         finest.n,
