@@ -66,7 +66,7 @@ mod sums;
 
 use bounds::{check_edges, rescale_to_load, violator_step};
 use free_set::FreeSetCorrection;
-use sums::{dot, dot2, sum, update_direction};
+use sums::{dot, dot2, free_dots, sum, update_direction};
 
 /// Relative load error accepted at convergence. Summing N^2 pressures in f64 errs by up to
 /// N^2 * 1.1e-16 in the worst case (1.2e-10 at N = 1024), typically sqrt(N^2) times that;
@@ -314,16 +314,24 @@ impl<'a> PolonskyKeer<'a> {
         let (p, u, h, t) = (&self.p[..], &self.u[..], self.separation, &self.t[..]);
         let (g, free, r) = (&mut self.g[..], &mut self.free[..], &mut self.r[..]);
         let (mut residual, mut load, mut free_cells) = (Residual::default(), 0.0, 0usize);
+        // The cells that joined or left the free set, for the preconditioner's correction.
+        let mut moved = self.correction.as_mut().map(FreeSetCorrection::moved);
         // Returns `free * t` of the cell, summed as `dot` sums (four accumulators, over
         // slices of four so the inner loop has no bounds checks).
-        let mut cell = |pi: f64, ui: f64, hi: f64, ti: f64, out: (&mut f64, &mut f64, &mut f64)| {
+        let mut cell = |i: usize,
+                        (pi, ui, hi, ti): (f64, f64, f64, f64),
+                        out: (&mut f64, &mut f64, &mut f64)| {
             let gi = ui + hi - delta;
             *out.0 = gi;
             load += pi;
             let bound = Bound::of(pi, cap);
             residual.add(bound, ui, gi);
-            let fi = if bound == Bound::Free { 1.0 } else { 0.0 };
-            free_cells += usize::from(bound == Bound::Free);
+            let is_free = bound == Bound::Free;
+            let fi = if is_free { 1.0 } else { 0.0 };
+            free_cells += usize::from(is_free);
+            if let Some(moved) = moved.as_mut().filter(|_| (*out.1 > 0.5) != is_free) {
+                moved.push((i, if is_free { 1.0 } else { -1.0 }));
+            }
             *out.1 = fi;
             *out.2 = fi * gi;
             fi * ti
@@ -344,12 +352,14 @@ impl<'a> PolonskyKeer<'a> {
                 &mut r[range],
             );
             for k in 0..4 {
-                acc[k] += cell(p[k], u[k], h[k], t[k], (&mut g[k], &mut free[k], &mut r[k]));
+                let fields = (p[k], u[k], h[k], t[k]);
+                acc[k] += cell(first + k, fields, (&mut g[k], &mut free[k], &mut r[k]));
             }
         }
         let mut tail = 0.0;
         for i in whole..p.len() {
-            tail += cell(p[i], u[i], h[i], t[i], (&mut g[i], &mut free[i], &mut r[i]));
+            let fields = (p[i], u[i], h[i], t[i]);
+            tail += cell(i, fields, (&mut g[i], &mut free[i], &mut r[i]));
         }
         self.free_t = acc.iter().sum::<f64>() + tail;
         self.free_cells = free_cells as f64;
@@ -411,10 +421,14 @@ impl<'a> PolonskyKeer<'a> {
                 match &mut self.correction {
                     Some(correction) => {
                         correction.apply(inverse, &self.free, &mut self.r, &mut self.z);
+                        // `r` now holds the correction's input off the free set too.
+                        free_dots(&self.free, &self.r, &self.z)
                     }
-                    None => inverse.apply(&self.r, &mut self.z),
+                    None => {
+                        inverse.apply(&self.r, &mut self.z);
+                        dot2((&self.r, &self.z), (&self.free, &self.z))
+                    }
                 }
-                dot2((&self.r, &self.z), (&self.free, &self.z))
             }
             None => (dot(&self.r, &self.r), sum(&self.r)),
         };

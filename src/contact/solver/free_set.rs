@@ -46,10 +46,9 @@ pub(super) struct FreeSetCorrection {
     floor: f64,
     /// The inverse's [`Preconditioner::near_field`].
     near: Vec<f64>,
-    /// `A 1_F` (minus the row sums `rho`) for the free set `free`.
+    /// `A 1_F` (minus the row sums `rho`) for the free set of the last apply; zero, as for
+    /// an empty free set, before it.
     free_response: Vec<f64>,
-    /// The free set `free_response` is for; empty before the first apply.
-    free: Vec<bool>,
     /// The cells that joined (+1) or left (-1) the free set since the last apply.
     moved: Vec<(usize, f64)>,
 }
@@ -62,13 +61,19 @@ impl FreeSetCorrection {
             floor: ROW_SUM_FLOOR * inverse.diagonal(),
             near: inverse.near_field().to_vec(),
             free_response: vec![0.0; grid.len()],
-            free: Vec::new(),
             moved: Vec::new(),
         }
     }
 
-    /// `z = (K_FF)^-1 r` approximately, on the free cells (`free`: 1 there, 0 elsewhere);
-    /// `r`, zero off the free set, serves as scratch and is left as it came.
+    /// Where the solver records each cell that joins (+1) or leaves (-1) the free set, as
+    /// it classifies the cells.
+    pub(super) fn moved(&mut self) -> &mut Vec<(usize, f64)> {
+        &mut self.moved
+    }
+
+    /// `z = (K_FF)^-1 r` approximately on the free cells (`free`: 1 there, 0 elsewhere),
+    /// from `r` the gap on them (zero elsewhere); `r` is left holding the correction's input,
+    /// `r` on the free cells and `-s` off them.
     pub(super) fn apply(
         &mut self,
         inverse: &mut dyn Preconditioner,
@@ -87,30 +92,17 @@ impl FreeSetCorrection {
             *ri += (1.0 - fi) * (-zi / (-response).max(floor));
         }
         inverse.apply(r, z);
-        r.iter_mut().zip(free).for_each(|(ri, &fi)| *ri *= fi);
     }
 
-    /// Brings `A 1_F` to the free set `free`: by an apply of the inverse at the first call
-    /// or when many cells moved, otherwise by adding the near field of each cell that
-    /// moved. The near field leaves out the inverse's tail beyond [`NEAR_REACH`] cells (a
-    /// few hundredths of the diagonal, spread over the grid), and each solve starts afresh.
+    /// Brings `A 1_F` to the free set `free` by adding the near field of each cell that
+    /// moved, or by an apply of the inverse when many did. The near field leaves out the
+    /// inverse's tail beyond [`NEAR_REACH`] cells (a few hundredths of the diagonal, spread
+    /// over the grid), and each solve starts afresh.
     fn follow(&mut self, inverse: &mut dyn Preconditioner, free: &[f64]) {
-        let is_free = |f: f64| f > 0.5;
-        if self.free.len() != free.len() {
-            self.free = free.iter().map(|&f| is_free(f)).collect();
-            inverse.apply(free, &mut self.free_response);
-            return;
-        }
-        self.moved.clear();
-        for (i, (was, &now)) in self.free.iter_mut().zip(free).enumerate() {
-            if *was != is_free(now) {
-                *was = is_free(now);
-                self.moved.push((i, if *was { 1.0 } else { -1.0 }));
-            }
-        }
         let side = 2 * NEAR_REACH + 1;
         if self.moved.len() * side * side > self.grid.len() {
             inverse.apply(free, &mut self.free_response);
+            self.moved.clear();
             return;
         }
         let (nx, ny) = (self.grid.nx as isize, self.grid.ny as isize);
@@ -127,5 +119,6 @@ impl FreeSetCorrection {
                 self.free_response[at as usize] += sign * a;
             }
         }
+        self.moved.clear();
     }
 }

@@ -47,6 +47,28 @@ pub(super) fn dot2((a, b): (&[f64], &[f64]), (c, d): (&[f64], &[f64])) -> (f64, 
     )
 }
 
+/// `(sum free r z, sum free z)` in one pass, each summed as [`dot`] sums: [`dot2`]'s sums
+/// where `r` holds values off the free set that must not count.
+pub(super) fn free_dots(free: &[f64], r: &[f64], z: &[f64]) -> (f64, f64) {
+    let (mut rz, mut fz) = ([0.0; 4], [0.0; 4]);
+    let whole = free.len() - free.len() % 4;
+    for first in (0..whole).step_by(4) {
+        let range = first..first + 4;
+        let (f, r, z) = (&free[range.clone()], &r[range.clone()], &z[range]);
+        for k in 0..4 {
+            let masked = f[k] * z[k];
+            rz[k] += r[k] * masked;
+            fz[k] += masked;
+        }
+    }
+    let tail_rz: f64 = (whole..free.len()).map(|i| r[i] * free[i] * z[i]).sum();
+    let tail_fz: f64 = (whole..free.len()).map(|i| free[i] * z[i]).sum();
+    (
+        rz.iter().sum::<f64>() + tail_rz,
+        fz.iter().sum::<f64>() + tail_fz,
+    )
+}
+
 /// `t = free (source + beta t - mean)`, the conjugate direction over the free cells,
 /// returning `g.t` summed as [`dot`] sums it, in the same pass.
 pub(super) fn update_direction(
