@@ -315,7 +315,7 @@ impl<'a> PolonskyKeer<'a> {
         let (g, free, r) = (&mut self.g[..], &mut self.free[..], &mut self.r[..]);
         let (mut residual, mut load, mut free_cells) = (Residual::default(), 0.0, 0usize);
         // The cells that joined or left the free set, for the preconditioner's correction.
-        let mut moved = self.correction.as_mut().map(FreeSetCorrection::moved);
+        let mut correction = self.correction.as_mut();
         // Returns `free * t` of the cell, summed as `dot` sums (four accumulators, over
         // slices of four so the inner loop has no bounds checks).
         let mut cell = |i: usize,
@@ -329,8 +329,8 @@ impl<'a> PolonskyKeer<'a> {
             let is_free = bound == Bound::Free;
             let fi = if is_free { 1.0 } else { 0.0 };
             free_cells += usize::from(is_free);
-            if let Some(moved) = moved.as_mut().filter(|_| (*out.1 > 0.5) != is_free) {
-                moved.push((i, if is_free { 1.0 } else { -1.0 }));
+            if let Some(correction) = correction.as_mut().filter(|_| (*out.1 > 0.5) != is_free) {
+                correction.record(i, is_free);
             }
             *out.1 = fi;
             *out.2 = fi * gi;

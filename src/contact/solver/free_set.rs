@@ -65,10 +65,20 @@ impl FreeSetCorrection {
         }
     }
 
-    /// Where the solver records each cell that joins (+1) or leaves (-1) the free set, as
-    /// it classifies the cells.
-    pub(super) fn moved(&mut self) -> &mut Vec<(usize, f64)> {
-        &mut self.moved
+    /// Records that `cell` joined (`true`) or left the free set, as the solver classifies
+    /// the cells. Past as many cells as [`Self::follow`] updates one by one, the list stops
+    /// growing: the next apply sums afresh anyway.
+    pub(super) fn record(&mut self, cell: usize, joined: bool) {
+        if self.moved.len() <= self.most_moved() {
+            self.moved.push((cell, if joined { 1.0 } else { -1.0 }));
+        }
+    }
+
+    /// The most moved cells [`Self::follow`] updates by the near field: beyond, an apply of
+    /// the inverse costs less than their near fields.
+    fn most_moved(&self) -> usize {
+        let side = 2 * NEAR_REACH + 1;
+        self.grid.len() / (side * side)
     }
 
     /// `z = (K_FF)^-1 r` approximately on the free cells (`free`: 1 there, 0 elsewhere),
@@ -99,12 +109,12 @@ impl FreeSetCorrection {
     /// inverse's tail beyond [`NEAR_REACH`] cells (a few hundredths of the diagonal, spread
     /// over the grid), and each solve starts afresh.
     fn follow(&mut self, inverse: &mut dyn Preconditioner, free: &[f64]) {
-        let side = 2 * NEAR_REACH + 1;
-        if self.moved.len() * side * side > self.grid.len() {
+        if self.moved.len() > self.most_moved() {
             inverse.apply(free, &mut self.free_response);
             self.moved.clear();
             return;
         }
+        let side = 2 * NEAR_REACH + 1;
         let (nx, ny) = (self.grid.nx as isize, self.grid.ny as isize);
         let reach = NEAR_REACH as isize;
         for &(cell, sign) in &self.moved {
