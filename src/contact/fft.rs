@@ -113,6 +113,8 @@ pub struct DcFft {
     split: Option<Split>,
     /// The kernel in real space, for updates at a few cells (`None` on large grids).
     sparse: Option<KernelRows>,
+    /// Whether every coefficient of the (summed) kernel is nonnegative.
+    nonnegative: bool,
 }
 
 /// The kernel spectrum, stored by what it can hold: real for an even kernel, imaginary for
@@ -174,6 +176,7 @@ impl DcFft {
             op.inverse = Some(FourierInverse::new(kernel));
         }
         op.sparse = KernelRows::of(&[kernel]);
+        op.nonnegative = kernel.values().iter().all(|&k| k >= 0.0);
         op
     }
 
@@ -190,6 +193,7 @@ impl DcFft {
             op.inverse = Some(FourierInverse::new(first));
         }
         op.sparse = KernelRows::of(&[first, second]);
+        op.nonnegative = (first.values().iter().zip(second.values())).all(|(a, b)| a + b >= 0.0);
         op
     }
 
@@ -210,6 +214,7 @@ impl DcFft {
             inverse: None,
             split: None,
             sparse: None,
+            nonnegative: false,
         }
     }
 
@@ -301,6 +306,10 @@ impl Operator for DcFft {
         self.inverse
             .as_mut()
             .map(|inverse| inverse as &mut dyn Preconditioner)
+    }
+
+    fn is_nonnegative(&self) -> bool {
+        self.nonnegative
     }
 
     fn add_sparse(&mut self, cells: &[(usize, f64)], output: &mut [f64]) -> bool {
@@ -509,6 +518,21 @@ mod tests {
         let op = DcFft::new(&Kernel::normal(&grid, &pair(0.21, 0.28, 205e9))).threaded(2);
         let inverse = op.inverse.as_ref().map(FourierInverse::threads);
         assert_eq!((op.threads(), inverse), (2, Some(1)));
+    }
+
+    #[test]
+    fn a_kernel_knows_whether_it_is_nonnegative() {
+        // The paper's pair: the coupling term (odd) has both signs, and its sum with the
+        // normal term stays nonnegative at the paper's mu = 0.45 and well beyond; a
+        // coupling 220 times stronger (mu = 100, out of any scene's range) turns it.
+        let grid = Grid::square(32, 300e-6).expect("valid");
+        let pair = pair(0.21, 0.28, 205e9);
+        let normal = Kernel::normal(&grid, &pair);
+        let sum = |mu| DcFft::sum(&normal, &Kernel::coupling(&grid, &pair, mu));
+        assert!(DcFft::new(&normal).is_nonnegative());
+        assert!(!DcFft::new(&Kernel::coupling(&grid, &pair, 0.45)).is_nonnegative());
+        assert!(sum(0.45).is_nonnegative());
+        assert!(!sum(100.0).is_nonnegative());
     }
 
     #[test]

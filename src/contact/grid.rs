@@ -118,8 +118,14 @@ impl Window {
     /// The bounding box of the cells of `field` (on `grid`) with positive values, or `None`
     /// if there are none.
     pub fn loaded(grid: &Grid, field: &[f64]) -> Option<Self> {
+        Self::bounding(grid, |i| field[i] > 0.0)
+    }
+
+    /// The bounding box of the cells of `grid` whose index meets `test`, or `None` if none
+    /// does.
+    pub fn bounding(grid: &Grid, test: impl Fn(usize) -> bool) -> Option<Self> {
         let (mut x0, mut x1, mut y0, mut y1) = (usize::MAX, 0, usize::MAX, 0);
-        for (i, _) in field.iter().enumerate().filter(|(_, v)| **v > 0.0) {
+        for i in (0..grid.len()).filter(|&i| test(i)) {
             let (ix, iy) = (i % grid.nx, i / grid.nx);
             (x0, x1, y0, y1) = (x0.min(ix), x1.max(ix), y0.min(iy), y1.max(iy));
         }
@@ -129,6 +135,29 @@ impl Window {
             nx: x1 - x0 + 1,
             ny: y1 - y0 + 1,
         })
+    }
+
+    /// The whole of `grid`.
+    pub fn whole(grid: &Grid) -> Self {
+        Self {
+            x0: 0,
+            y0: 0,
+            nx: grid.nx,
+            ny: grid.ny,
+        }
+    }
+
+    /// The bounding box of both windows.
+    pub fn union(&self, other: &Self) -> Self {
+        let (x0, y0) = (self.x0.min(other.x0), self.y0.min(other.y0));
+        let x1 = (self.x0 + self.nx).max(other.x0 + other.nx);
+        let y1 = (self.y0 + self.ny).max(other.y0 + other.ny);
+        Self {
+            x0,
+            y0,
+            nx: x1 - x0,
+            ny: y1 - y0,
+        }
     }
 
     /// `nx` x `ny` cells centred on the cell `(cx, cy)` of `grid`, shifted (and cut) to
@@ -191,13 +220,26 @@ impl Window {
         out
     }
 
+    /// The indices in `grid` of the window's cells, row by row.
+    pub fn indices(&self, grid: &Grid) -> impl Iterator<Item = usize> {
+        let (nx, columns) = (grid.nx, self.columns());
+        self.rows()
+            .flat_map(move |iy| columns.clone().map(move |ix| iy * nx + ix))
+    }
+
     /// `field` (the window's cells, row-major) placed in a field of `grid`, zero outside.
     pub fn embed(&self, grid: &Grid, field: &[f64]) -> Vec<f64> {
         let mut out = vec![0.0; grid.len()];
+        self.place(grid, field, &mut out);
+        out
+    }
+
+    /// Copies `field` (the window's cells, row-major) onto the window's cells of `out`, a
+    /// field of `grid`; the other cells are left as they are.
+    pub fn place(&self, grid: &Grid, field: &[f64], out: &mut [f64]) {
         for (row, iy) in field.chunks_exact(self.nx).zip(self.y0..) {
             out[iy * grid.nx + self.x0..][..self.nx].copy_from_slice(row);
         }
-        out
     }
 }
 

@@ -6,7 +6,7 @@
 //! and may offer a [`Preconditioner`], and a [`ContactSolver`] solves a [`ContactProblem`]:
 //! [`NormalSolver`] (preconditioned Polonsky-Keer on any operator), [`CoupledSolver`] (with
 //! the friction coupling term) and [`WindowedSolver`] (on a window around the contact,
-//! checked on the whole grid). [`residual`] holds the complementarity conditions they all
+//! checked on every cell whose gap could close). [`residual`] holds the complementarity conditions they all
 //! meet, and [`verify`] checks a solution against them independently.
 
 pub mod check;
@@ -45,4 +45,4 @@ pub use precondition::FourierInverse;
 pub use problem::{ContactProblem, ContactSolution, ContactSolver, Preconditioning, SolverOptions};
 pub use residual::complementarity_residual;
 pub use solver::{NormalSolver, UPDATE_ROUNDOFF, solve};
-pub use window::{MARGIN_FRACTION, MIN_MARGIN, WindowedSolver};
+pub use window::{MARGIN_FRACTION, MIN_MARGIN, WindowFractions, WindowedSolver};

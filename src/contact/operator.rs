@@ -33,6 +33,13 @@ pub trait Operator {
     fn is_periodic(&self) -> bool {
         false
     }
+
+    /// Whether every coefficient is nonnegative, so a nonnegative pressure displaces every
+    /// cell by a nonnegative amount: a cell the separation alone keeps open stays open.
+    /// `false` (the default) when the operator does not know.
+    fn is_nonnegative(&self) -> bool {
+        false
+    }
 }
 
 /// An approximate inverse `M^-1` of an operator, applied to the solver's gap on the free

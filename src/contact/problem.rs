@@ -89,7 +89,10 @@ impl ContactProblem<'_> {
 pub struct ContactSolution {
     /// Pressure per cell, Pa.
     pub pressure: Vec<f64>,
-    /// Elastic displacement `K p` per cell (both bodies together), m.
+    /// Elastic displacement `K p` per cell (both bodies together), m. A
+    /// [`super::WindowedSolver`] under a nonnegative kernel computes it only on the cells
+    /// whose gap could close and leaves 0 elsewhere, a lower bound there: those cells' gap
+    /// is at least their separation's, beyond the tolerance.
     pub displacement: Vec<f64>,
     /// Rigid-body approach `delta`, m.
     pub approach_m: f64,

@@ -20,7 +20,7 @@ use std::time::Instant;
 
 use crate::contact::{
     ContactError, ContactProblem, ContactSolution, ContactSolver, Grid, MARGIN_FRACTION,
-    MIN_MARGIN, Window, WindowedSolver, cold_start,
+    MIN_MARGIN, Window, WindowFractions, WindowedSolver, cold_start,
 };
 use crate::scene::{DomainSize, Scene};
 use crate::surface::{HeightMap, count_islands};
@@ -107,7 +107,7 @@ struct Run<'a, F> {
     iterations: usize,
     max_step: u64,
     /// Window fractions of the solvers of grids grown out of.
-    window_fraction_sum: f64,
+    window_fractions: WindowFractions,
 }
 
 impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
@@ -133,7 +133,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             solves: 0,
             iterations: 0,
             max_step: 1,
-            window_fraction_sum: 0.0,
+            window_fractions: WindowFractions::default(),
         }
     }
 
@@ -343,7 +343,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             gap = old.embed(&wider, &gap);
             self.groove = self.groove.widened(&wider);
             self.grid = wider;
-            self.window_fraction_sum += self.solver.window_fraction_sum();
+            self.window_fractions += self.solver.fractions();
             self.solver = WindowedSolver::new(wider, self.factory);
             self.solver.focus_on(&pressure);
             self.ball = self.setup.ball_height(&wider);
@@ -374,7 +374,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                     .push(PressureMap::of(record.cycle, &self.grid, pressure));
             }
         }
-        self.window_fraction_sum += self.solver.window_fraction_sum();
+        self.window_fractions += self.solver.fractions();
         let models = self.run_models();
         let summary = setup.summary(&self.records, started.elapsed().as_secs_f64());
         SimulationResult {
@@ -412,10 +412,11 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             name: Model::SolveWindow,
             active: true,
             reason: format!(
-                "each solve on the last contact's bounding box plus {:.0}% (at least {} cells), checked on the whole grid: on average {:.0}% of the grid's cells",
+                "each solve on the last contact's bounding box plus {:.0}% (at least {} cells), checked on the cells that could touch: on average {:.0}% and {:.0}% of the grid's cells",
                 100.0 * MARGIN_FRACTION,
                 MIN_MARGIN,
-                100.0 * self.window_fraction_sum / self.solves as f64
+                100.0 * self.window_fractions.solved / self.solves as f64,
+                100.0 * self.window_fractions.checked / self.solves as f64
             ),
         });
         let after = format!(
