@@ -50,5 +50,6 @@ for label in ("earlier", "current"):
     print(f"{label}: CPU min {min(v):.2f} s, median {statistics.median(v):.2f} s over {len(v)} runs; "
           f"volume {result[label][0]:.10g} mm3, depth {result[label][1]:.6g} um")
 ratio = statistics.median(cpu["earlier"]) / statistics.median(cpu["current"])
-print(f"speedup (ratio of the medians): {ratio:.2f}; of the minima: {min(cpu['earlier']) / min(cpu['current']):.2f}")
+minima = min(cpu["earlier"]) / min(cpu["current"])
+print(f"speedup (ratio of the medians): {ratio:.2f}; of the minima: {minima:.2f}")
 '
