@@ -272,12 +272,17 @@ mod tests {
         verify,
     };
 
-    /// The paper's pair, with the coupling term of its friction when `coupled`.
-    fn factory(coupled: bool) -> impl FnMut(&Grid) -> Box<dyn ContactSolver> {
-        let pair = ElasticPair::new(
+    /// The paper's ball and disc.
+    fn paper_pair() -> ElasticPair {
+        ElasticPair::new(
             Material::new(300e9, 0.21).expect("valid"),
             Material::new(205e9, 0.28).expect("valid"),
-        );
+        )
+    }
+
+    /// The paper's pair, with the coupling term of its friction when `coupled`.
+    fn factory(coupled: bool) -> impl FnMut(&Grid) -> Box<dyn ContactSolver> {
+        let pair = paper_pair();
         move |grid: &Grid| -> Box<dyn ContactSolver> {
             let normal = Kernel::normal(grid, &pair);
             if coupled {
@@ -300,6 +305,30 @@ mod tests {
         };
         let separation = grid.sample(|x, y| hertz.separation_m(x, y));
         (grid, hertz, separation)
+    }
+
+    /// The paper's 5 N over `separation`, with no cap.
+    fn uncapped(grid: Grid, separation: &[f64]) -> ContactProblem<'_> {
+        ContactProblem {
+            grid,
+            separation,
+            load_n: 5.0,
+            yield_pressure_pa: f64::INFINITY,
+        }
+    }
+
+    /// The windowed solver of `grid` (with the coupling term when `coupled`), its first
+    /// solve focused on the loaded disc of `hertz`'s contact radius.
+    fn focused_on(
+        hertz: &Hertz,
+        grid: Grid,
+        coupled: bool,
+    ) -> WindowedSolver<impl FnMut(&Grid) -> Box<dyn ContactSolver>> {
+        let a = hertz.contact_radius_m();
+        let guess = grid.sample(|x, y| if x.hypot(y) < a { 1.0 } else { 0.0 });
+        let mut solver = WindowedSolver::new(grid, factory(coupled));
+        solver.focus_on(&guess);
+        solver
     }
 
     /// Solves the paper's first cycle (cap 2455 MPa / 2.8) in a window around the contact
@@ -381,17 +410,9 @@ mod tests {
         let (grid, hertz, mut separation) = paper_case();
         let asperity = 85 * grid.nx + 48;
         separation[asperity] -= 2e-6;
-        let problem = ContactProblem {
-            grid,
-            separation: &separation,
-            load_n: 5.0,
-            yield_pressure_pa: f64::INFINITY,
-        };
-        let a = hertz.contact_radius_m();
-        let guess = grid.sample(|x, y| if x.hypot(y) < a { 1.0 } else { 0.0 });
+        let problem = uncapped(grid, &separation);
         let options = SolverOptions::default();
-        let mut solver = WindowedSolver::new(grid, factory(true));
-        solver.focus_on(&guess);
+        let mut solver = focused_on(&hertz, grid, true);
         let solution = solver.solve(&problem, &options, None).expect("converges");
         assert!(
             solution.pressure[asperity] > 0.0,
@@ -409,21 +430,13 @@ mod tests {
         let grid = Grid::square(48, 240e-6).expect("valid");
         let (_, hertz, _) = paper_case();
         let separation = grid.sample(|x, y| hertz.separation_m(x, y));
-        let pair = ElasticPair::new(
-            Material::new(300e9, 0.21).expect("valid"),
-            Material::new(205e9, 0.28).expect("valid"),
-        );
+        let pair = paper_pair();
         let dense = move |grid: &Grid| -> Box<dyn ContactSolver> {
             Box::new(NormalSolver::new(DenseOperator::new(Kernel::normal(
                 grid, &pair,
             ))))
         };
-        let problem = ContactProblem {
-            grid,
-            separation: &separation,
-            load_n: 5.0,
-            yield_pressure_pa: f64::INFINITY,
-        };
+        let problem = uncapped(grid, &separation);
         let mut solver = WindowedSolver::new(grid, dense);
         let options = SolverOptions::default();
         solver.solve(&problem, &options, None).expect("converges");
@@ -447,16 +460,8 @@ mod tests {
     #[test]
     fn a_focus_starts_the_first_solve_in_a_window() {
         let (grid, hertz, separation) = paper_case();
-        let problem = ContactProblem {
-            grid,
-            separation: &separation,
-            load_n: 5.0,
-            yield_pressure_pa: f64::INFINITY,
-        };
-        let a = hertz.contact_radius_m();
-        let guess = grid.sample(|x, y| if x.hypot(y) < a { 1.0 } else { 0.0 });
-        let mut solver = WindowedSolver::new(grid, factory(false));
-        solver.focus_on(&guess);
+        let problem = uncapped(grid, &separation);
+        let mut solver = focused_on(&hertz, grid, false);
         solver
             .solve(&problem, &SolverOptions::default(), None)
             .expect("converges");
