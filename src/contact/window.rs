@@ -6,7 +6,7 @@
 //! the yield pressure, or a penetration outside it enlarges the window and the solve is
 //! repeated; so the answer is the whole grid's, at the cost of the window's cells.
 //!
-//! The check needs only the cells that could penetrate ([`Checked`]). Under a nonnegative
+//! The check needs only the cells that could penetrate. Under a nonnegative
 //! kernel ([`Operator::is_nonnegative`]) the displacement is nonnegative, so a cell whose
 //! separation alone keeps it open (`h - delta` above the tolerance) stays open: the check
 //! applies on the box of the window and the other cells, exact there by the same argument
@@ -118,8 +118,8 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         self.fractions
     }
 
-    /// Solves `problem` on `window` and checks the answer on the whole grid. `None` when the
-    /// window turned out too small.
+    /// Solves `problem` on `window` and checks the answer on the cells that could touch
+    /// ([`Self::reach`]). `None` when the window turned out too small.
     fn solve_in(
         &mut self,
         window: Window,

@@ -1,5 +1,5 @@
 //! Rough and measured disc surfaces: a height map ([`HeightMap`]), the synthetic self-affine
-//! surfaces of Fourier filtering ([`SelfAffine`]), the formats labs export ([`read`]), the
+//! surfaces of Fourier filtering ([`SelfAffine`]), the formats labs export ([`read()`]), the
 //! statistics a result reports ([`Statistics`]) and the contact islands of a solved contact
 //! ([`count_islands`]). Plain code in SI units; nothing else of the crate is used.
 //!

@@ -1,4 +1,5 @@
-//! The preconditioner corrected for the free set's edges ([`Preconditioning::FreeSet`]).
+//! The preconditioner corrected for the free set's edges
+//! ([`crate::contact::Preconditioning::FreeSet`]).
 //!
 //! The conjugate gradient runs on the free cells `F`, where the ideal preconditioner is the
 //! inverse of the operator's block `K_FF`. The operator's inverse on the whole grid,

@@ -1,5 +1,5 @@
 //! Studies on a Slurm cluster: [`write_dir`] lays a study out as a directory of member
-//! scenes and a job-array script, each task a plain `tribosim run`; [`collect`] reads the
+//! scenes and a job-array script, each task a plain `tribosim run`; [`collect()`] reads the
 //! results present back into the same [`super::StudySummary`] a local study gives. Slurm
 //! itself (`sbatch`) is the only thing run here; the layout is described in
 //! `docs/cluster.md`.
