@@ -6,7 +6,7 @@
 
 use super::operator::Operator;
 use super::problem::{ContactProblem, ContactSolution};
-use super::residual::Bound;
+use super::residual::{Bound, displacement_scale};
 
 /// What the check found; [`Verification::passes`] decides against a tolerance.
 #[derive(Debug, Clone, PartialEq)]
@@ -46,7 +46,7 @@ pub fn verify(
     let p = &solution.pressure;
     let mut u = vec![0.0; p.len()];
     operator.apply(p, &mut u);
-    let scale = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = displacement_scale(&u);
     let cap = problem.yield_pressure_pa;
     let mut report = Verification {
         out_of_bounds: 0,

@@ -70,6 +70,11 @@ impl Residual {
     }
 }
 
+/// The scale the relative residual divides by: the largest `|u|` of `displacement`.
+pub(crate) fn displacement_scale(displacement: &[f64]) -> f64 {
+    displacement.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
 /// The relative residual of `pressure` with displacement `displacement` over `separation`
 /// at the approach `approach_m`, under the cap `cap`.
 pub fn complementarity_residual(

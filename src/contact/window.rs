@@ -22,6 +22,7 @@ use super::grid::{Grid, Window};
 use super::operator::Operator;
 use super::plans::fft_friendly;
 use super::problem::{ContactProblem, ContactSolution, ContactSolver, SolverOptions};
+use super::residual::displacement_scale;
 
 /// Margin around the last contact's bounding box, as a fraction of its extent... Every
 /// apply of a solve costs the window's cells, and a warm solve's contact differs from the
@@ -182,7 +183,8 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         if !self.full.operator().is_nonnegative() {
             return Window::whole(&grid);
         }
-        let threshold = solution.approach_m - tolerance * largest(&solution.displacement);
+        let threshold =
+            solution.approach_m - tolerance * displacement_scale(&solution.displacement);
         let reach = Window::bounding(&grid, |i| separation[i] < threshold)
             .map_or(*window, |closing| closing.union(window));
         Window::centred(
@@ -210,7 +212,7 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
                 .apply(&reach.extract(&grid, pressure), &mut part);
             reach.place(&grid, &part, &mut displacement);
         }
-        let scale = largest(&displacement);
+        let scale = displacement_scale(&displacement);
         Ok((displacement, scale))
     }
 
@@ -223,11 +225,6 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
             .entry((window.nx, window.ny))
             .or_insert_with(|| factory(&sub)))
     }
-}
-
-/// The largest magnitude in `field`.
-fn largest(field: &[f64]) -> f64 {
-    field.iter().fold(0.0f64, |m, v| m.max(v.abs()))
 }
 
 impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> ContactSolver for WindowedSolver<F> {
