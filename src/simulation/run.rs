@@ -412,7 +412,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             name: Model::SolveWindow,
             active: true,
             reason: format!(
-                "each solve on the last contact's bounding box plus {:.0}% (at least {} cells), checked on the cells that could touch: on average {:.0}% and {:.0}% of the grid's cells",
+                "each solve on the last contact's bounding box plus {:.0}% (at least {} cells), checked on the cells that could touch: on average {:.0}% of the grid's cells solved, {:.0}% checked",
                 100.0 * MARGIN_FRACTION,
                 MIN_MARGIN,
                 100.0 * self.window_fractions.solved / self.solves as f64,

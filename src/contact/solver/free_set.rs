@@ -33,9 +33,8 @@ use crate::contact::{NEAR_REACH, Preconditioner};
 
 /// The floor of the row sums, a share of the inverse's diagonal. Measured as above, `rho`
 /// summed afresh at every move (warm iterations a solve / rough N = 2048 iterations): 0.5
-/// gives 4.80 / 34, 0.25 gives 4.65 /
-/// 35, 0.1 gives 4.49 / 38, 0.02 gives 4.76 / 516 (a large correction on the cells far
-/// from an island overshoots).
+/// gives 4.80 / 34, 0.25 gives 4.65 / 35, 0.1 gives 4.49 / 38, 0.02 gives 4.76 / 516 (a
+/// large correction on the cells far from an island overshoots).
 const ROW_SUM_FLOOR: f64 = 0.25;
 
 /// The row sums of the inverse over the cells out of the free set, kept up to date with
