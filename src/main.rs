@@ -13,7 +13,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use tribosim::bench::{self, BenchTarget};
 use tribosim::calibration::{ChangeCycle, CommandOptions, FitKind, calibrate_files};
 use tribosim::scene::{Scene, SurfaceSpec, presets};
-use tribosim::simulation::{first_contact, parse_scene_str, run_with_surface};
+use tribosim::simulation::{RunOptions, first_contact, parse_scene_str, run_with};
 use tribosim::study::command::StudyArgs;
 use tribosim::study::slurm::{CollectArgs, SlurmOptions, collect, write_dir};
 use tribosim::surface::{HeightMap, read_file as read_surface};
@@ -282,7 +282,11 @@ fn run_scene(
         bar.set_position(record.cycle);
         bar.set_message(format!("V = {:.3e} mm3", record.wear_volume_mm3));
     };
-    let result = run_with_surface(&scene, map.as_ref(), &mut on_cycle, &AtomicBool::new(false));
+    let options = RunOptions {
+        surface: map.as_ref(),
+        ..RunOptions::default()
+    };
+    let result = run_with(&scene, &options, &mut on_cycle, &AtomicBool::new(false));
     bar.finish_and_clear();
     let result = result.map_err(|e| e.to_string())?;
     write_json(&result, output)?;

@@ -15,7 +15,7 @@ use tribosim::contact::{
     ContactProblem, ContactSolution, DcFft, Grid, Kernel, Operator, PeriodicHalfSpace,
     SolverOptions, solve, verify,
 };
-use tribosim::simulation::{Model, SimulationError, first_contact, run, run_with_surface};
+use tribosim::simulation::{Model, RunOptions, SimulationError, first_contact, run, run_with};
 use tribosim::surface::{
     HeightMap, Roughness, SPIKE_RMS, SelfAffine, SurfaceError, count_islands, read,
 };
@@ -338,8 +338,11 @@ fn unrefused_spikes_would_carry_the_load_alone() {
             "disc": {"surface": {"kind": "measured", "id": "spiky.txt"}}}"#,
     );
     let first = |map: &HeightMap| {
-        let result =
-            run_with_surface(&s, Some(map), &mut |_| {}, &AtomicBool::new(false)).expect("runs");
+        let options = RunOptions {
+            surface: Some(map),
+            ..RunOptions::default()
+        };
+        let result = run_with(&s, &options, &mut |_| {}, &AtomicBool::new(false)).expect("runs");
         result.cycles[0].clone()
     };
     let clean = first(&map_of(0.0));

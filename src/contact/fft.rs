@@ -10,10 +10,7 @@
 //!   while the column is still in the L1 cache;
 //! - complex-to-real FFTs on the `ny` rows whose output is kept.
 //!
-//! Rows move between the row and the column layouts in blocks of [`BLOCK`] rows, so each
-//! transposed write touches `BLOCK` consecutive entries instead of one. Columns are
-//! [`STRIDE_PAD`] entries longer than the transform: a power-of-two stride maps every
-//! column start to the same cache sets, which made the transposes several times slower.
+//! The rows and columns move through the transposed layout of [`super::transform`].
 //!
 //! The kernel spectrum is computed once per operator and includes the `1 / (4 nx ny)`
 //! normalisation. Arranged by wrap-around, an even kernel is a real even sequence, so its
@@ -23,72 +20,14 @@
 //! per apply.
 
 mod sparse;
-mod split;
-
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rustfft::num_complex::Complex;
 
 use self::sparse::KernelRows;
-pub(crate) use self::split::Split;
 use super::influence::{Kernel, Symmetry, offset_index};
 use super::operator::{Operator, Preconditioner};
-use super::plans::Plans;
 use super::precondition::FourierInverse;
-
-/// Rows moved per block between the row and the column layouts.
-pub(crate) const BLOCK: usize = 16;
-
-/// Padding of the column stride, in complex entries (128 bytes).
-pub(crate) const STRIDE_PAD: usize = 8;
-
-/// The most threads an apply may be split across (the bound of the scene's
-/// `numerics.threads`).
-pub const MAX_SPLIT_THREADS: usize = 64;
-
-/// Grid cells from which an automatic thread count splits an apply, or `None`: never.
-/// `tribosim bench threads` on the idle 2-core machine (load average 1.1): two threads
-/// take 1/1.61, 1/1.61 and 1/1.65 of one thread's time at N = 512, 1024 and 2048, and gain
-/// nothing at 256 (1.03, rounds 0.90-1.91), where each pass is too short to pay for the
-/// threads' start and join. Under load from other work the split lost (0.67-0.86 at
-/// N >= 512, load average 6-8): the second thread waits for a busy core, which is why the
-/// service gives each of its workers one core's share.
-pub const SPLIT_MIN_CELLS: Option<usize> = Some(512 * 512);
-
-/// Runs of the process that solve at the same time (the service's workers): an automatic
-/// thread count shares the cores among them. A process property, not a scene's: the
-/// results do not depend on the thread count.
-static CONCURRENT_RUNS: AtomicUsize = AtomicUsize::new(1);
-
-/// Tells the automatic thread counts of [`split_threads`] that `runs` runs share the cores.
-pub fn share_cores_among(runs: usize) {
-    CONCURRENT_RUNS.store(runs.max(1), Ordering::Relaxed);
-}
-
-/// The threads of an apply on `cells` cells: `requested`, or (automatic, `None`) one below
-/// [`SPLIT_MIN_CELLS`] and, from there on, the cores the process may use divided among
-/// its concurrent runs ([`share_cores_among`]), at least one.
-pub fn split_threads(requested: Option<usize>, cells: usize) -> usize {
-    requested.unwrap_or_else(|| {
-        if SPLIT_MIN_CELLS.is_none_or(|min| cells < min) {
-            return 1;
-        }
-        let cores = std::thread::available_parallelism().map_or(1, usize::from);
-        (cores / CONCURRENT_RUNS.load(Ordering::Relaxed)).max(1)
-    })
-}
-
-/// The threads of an unpadded (periodic) transform of `cells` cells beside an apply split
-/// `threads` ways: `threads` once the transform is as long as the DC-FFT's on a grid of
-/// [`SPLIT_MIN_CELLS`] (whose padded transform has four times its cells), else one. By
-/// that measurement, shorter passes do not pay for the threads' start and join.
-pub(crate) fn periodic_threads(threads: usize, cells: usize) -> usize {
-    if SPLIT_MIN_CELLS.is_some_and(|min| cells >= 4 * min) {
-        threads
-    } else {
-        1
-    }
-}
+use super::transform::{BLOCK, Plans, STRIDE_PAD, Split, inverse_row, periodic_threads};
 
 /// The DC-FFT convolution operator of one kernel on one grid.
 pub struct DcFft {
@@ -123,22 +62,6 @@ enum Spectrum {
     Real(Vec<f64>),
     Imaginary(Vec<f64>),
     Complex(Vec<Complex<f64>>),
-}
-
-/// The complex-to-real transform of one row's half spectrum `row` into `real`.
-pub(crate) fn inverse_row(plans: &mut Plans, row: &mut [Complex<f64>], real: &mut [f64]) {
-    // The DC and (at an even length) Nyquist bins of a real signal are real; round-off
-    // leaves tiny imaginary parts that realfft rejects.
-    row[0].im = 0.0;
-    if real.len().is_multiple_of(2) {
-        if let Some(nyquist) = row.last_mut() {
-            nyquist.im = 0.0;
-        }
-    }
-    plans
-        .row_inverse
-        .process_with_scratch(row, real, &mut plans.real_scratch)
-        .expect("imaginary parts of DC and Nyquist zeroed above");
 }
 
 /// `column *= spectrum` over the column that starts at `start` in the spectrum's layout.
@@ -393,7 +316,7 @@ fn add_wrapped_row(row: &mut [f64], kernel: &Kernel, dj: isize, scale: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::{DenseOperator, ElasticPair, Grid, Material};
+    use crate::contact::{DenseOperator, ElasticPair, Grid, Material, SPLIT_MIN_CELLS};
     use rand::{Rng, SeedableRng};
 
     fn pair(nu1: f64, nu2: f64, e2: f64) -> ElasticPair {

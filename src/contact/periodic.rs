@@ -6,9 +6,11 @@
 //! is studied; its exact inverse is the preconditioner. The mean displacement (q = 0) is
 //! left at zero: the approach absorbs it.
 
-use super::fft::{periodic_threads, split_threads};
+use std::num::NonZeroUsize;
+
 use super::operator::{Operator, Preconditioner};
 use super::precondition::FourierInverse;
+use super::transform::{periodic_threads, split_threads};
 
 /// The periodic half-space operator of an `nx` x `ny` grid.
 #[derive(Debug)]
@@ -23,7 +25,8 @@ impl PeriodicHalfSpace {
     /// The operator on `nx` x `ny` cells of `dx` x `dy` m, for the reduced modulus
     /// `reduced_modulus_pa` (E*, eq. 6), on the automatic thread count of
     /// [`split_threads`] for a transform of its length (`periodic_threads`: from 1024 x
-    /// 1024 cells; no scene chooses one for it).
+    /// 1024 cells; no scene chooses one for it) as the only run solving (its callers, the
+    /// tests and the benchmark, run one at a time; [`Self::threaded`] chooses another).
     pub fn new(nx: usize, ny: usize, dx: f64, dy: f64, reduced_modulus_pa: f64) -> Self {
         let e = reduced_modulus_pa;
         Self {
@@ -34,7 +37,10 @@ impl PeriodicHalfSpace {
             }),
             inverse: FourierInverse::multiplier(nx, ny, (dx, dy), |qx, qy| e * qx.hypot(qy) / 2.0),
         }
-        .threaded(periodic_threads(split_threads(None, nx * ny), nx * ny))
+        .threaded(periodic_threads(
+            split_threads(None, nx * ny, NonZeroUsize::MIN),
+            nx * ny,
+        ))
     }
 
     /// The same operator, its apply and preconditioner on `threads` threads (1: on the

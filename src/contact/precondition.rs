@@ -17,10 +17,9 @@
 
 use rustfft::num_complex::Complex;
 
-use super::fft::{BLOCK, STRIDE_PAD, Split, inverse_row};
 use super::influence::Kernel;
 use super::operator::{NEAR_REACH, Preconditioner};
-use super::plans::Plans;
+use super::transform::{BLOCK, Plans, STRIDE_PAD, Split, inverse_row};
 
 /// The inverse of a kernel's periodic wrap on its own grid.
 pub struct FourierInverse {

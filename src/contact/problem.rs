@@ -2,6 +2,8 @@
 //! [`ContactSolver`] interface that the normal ([`super::NormalSolver`]), the coupled
 //! ([`super::CoupledSolver`]) and the windowed ([`super::WindowedSolver`]) solvers implement.
 
+use std::num::NonZeroUsize;
+
 use super::error::ContactError;
 use super::grid::Grid;
 use super::operator::Operator;
@@ -15,6 +17,10 @@ pub struct SolverOptions {
     pub max_iterations: usize,
     /// How the conjugate gradient is preconditioned, where the operator offers an inverse.
     pub preconditioning: Preconditioning,
+    /// Runs solving at the same time as this one (the service's workers, a study's
+    /// threads), among which an automatic thread count shares the cores
+    /// ([`super::split_threads`]). The results do not depend on it.
+    pub concurrent_runs: NonZeroUsize,
 }
 
 impl Default for SolverOptions {
@@ -23,6 +29,7 @@ impl Default for SolverOptions {
             tolerance: 1e-8,
             max_iterations: 2000,
             preconditioning: Preconditioning::default(),
+            concurrent_runs: NonZeroUsize::MIN,
         }
     }
 }

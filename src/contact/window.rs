@@ -20,9 +20,9 @@ use std::collections::HashMap;
 use super::error::ContactError;
 use super::grid::{Grid, Window};
 use super::operator::Operator;
-use super::plans::fft_friendly;
 use super::problem::{ContactProblem, ContactSolution, ContactSolver, SolverOptions};
 use super::residual::displacement_scale;
+use super::transform::fft_friendly;
 
 /// Margin around the last contact's bounding box, as a fraction of its extent... Every
 /// apply of a solve costs the window's cells, and a warm solve's contact differs from the

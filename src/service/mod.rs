@@ -294,8 +294,6 @@ pub async fn serve_on(
         path: args.data_dir.clone(),
         source,
     })?;
-    // Each worker's solves get their share of the cores (`numerics.threads: "auto"`).
-    crate::contact::share_cores_among(args.workers.get());
     let workers = jobs.start_workers(args.workers.get())?;
     let (stop, stopped) = watch::channel(false);
     let mut limits = args.limits.clone();

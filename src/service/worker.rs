@@ -6,6 +6,7 @@
 //! CPU-bound for seconds to minutes, and must never sit on the async runtime's threads.
 
 use std::io;
+use std::num::NonZeroUsize;
 use std::panic::{self, AssertUnwindSafe};
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
@@ -19,7 +20,7 @@ use super::registry::Jobs;
 use super::store::CyclesWriter;
 use super::surfaces::surface_id;
 use crate::scene::Scene;
-use crate::simulation::{self, CycleRecord, SimulationError};
+use crate::simulation::{self, CycleRecord, RunOptions, SimulationError};
 
 impl Jobs {
     /// Starts `workers` threads that take jobs from the queue until [`Jobs::stop`].
@@ -31,7 +32,7 @@ impl Jobs {
                     .name(format!("tribosim-worker-{n}"))
                     .spawn(move || {
                         while let Some(job) = jobs.queue.next() {
-                            jobs.run_job(&job);
+                            jobs.run_job(&job, workers);
                         }
                     })
             })
@@ -77,15 +78,17 @@ impl Jobs {
         )
     }
 
-    fn run_job(&self, job: &Job) {
+    fn run_job(&self, job: &Job, workers: usize) {
         let Some(started) = self.start(job) else {
             return;
         };
         let outcome = started.and_then(|(scene, writer)| {
             // A panic in the simulation must fail its job, not kill the worker and leave the
             // job `running` for ever.
-            panic::catch_unwind(AssertUnwindSafe(|| self.simulate(job, &scene, writer)))
-                .unwrap_or_else(|payload| Err(panic_message(payload.as_ref())))
+            panic::catch_unwind(AssertUnwindSafe(|| {
+                self.simulate(job, &scene, writer, workers)
+            }))
+            .unwrap_or_else(|payload| Err(panic_message(payload.as_ref())))
         });
         match outcome {
             Ok(true) => self.finish(job, JobStatus::Succeeded, None),
@@ -102,15 +105,26 @@ impl Jobs {
 
     /// Runs the simulation, logging each cycle, and stores the result. `Ok(true)` when the
     /// job succeeded, `Ok(false)` when it was cancelled, `Err` with the reason when it failed.
-    fn simulate(&self, job: &Job, scene: &Scene, mut writer: CyclesWriter) -> Result<bool, String> {
+    fn simulate(
+        &self,
+        job: &Job,
+        scene: &Scene,
+        mut writer: CyclesWriter,
+        workers: usize,
+    ) -> Result<bool, String> {
         let mut storage_error: Option<String> = None;
         let map = match surface_id(scene) {
             Some(id) => Some(self.surfaces.load(id).map_err(|e| e.to_string())?),
             None => None,
         };
-        let outcome = simulation::run_with_surface(
+        // Each worker's solves get their share of the cores (`numerics.threads: "auto"`).
+        let options = RunOptions {
+            surface: map.as_ref(),
+            concurrent_runs: NonZeroUsize::new(workers).unwrap_or(NonZeroUsize::MIN),
+        };
+        let outcome = simulation::run_with(
             scene,
-            map.as_ref(),
+            &options,
             &mut |record: &CycleRecord| {
                 let line = match serde_json::to_string(record) {
                     Ok(line) => line,

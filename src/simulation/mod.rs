@@ -33,7 +33,7 @@ pub use result::{
     CycleRecord, Model, ModelChoice, PressureMap, Profile, SimulationResult, Summary, SurfaceReport,
 };
 pub use roughness::{CELLS_PER_SHORT_WAVELENGTH, DiscSurface};
-pub use run::{run, run_setup, run_with_surface};
+pub use run::{RunOptions, run, run_setup, run_with};
 pub use setup::{COUPLING_SENSITIVITY, Setup};
 pub use sizing::{CELLS_PER_CONTACT_RADIUS, DOMAIN_PER_CONTACT_RADIUS};
 pub use stepping::MAX_STEP;

@@ -15,6 +15,7 @@
 //!    same pressure, and an auto domain grows if the contact nears its edge
 //!    ([`super::growth`]).
 
+use std::num::NonZeroUsize;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
@@ -40,6 +41,26 @@ const PROFILE_CYCLES: [u64; 16] = [
     1, 2, 5, 10, 20, 50, 60, 100, 200, 300, 500, 1000, 1800, 2000, 3600, 5000,
 ];
 
+/// What a run takes beside its scene.
+#[derive(Debug, Clone, Copy)]
+pub struct RunOptions<'a> {
+    /// The height map of a scene whose `disc.surface` is measured.
+    pub surface: Option<&'a HeightMap>,
+    /// Runs solving at the same time as this one, among which its automatic thread counts
+    /// (`numerics.threads: "auto"`) share the cores; the results do not depend on it.
+    pub concurrent_runs: NonZeroUsize,
+}
+
+impl Default for RunOptions<'_> {
+    /// No measured surface; the only run of the process.
+    fn default() -> Self {
+        Self {
+            surface: None,
+            concurrent_runs: NonZeroUsize::MIN,
+        }
+    }
+}
+
 /// Runs `scene`. Calls `on_cycle` after every solved cycle and stops with
 /// [`SimulationError::Cancelled`] once `cancel` is set (checked once per solved cycle).
 pub fn run(
@@ -47,17 +68,18 @@ pub fn run(
     on_cycle: &mut dyn FnMut(&CycleRecord),
     cancel: &AtomicBool,
 ) -> Result<SimulationResult, SimulationError> {
-    run_with_surface(scene, None, on_cycle, cancel)
+    run_with(scene, &RunOptions::default(), on_cycle, cancel)
 }
 
-/// [`run`] with the height map of a scene whose `disc.surface` is measured.
-pub fn run_with_surface(
+/// [`run`] with `options`: a measured surface, other runs sharing the cores.
+pub fn run_with(
     scene: &Scene,
-    surface: Option<&HeightMap>,
+    options: &RunOptions,
     on_cycle: &mut dyn FnMut(&CycleRecord),
     cancel: &AtomicBool,
 ) -> Result<SimulationResult, SimulationError> {
-    let setup = Setup::with_surface(scene, surface)?;
+    let mut setup = Setup::with_surface(scene, options.surface)?;
+    setup.options.concurrent_runs = options.concurrent_runs;
     run_setup(&setup, on_cycle, cancel)
 }
 

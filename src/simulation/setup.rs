@@ -223,7 +223,7 @@ impl Setup {
             SolverThreads::Auto => None,
             SolverThreads::Count(threads) => Some(threads),
         };
-        let threads = split_threads(requested, grid.len());
+        let threads = split_threads(requested, grid.len(), self.options.concurrent_runs);
         if self.coupling {
             let coupling = Kernel::coupling(grid, &self.pair, self.scene.test.friction_coefficient);
             Box::new(CoupledSolver::new(&normal, &coupling).threaded(threads))

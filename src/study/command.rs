@@ -108,8 +108,6 @@ pub fn study(args: &StudyArgs) -> Result<StudySummary, CommandError> {
         std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
     });
     let workers = workers.clamp(1, members.len());
-    // Each member's solves get their share of the cores (`numerics.threads: "auto"`).
-    crate::contact::share_cores_among(workers);
     eprintln!("{} members on {workers} worker threads", members.len());
     let started = Instant::now();
     let mut done = 0;

@@ -1,10 +1,11 @@
 //! Running a study's members on worker threads, each member a plain
 //! [`crate::simulation::run`].
 
+use std::num::NonZeroUsize;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc;
 
-use crate::simulation::{SimulationError, SimulationResult, run};
+use crate::simulation::{RunOptions, SimulationError, SimulationResult, run_with};
 
 use super::Member;
 
@@ -31,8 +32,15 @@ pub fn run_members(
     let next = AtomicUsize::new(0);
     let (sender, receiver) = mpsc::channel();
     let mut outcomes: Vec<Option<MemberOutcome>> = members.iter().map(|_| None).collect();
+    let threads = workers.clamp(1, members.len().max(1));
+    // Each member's solves get their share of the cores (`numerics.threads: "auto"`).
+    let options = RunOptions {
+        concurrent_runs: NonZeroUsize::new(threads).unwrap_or(NonZeroUsize::MIN),
+        ..RunOptions::default()
+    };
+    let options = &options;
     std::thread::scope(|scope| {
-        for _ in 0..workers.clamp(1, members.len().max(1)) {
+        for _ in 0..threads {
             let sender = sender.clone();
             let next = &next;
             scope.spawn(move || {
@@ -44,7 +52,7 @@ pub fn run_members(
                     let result = if cancel.load(Ordering::Relaxed) {
                         Err(SimulationError::Cancelled { cycles_done: 0 })
                     } else {
-                        run(&member.scene, &mut |_| {}, cancel)
+                        run_with(&member.scene, options, &mut |_| {}, cancel)
                     };
                     // The receiver lives until every worker has ended.
                     let _ = sender.send(MemberOutcome { index, result });

@@ -1,22 +1,68 @@
-//! A 2D FFT convolution with its three passes split across threads: the forward row
-//! transforms by rows, the column transforms and the kernel product by columns, the inverse
-//! row transforms by rows. It serves the DC-FFT apply (rows and columns zero-padded to twice
-//! the grid) and the periodic [`crate::contact::FourierInverse`] (no padding). Each pass is a `std::thread::scope`: its end is the barrier the next
-//! pass needs, and each thread owns a contiguous slice of the buffer it writes, so no
-//! locking and no unsafe code is needed. Spawning costs a few tens of microseconds per pass
-//! against milliseconds of work per apply from N = 256 on. The threads do not share
-//! scratch: each has its
-//! own rows and FFT scratch, and the plans themselves are shared read-only.
+//! A 2D FFT convolution with its three passes split across threads, and how many threads
+//! an apply gets. The passes: the forward row transforms by rows, the column transforms and
+//! the kernel product by columns, the inverse row transforms by rows. It serves the DC-FFT
+//! apply (rows and columns zero-padded to twice the grid) and the periodic
+//! [`crate::contact::FourierInverse`] (no padding). Each pass is a `std::thread::scope`: its
+//! end is the barrier the next pass needs, and each thread owns a contiguous slice of the
+//! buffer it writes, so no locking and no unsafe code is needed. Spawning costs a few tens
+//! of microseconds per pass against milliseconds of work per apply from N = 256 on. The
+//! threads do not share scratch: each has its own rows and FFT scratch, and the plans
+//! themselves are shared read-only.
 //!
 //! The row spectra go through a row-major buffer (`spectra`, `ny` x `nx + 1` complex
 //! values) between the forward row pass and the column pass, which the one-thread apply does
 //! not need: 16 bytes per cell, allocated only when the operator runs on more than one
 //! thread.
 
+use std::num::NonZeroUsize;
+
 use rustfft::num_complex::Complex;
 
-use super::{BLOCK, inverse_row};
-use crate::contact::plans::Plans;
+use super::{BLOCK, Plans, inverse_row};
+
+/// The most threads an apply may be split across (the bound of the scene's
+/// `numerics.threads`).
+pub const MAX_SPLIT_THREADS: usize = 64;
+
+/// Grid cells from which an automatic thread count splits an apply, or `None`: never.
+/// `tribosim bench threads` on the idle 2-core machine (load average 1.1): two threads
+/// take 1/1.61, 1/1.61 and 1/1.65 of one thread's time at N = 512, 1024 and 2048, and gain
+/// nothing at 256 (1.03, rounds 0.90-1.91), where each pass is too short to pay for the
+/// threads' start and join. Under load from other work the split lost (0.67-0.86 at
+/// N >= 512, load average 6-8): the second thread waits for a busy core, which is why the
+/// service gives each of its workers one core's share.
+pub const SPLIT_MIN_CELLS: Option<usize> = Some(512 * 512);
+
+/// The threads of an apply on `cells` cells: `requested`, or (automatic, `None`) one below
+/// [`SPLIT_MIN_CELLS`] and, from there on, the cores the process may use divided among the
+/// `concurrent_runs` runs solving at the same time (the service's workers, a study's
+/// threads), at least one. The results do not depend on it: the split apply equals the
+/// one-thread apply to the last bit.
+pub fn split_threads(
+    requested: Option<usize>,
+    cells: usize,
+    concurrent_runs: NonZeroUsize,
+) -> usize {
+    requested.unwrap_or_else(|| {
+        if SPLIT_MIN_CELLS.is_none_or(|min| cells < min) {
+            return 1;
+        }
+        let cores = std::thread::available_parallelism().map_or(1, usize::from);
+        (cores / concurrent_runs).max(1)
+    })
+}
+
+/// The threads of an unpadded (periodic) transform of `cells` cells beside an apply split
+/// `threads` ways: `threads` once the transform is as long as the DC-FFT's on a grid of
+/// [`SPLIT_MIN_CELLS`] (whose padded transform has four times its cells), else one. By
+/// that measurement, shorter passes do not pay for the threads' start and join.
+pub(crate) fn periodic_threads(threads: usize, cells: usize) -> usize {
+    if SPLIT_MIN_CELLS.is_some_and(|min| cells >= 4 * min) {
+        threads
+    } else {
+        1
+    }
+}
 
 /// The per-thread state and the shared row-spectrum buffer of a split apply.
 pub(crate) struct Split {
