@@ -17,9 +17,9 @@ use super::{
     CalibrationError, Estimate, Table, calibration_scene, cycles_of, interpolate, require_at_least,
     require_increasing, require_points,
 };
-use crate::hardness::archard_k_from_measurement;
 use crate::scene::{ArchardRegimeChange, Scene};
 use crate::simulation::run;
+use crate::wear::archard_k_from_measurement;
 
 /// Settings of the Archard fit.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -27,8 +27,10 @@ use std::f64::consts::PI;
 
 use serde::{Deserialize, Serialize};
 
-use crate::hardness::{self, HardnessError, HardnessLaw};
+use crate::hardness::{HardnessError, HardnessLaw};
+use crate::wear::WearLaw;
 
+pub use crate::wear::ArchardRegimeChange;
 pub use auto_or::{CycleStep, DomainSize, FixedStrideError, GridSize, SolverThreads};
 pub use error::{FieldError, SceneErrors};
 pub use field::{Field, Range};
@@ -38,9 +40,9 @@ pub use preset::{DALMAU2018_316L, Preset, dalmau2018_316l, presets};
 pub use record::{MAX_RECORD_CYCLES, RecordCycles, TABLE3_TIMES_S};
 pub use reference::{FIELDS_BEGIN, FIELDS_END, field_table};
 pub use sections::{
-    AnodicArea, ArchardCalibration, ArchardRegimeChange, Ball, Corrosion, DEFAULT_TOLERANCE, Disc,
-    Numerics, PAPER_ARCHARD_CALIBRATION, PAPER_CYCLES, PAPER_HARDNESS_TABLE, STEP_CHANGE_BOUND,
-    Switch, TestConditions, Wear,
+    AnodicArea, ArchardCalibration, Ball, Corrosion, DEFAULT_TOLERANCE, Disc, Numerics,
+    PAPER_ARCHARD_CALIBRATION, PAPER_CYCLES, PAPER_HARDNESS_TABLE, STEP_CHANGE_BOUND, Switch,
+    TestConditions, Wear,
 };
 pub use surface::{DEFAULT_HURST, MAX_RMS_SLOPE, SurfaceKind, SurfaceSpec};
 
@@ -127,62 +129,10 @@ impl Scene {
         self.disc.hardness_law()
     }
 
-    /// The Archard coefficient: `wear.archard_k` if given; else derived from
-    /// `wear.archard_calibration` (or [`PAPER_ARCHARD_CALIBRATION`]) by eq. 14, under the
-    /// measured test's conditions where the point gives them and the scene's where not, with
-    /// the hardness measured there or the hardness law's at the point's cycle count.
-    pub fn archard_k(&self) -> Result<f64, HardnessError> {
-        if let Some(k) = self.wear.archard_k {
-            return Ok(k);
-        }
-        let (point, test) = self.archard_calibration();
-        let hardness_pa = match point.hardness_mpa {
-            Some(mpa) => mpa * 1e6,
-            None => self
-                .hardness_law()?
-                .hardness_pa(test.cycles_at(point.time_s)),
-        };
-        Ok(hardness::archard_k_from_measurement(
-            point.wear_volume_mm3 * 1e-9,
-            hardness_pa,
-            test.load_n,
-            test.sliding_speed_m_s() * point.time_s,
-        ))
-    }
-
-    /// The calibration point k is derived from when `archard_k` is not given, and the test
-    /// it was measured in: the scene's, with the point's own load, speed and track radius
-    /// where it gives them.
-    fn archard_calibration(&self) -> (&ArchardCalibration, TestConditions) {
-        let point = self
-            .wear
-            .archard_calibration
-            .as_ref()
-            .unwrap_or(&PAPER_ARCHARD_CALIBRATION);
-        let test = TestConditions {
-            load_n: point.load_n.unwrap_or(self.test.load_n),
-            speed_rpm: point.speed_rpm.unwrap_or(self.test.speed_rpm),
-            track_radius_mm: point.track_radius_mm.unwrap_or(self.test.track_radius_mm),
-            ..self.test.clone()
-        };
-        (point, test)
-    }
-
-    /// Where the Archard coefficient comes from, in words, for the `archard` model's reason.
-    pub fn archard_k_origin(&self) -> String {
-        if self.wear.archard_k.is_some() {
-            return "given as wear.archard_k".to_owned();
-        }
-        let (point, test) = self.archard_calibration();
-        let hardness = match point.hardness_mpa {
-            Some(mpa) => format!("the measured H = {mpa} MPa"),
-            None => "H from the hardness law".to_owned(),
-        };
-        format!(
-            "eq. 14 from {} mm^3 worn after {} s at {} N and {} rpm on a {} mm track, with \
-             {hardness}",
-            point.wear_volume_mm3, point.time_s, test.load_n, test.speed_rpm, test.track_radius_mm,
-        )
+    /// The wear law of the scene's `wear` section ([`Wear::law`]) under its test and
+    /// hardness law.
+    pub fn wear_law(&self) -> Result<WearLaw, HardnessError> {
+        Ok(self.wear.law(&self.test, &self.hardness_law()?))
     }
 
     /// Checks every field against its own range and the fields' consistency, returning all

@@ -8,6 +8,7 @@ use super::record::RecordCycles;
 use super::surface::SurfaceSpec;
 use crate::corrosion::CorrosionModel;
 use crate::hardness::{HardnessError, HardnessLaw};
+use crate::wear::{Archard, ArchardK, ArchardRegimeChange, MeasuredPoint, WearLaw};
 
 /// The calibration point when a scene gives neither `archard_k` nor `archard_calibration`:
 /// the paper's own rule (Section 4.5), k by eq. 14 from the final measured time and wear
@@ -224,6 +225,53 @@ impl Default for Wear {
     }
 }
 
+impl Wear {
+    /// The wear law this section describes, in the scene's `test` with the disc's
+    /// `hardness`: Archard's, of `archard_k` or else of the calibration point
+    /// ([`PAPER_ARCHARD_CALIBRATION`] when neither is given), with the change of regime.
+    pub fn law(&self, test: &TestConditions, hardness: &HardnessLaw) -> WearLaw {
+        let k = match self.archard_k {
+            Some(k) => ArchardK::Given(k),
+            None => ArchardK::Measured(self.calibration_point(test, hardness)),
+        };
+        WearLaw::Archard(Archard::new(k, self.archard_regime_change))
+    }
+
+    /// The calibration point k is derived from when `archard_k` is not given, in the test
+    /// it was measured in: the scene's `test`, with the point's own load, speed and track
+    /// radius where it gives them; the hardness measured there, or `hardness`' at the
+    /// point's cycle count.
+    pub fn calibration_point(
+        &self,
+        test: &TestConditions,
+        hardness: &HardnessLaw,
+    ) -> MeasuredPoint {
+        let point = self
+            .archard_calibration
+            .as_ref()
+            .unwrap_or(&PAPER_ARCHARD_CALIBRATION);
+        let test = TestConditions {
+            load_n: point.load_n.unwrap_or(test.load_n),
+            speed_rpm: point.speed_rpm.unwrap_or(test.speed_rpm),
+            track_radius_mm: point.track_radius_mm.unwrap_or(test.track_radius_mm),
+            ..test.clone()
+        };
+        MeasuredPoint {
+            time_s: point.time_s,
+            wear_volume_mm3: point.wear_volume_mm3,
+            load_n: test.load_n,
+            speed_rpm: test.speed_rpm,
+            track_radius_mm: test.track_radius_mm,
+            measured_hardness_mpa: point.hardness_mpa,
+            hardness_pa: match point.hardness_mpa {
+                Some(mpa) => mpa * 1e6,
+                None => hardness.hardness_pa(test.cycles_at(point.time_s)),
+            },
+            sliding_distance_m: test.sliding_speed_m_s() * point.time_s,
+        }
+    }
+}
+
 /// A measured wear volume after a rubbing time, from which k = V H / (F s) is derived.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -244,29 +292,6 @@ pub struct ArchardCalibration {
     /// Wear track radius of the measured test, mm; absent, the scene's.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub track_radius_mm: Option<f64>,
-}
-
-/// A change of Archard regime (the paper's Section 5.2: a low-wear period before about 300
-/// cycles, Archard wear after it): cycles up to and including `cycle` wear with
-/// `archard_k_before`, the later ones with the scene's k.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ArchardRegimeChange {
-    /// The last cycle of the first regime.
-    pub cycle: u64,
-    /// k of the cycles up to and including `cycle`, dimensionless.
-    pub archard_k_before: f64,
-}
-
-impl ArchardRegimeChange {
-    /// k of `cycle` when `k_after` applies after the change.
-    pub fn k_at(&self, cycle: u64, k_after: f64) -> f64 {
-        if cycle <= self.cycle {
-            self.archard_k_before
-        } else {
-            k_after
-        }
-    }
 }
 
 /// The electrochemical cell (paper Section 5.1); units in the names.

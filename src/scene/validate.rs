@@ -208,9 +208,8 @@ fn check_wear(c: &mut Checks, scene: &Scene) {
     if !c.errors.is_empty() {
         return;
     }
-    let mut derived = scene.clone();
-    derived.wear.archard_k = None;
-    if let Ok(k) = derived.archard_k() {
+    if let Ok(hardness) = scene.hardness_law() {
+        let k = wear.calibration_point(&scene.test, &hardness).k();
         if !ARCHARD_K.range.admits(k) {
             c.fail(
                 "wear.archard_calibration",

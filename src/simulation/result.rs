@@ -4,9 +4,9 @@
 use serde::{Deserialize, Serialize};
 
 use crate::contact::{Grid, Window};
-use crate::scene::{ArchardRegimeChange, Scene};
+use crate::scene::Scene;
 use crate::surface::Statistics;
-use crate::wear::Groove;
+use crate::wear::{Groove, WearLaw, WearSummary};
 
 /// A whole run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -71,6 +71,15 @@ pub enum Model {
     Corrosion,
     /// The disc's initial roughness and how the grid resolves it.
     Surface,
+}
+
+impl Model {
+    /// The model of the wear law `law`.
+    pub fn of_law(law: &WearLaw) -> Self {
+        match law {
+            WearLaw::Archard(_) => Self::Archard,
+        }
+    }
 }
 
 /// The state after one solved cycle.
@@ -202,12 +211,9 @@ pub struct Summary {
     /// `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub potential_v: Option<f64>,
-    /// The Archard coefficient the run used (dimensionless), given or derived by eq. 14; the
-    /// one after the change when the regime changes.
-    pub archard_k: f64,
-    /// The change of Archard regime: k up to and including its cycle; absent with one k.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub archard_regime_change: Option<ArchardRegimeChange>,
+    /// The wear law's fields (`archard_k`, `archard_regime_change`).
+    #[serde(flatten)]
+    pub wear: WearSummary,
     /// Wall-clock time of the run, s.
     pub wall_s: f64,
     /// Contact solves performed.
@@ -232,14 +238,7 @@ impl std::fmt::Display for Summary {
         if let Some(potential) = self.potential_v {
             writeln!(f, "  final potential  {potential:.4} V vs Ag/AgCl")?;
         }
-        match &self.archard_regime_change {
-            None => write!(f, "  Archard k        {:.4e}", self.archard_k),
-            Some(change) => write!(
-                f,
-                "  Archard k        {:.4e} to cycle {}, {:.4e} after",
-                change.archard_k_before, change.cycle, self.archard_k
-            ),
-        }
+        write!(f, "{}", self.wear)
     }
 }
 
@@ -255,8 +254,10 @@ mod tests {
             max_depth_um: 12.5,
             wac_volume_mm3: Some(3.4e-4),
             potential_v: Some(-0.5432),
-            archard_k: 1.0228e-4,
-            archard_regime_change: None,
+            wear: WearSummary {
+                archard_k: 1.0228e-4,
+                archard_regime_change: None,
+            },
             wall_s: 6.31,
             solves: 326,
             iterations: 3400,

@@ -5,8 +5,8 @@
 //! 3. where the pressure sits at the cap the disc yields: each row under a capped cell is
 //!    cut to the level that cell was pressed to, which on a smooth disc deepens the row by
 //!    the remaining interpenetration (eq. 13, [`crate::wear::Groove::yield_under`]);
-//! 4. one pass of Archard wear removes `k / H` times the pressure integrated along the
-//!    sliding direction (eqs. 15-16, [`crate::wear::pass_pressure_integral`]);
+//! 4. one pass of wear: Archard's removes `k / H` times the pressure integrated along the
+//!    sliding direction (eqs. 15-16, [`crate::wear::WearLaw`]);
 //! 5. the profile update: the groove moves the surface for the next solve (eq. 17,
 //!    [`crate::wear::Groove`]);
 //! 6. the corrosion: the potential during rubbing (eq. 18) and the volume dissolved
@@ -25,7 +25,7 @@ use crate::contact::{
 };
 use crate::scene::{DomainSize, Scene};
 use crate::surface::{HeightMap, count_islands};
-use crate::wear::{Groove, pass_pressure_integral};
+use crate::wear::Groove;
 
 use super::electrochemistry::{Cell, Reading, Surface};
 use super::growth::{GROW_AT_EDGE_CELLS, GROW_AT_FRACTION, near_edges, widen};
@@ -172,8 +172,8 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let hardness_pa = setup.hardness.hardness_pa(n);
         // The contact on the current surface (eqs. 2-12).
         let (solution, separation) = self.solve_contact(cycle, cap)?;
-        // Yielding truncates the rows under capped cells (eq. 13); one Archard pass without
-        // its k / H (eqs. 15-16).
+        // Yielding truncates the rows under capped cells (eq. 13); the profile of one pass of
+        // wear (eqs. 15-16).
         let worn_before = self.groove.area_m2();
         let yielded = self
             .groove
@@ -186,23 +186,21 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         // -1.60e-3.
         let cut = self.groove.area_m2() - worn_before;
         let reshaped = yielded && cut > setup.scene.numerics.cycle_step_bound * worn_before;
-        let pass = pass_pressure_integral(&self.grid, &solution.pressure);
+        let wear = &setup.wear;
+        let pass = wear.pass_profile(&self.grid, &solution.pressure);
         // A step never passes a record cycle, so that cycle is solved; nor the first cycle
-        // of a new Archard regime, whose wear rate the step was not chosen for.
+        // of a new wear rate (an Archard regime), whose rate the step was not chosen for.
         let stop = self
             .record_cycles
             .iter()
             .copied()
-            .chain(setup.archard_regime_change.map(|change| change.cycle + 1))
+            .chain(wear.rate_change_cycle())
             .filter(|&r| r > cycle)
             .min()
             .unwrap_or(setup.scene.test.cycles);
-        // The step controller's rate of change was measured at the old k: it starts afresh
-        // (solving every cycle, then doubling) at the first cycle of a new regime.
-        if setup
-            .archard_regime_change
-            .is_some_and(|change| cycle == change.cycle + 1)
-        {
+        // The step controller's rate of change was measured at the old rate: it starts
+        // afresh (solving every cycle, then doubling) at the first cycle of a new one.
+        if wear.rate_change_cycle() == Some(cycle) {
             let numerics = &setup.scene.numerics;
             self.stepper = Stepper::new(numerics.cycle_step, numerics.cycle_step_bound);
         }
@@ -210,7 +208,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         self.max_step = self.max_step.max(step);
         // The profile update (eq. 17): the pass at this cycle's hardness, after the yielding.
         self.groove
-            .deepen(&pass, setup.archard_k_at(cycle) / hardness_pa);
+            .deepen(&pass, wear.depth_scale(cycle..cycle + 1, &setup.hardness));
         // Corrosion (eq. 18, Faraday), the record, then the cycles the solve stands for.
         let reading = self.corrode(cycle, &solution, hardness_pa)?;
         self.record(cycle, &solution, cap, reading, on_cycle);
@@ -339,9 +337,10 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
     /// dissolve at its anodic area, each at its own hardness.
     fn wear_skipped(&mut self, cycle: u64, step: u64, pass: &[f64], reading: Option<&Reading>) {
         let setup = self.setup;
-        let skipped = (cycle + 1..cycle + step)
-            .map(|j| setup.archard_k_at(j) / setup.hardness.hardness_pa(j as f64));
-        self.groove.deepen(pass, skipped.sum());
+        let skipped = setup
+            .wear
+            .depth_scale(cycle + 1..cycle + step, &setup.hardness);
+        self.groove.deepen(pass, skipped);
         if let (Some(cell), Some(reading)) = (self.cell.as_mut(), reading) {
             cell.skipped(reading, (step - 1) as f64 * setup.scene.cycle_period_s());
         }
@@ -413,7 +412,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
     }
 
     /// The setup's model choices and the run's: domain growths, then the cycle step, the
-    /// solve window, Archard wear and corrosion.
+    /// solve window, the wear law and corrosion.
     fn run_models(&mut self) -> Vec<ModelChoice> {
         let setup = self.setup;
         let numerics = &setup.scene.numerics;
@@ -441,27 +440,11 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 100.0 * self.window_fractions.checked / self.solves as f64
             ),
         });
-        let after = format!(
-            "k = {:.4e}, {}",
-            setup.archard_k,
-            setup.scene.archard_k_origin()
-        );
-        let (active, reason) = match &setup.archard_regime_change {
-            None => (setup.archard_k > 0.0, after),
-            Some(change) => (
-                setup.archard_k > 0.0 || change.archard_k_before > 0.0,
-                format!(
-                    "cycles 1 to {}: k = {:.4e}, given as wear.archard_regime_change; from cycle {}: {after}",
-                    change.cycle,
-                    change.archard_k_before,
-                    change.cycle + 1
-                ),
-            ),
-        };
+        let law = setup.wear.choice();
         models.push(ModelChoice {
-            name: Model::Archard,
-            active,
-            reason,
+            name: Model::of_law(&setup.wear),
+            active: law.active,
+            reason: law.reason,
         });
         models.push(ModelChoice {
             name: Model::Corrosion,
@@ -555,12 +538,8 @@ mod tests {
         // Archard's volume is k F L / H per cycle whatever the pressures (the solves carry the
         // load to 1e-11); the rest is exactly the asperity material cut. 1e-9 relative allows
         // the summation round-off of 20 cycles.
-        let archard: f64 = (1..=20)
-            .map(|n| {
-                setup.archard_k_at(n) * setup.scene.load_n() * length
-                    / setup.hardness.hardness_pa(n as f64)
-            })
-            .sum();
+        let archard =
+            setup.wear.depth_scale(1..21, &setup.hardness) * setup.scene.load_n() * length;
         let accounted = archard + cut * length;
         assert!(
             (volume / accounted - 1.0).abs() < 1e-9,

@@ -6,9 +6,9 @@ use crate::contact::{
     SolverOptions, split_threads,
 };
 use crate::hardness::HardnessLaw;
-use crate::scene::{ArchardRegimeChange, Scene, SolverThreads, Switch};
+use crate::scene::{Scene, SolverThreads, Switch};
 use crate::surface::HeightMap;
-use crate::wear::Groove;
+use crate::wear::{Groove, WearLaw};
 
 use super::feasibility::check;
 use super::hardening::work_hardening_report;
@@ -37,11 +37,8 @@ pub struct Setup {
     pub hertz: Hertz,
     /// Disc hardness against cycles.
     pub hardness: HardnessLaw,
-    /// Archard's coefficient (given, or derived from a calibration point); after the change
-    /// of regime when there is one.
-    pub archard_k: f64,
-    /// The scene's change of Archard regime, if any.
-    pub archard_regime_change: Option<ArchardRegimeChange>,
+    /// The wear law (Archard's, with its coefficient and change of regime).
+    pub wear: WearLaw,
     /// Whether pressures are capped at Y (eq. 12).
     pub plasticity: bool,
     /// Whether the friction coupling term is modelled (eq. 7).
@@ -100,8 +97,7 @@ impl Setup {
             max_depth_um: last.map_or(0.0, |c| c.max_depth_um),
             wac_volume_mm3: last.and_then(|c| c.wac_volume_mm3),
             potential_v: last.and_then(|c| c.potential_v),
-            archard_k: self.archard_k,
-            archard_regime_change: self.archard_regime_change,
+            wear: self.wear.summary(),
             wall_s,
             solves: cycles.len(),
             iterations: cycles.iter().map(|c| c.iterations).sum(),
@@ -122,7 +118,7 @@ impl Setup {
         check(scene)?;
         let pair = elastic_pair(scene).map_err(SimulationError::Setup)?;
         let hardness = scene.hardness_law()?;
-        let archard_k = scene.archard_k()?;
+        let wear = scene.wear.law(&scene.test, &hardness);
         let hertz = hertz(scene, &pair);
         let options = SolverOptions {
             tolerance: scene.numerics.tolerance,
@@ -156,8 +152,7 @@ impl Setup {
             grid,
             hertz,
             hardness,
-            archard_k,
-            archard_regime_change: scene.wear.archard_regime_change,
+            wear,
             plasticity,
             coupling,
             options,
@@ -165,14 +160,6 @@ impl Setup {
             warnings,
             surface,
         })
-    }
-
-    /// Archard's k of `cycle`.
-    pub fn archard_k_at(&self, cycle: u64) -> f64 {
-        match &self.archard_regime_change {
-            Some(change) => change.k_at(cycle, self.archard_k),
-            None => self.archard_k,
-        }
     }
 
     /// The pressure cap at `cycle`: `H(n) / yield_factor`, or infinite without plasticity.

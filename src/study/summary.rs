@@ -160,7 +160,7 @@ impl StudySummary {
                 format!("{:.4}", s.max_depth_um),
                 optional(s.wac_volume_mm3),
                 s.potential_v.map(|v| format!("{v:.5}")).unwrap_or_default(),
-                format!("{:.6e}", s.archard_k),
+                format!("{:.6e}", s.wear.archard_k),
                 format!("{:.2}", s.wall_s),
                 s.solves.to_string(),
                 String::new(),

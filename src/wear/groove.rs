@@ -1,9 +1,10 @@
 //! The disc's surface in the wear track and the two ways it wears (paper Section 3.2):
-//! yielding while pressures sit at the cap (eq. 13) and Archard wear (eqs. 15-16).
+//! yielding while pressures sit at the cap (eq. 13) and the depth a wear law removes
+//! (eqs. 15-17 for Archard's, [`super::WearLaw`]).
 //!
 //! The surface under the ball is `H(x, y) = min(r(x, y), c(y)) - D(y)`: `r` the initial
 //! roughness (zero on a smooth disc; heights on the first grid's cells, repeating beyond
-//! them), `D(y)` the Archard groove and `c(y)` the level yielding has truncated row `y` to
+//! them), `D(y)` the worn groove and `c(y)` the level yielding has truncated row `y` to
 //! (+inf until it yields). Both are uniform along the track, since the ball passes over
 //! every point of the track once per cycle: every asperity of a row passes under the
 //! row's most-pressed point. Yielding truncates a row at the lowest level a capped cell of
@@ -50,7 +51,7 @@ fn periodic_index(i: usize, n: usize, period: usize) -> usize {
 /// depth per grid row (each `y`) they make together.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Groove {
-    /// Archard's groove `D(y)`, m.
+    /// The worn groove `D(y)`, m.
     worn_m: Vec<f64>,
     /// The truncation level `c(y)`, m above the original surface's mean plane.
     ceiling_m: Vec<f64>,
@@ -188,7 +189,7 @@ impl Groove {
         }
     }
 
-    /// Adds `scale * increment` to the groove `D` of every row (Archard wear).
+    /// Adds `scale * increment` to the groove `D` of every row (a wear law's depth).
     pub fn deepen(&mut self, increment: &[f64], scale: f64) {
         for ((w, d), &i) in self.worn_m.iter_mut().zip(&mut self.depth_m).zip(increment) {
             *w += scale * i;
@@ -254,30 +255,9 @@ impl Groove {
     }
 }
 
-/// Eqs. 15-16: one pass of the ball removes `k / H` times the pressure integrated along the
-/// sliding direction, `int p(x, y) dx`, from each row. Returned without the `k / H` factor
-/// (Pa m), since H changes with the cycle. Summed over rows and times `dy` it is the load:
-/// one pass removes `k F L / H` in volume, Archard's law (eq. 14) for a track of length L.
-pub fn pass_pressure_integral(grid: &Grid, pressure: &[f64]) -> Vec<f64> {
-    pressure
-        .chunks_exact(grid.nx)
-        .map(|row| row.iter().sum::<f64>() * grid.dx)
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn archard_pass_integrates_to_the_load() {
-        let grid = Grid::square(16, 16e-6).expect("valid");
-        let pressure: Vec<f64> = (0..grid.len()).map(|i| (i % 5) as f64 * 1e8).collect();
-        let load: f64 = pressure.iter().sum::<f64>() * grid.cell_area();
-        let per_row = pass_pressure_integral(&grid, &pressure);
-        let integral: f64 = per_row.iter().sum::<f64>() * grid.dy;
-        assert!((integral / load - 1.0).abs() < 1e-14);
-    }
 
     #[test]
     fn worn_width_finds_the_edges_of_a_tent_between_rows() {
