@@ -12,8 +12,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use tribosim::bench::{self, BenchTarget};
 use tribosim::calibration::{ChangeCycle, CommandOptions, FitKind, calibrate_files};
-use tribosim::scene::{Scene, SurfaceSpec, presets};
-use tribosim::simulation::{RunOptions, first_contact, parse_scene_str, run_with};
+use tribosim::scene::{SurfaceSpec, presets};
+use tribosim::simulation::{Plan, RunOptions, first_contact, parse_scene_str, run_with};
 use tribosim::study::command::StudyArgs;
 use tribosim::study::slurm::{CollectArgs, SlurmOptions, collect, write_dir};
 use tribosim::surface::{HeightMap, read_file as read_surface};
@@ -205,7 +205,7 @@ fn study(
     write_dir(&study, &options).map_err(|e| e.to_string())
 }
 
-fn read_scene(path: &Path) -> Result<Scene, String> {
+fn read_scene(path: &Path) -> Result<Plan, String> {
     let text = if path == Path::new("-") {
         std::io::read_to_string(std::io::stdin())
             .map_err(|e| format!("cannot read the scene from standard input: {e}"))?
@@ -245,16 +245,17 @@ struct SurfaceFile<'a> {
     remove_tilt: bool,
 }
 
-/// The map of `file`, and `scene` with `disc.surface` naming it.
-fn with_surface(mut scene: Scene, file: &SurfaceFile) -> Result<(Scene, HeightMap), String> {
+/// The map of `file`, and `plan`'s scene with `disc.surface` naming it, checked again.
+fn with_surface(plan: Plan, file: &SurfaceFile) -> Result<(Plan, HeightMap), String> {
     let (map, _) = read_surface(file.path, file.pixel_um.map(|um| um * 1e-6))
         .map_err(|e| format!("surface {}: {e}", file.path.display()))?;
     let id = file.path.file_name().map_or_else(
         || file.path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
+    let mut scene = plan.into_scene();
     scene.disc.surface = Some(SurfaceSpec::measured(&id, file.remove_tilt));
-    Ok((scene, map))
+    Ok((Plan::new(scene).map_err(|e| e.to_string())?, map))
 }
 
 fn run_scene(
@@ -262,16 +263,16 @@ fn run_scene(
     output: Option<&Path>,
     surface: Option<&SurfaceFile>,
 ) -> Result<(), String> {
-    let scene = read_scene(path)?;
-    let (scene, map) = match surface {
+    let plan = read_scene(path)?;
+    let (plan, map) = match surface {
         Some(file) => {
-            let (scene, map) = with_surface(scene, file)?;
-            (scene, Some(map))
+            let (plan, map) = with_surface(plan, file)?;
+            (plan, Some(map))
         }
-        None => (scene, None),
+        None => (plan, None),
     };
     // indicatif draws nothing when standard error is not a terminal, so logs stay clean.
-    let bar = ProgressBar::new(scene.test.cycles);
+    let bar = ProgressBar::new(plan.scene().test.cycles);
     bar.set_style(
         ProgressStyle::with_template(
             "{elapsed_precise} [{bar:40}] cycle {pos}/{len}, {per_sec}, {eta} left {msg}",
@@ -286,7 +287,7 @@ fn run_scene(
         surface: map.as_ref(),
         ..RunOptions::default()
     };
-    let result = run_with(&scene, &options, &mut on_cycle, &AtomicBool::new(false));
+    let result = run_with(&plan, &options, &mut on_cycle, &AtomicBool::new(false));
     bar.finish_and_clear();
     let result = result.map_err(|e| e.to_string())?;
     write_json(&result, output)?;

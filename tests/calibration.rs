@@ -58,20 +58,21 @@ fn a_bad_table_is_refused_naming_the_column() {
 #[test]
 fn a_change_of_regime_through_the_command_line() {
     use std::sync::atomic::AtomicBool;
-    use tribosim::simulation::{parse_scene_str, run};
+    use tribosim::simulation::{Plan, parse_scene_str, run};
 
     let small = r#"{"preset": "dalmau2018-316l", "overrides": {
         "test": {"cycles": 200}, "numerics": {"grid": 16, "cycle_step": 1}}}"#;
     let scene_path = scratch("regime_scene.json");
     std::fs::write(&scene_path, small).expect("written");
-    let mut scene = parse_scene_str(small).expect("valid");
+    let mut scene = parse_scene_str(small).expect("valid").into_scene();
     scene.wear.archard_k = Some(1e-4);
     scene.wear.archard_calibration = None;
     scene.wear.archard_regime_change = Some(tribosim::scene::ArchardRegimeChange {
         cycle: 85,
         archard_k_before: 2e-5,
     });
-    let result = run(&scene, &mut |_| {}, &AtomicBool::new(false)).expect("runs");
+    let plan = Plan::new(scene).expect("valid");
+    let result = run(&plan, &mut |_| {}, &AtomicBool::new(false)).expect("runs");
     let mut csv = "cycles,volume_mm3\n".to_owned();
     for record in result
         .cycles

@@ -215,7 +215,7 @@ fn assert_documented(paths: &BTreeSet<String>, part: &str, what: &str) {
 
 /// The paper's preset on a small grid with corrosion, a change of Archard regime and a rough
 /// disc, so that every optional field appears.
-fn tiny_scene() -> tribosim::scene::Scene {
+fn tiny_scene() -> simulation::Plan {
     let scene = json!({"preset": "dalmau2018-316l", "overrides": {
         "numerics": {"grid": 32, "domain_um": 256}, "test": {"cycles": 3},
         "wear": {"archard_regime_change": {"cycle": 1, "archard_k_before": 2e-5}},

@@ -12,8 +12,8 @@ use std::time::Duration;
 
 use futures_util::future::join_all;
 use serde_json::{Value, json};
-use tribosim::scene::parse_scene;
 use tribosim::service::{OPENAPI_YAML, ROUTES};
+use tribosim::simulation::parse_scene;
 
 use common::{
     PATIENCE, Server, TempDir, args, follow, get_job, get_json, is_final, long_scene, small_scene,

@@ -13,7 +13,7 @@ use std::sync::atomic::AtomicBool;
 use serde_json::Value;
 
 use common::TempDir;
-use tribosim::simulation::{parse_scene_str, run};
+use tribosim::simulation::{Plan, parse_scene_str, run};
 use tribosim::study::{MAX_MEMBERS, Study};
 
 /// The quick preset at the smallest grid and few cycles, 2 x 2: each member runs in well
@@ -81,11 +81,15 @@ fn each_member_scene_runs_by_tribosim_run_to_the_local_members_result() {
     for member in &members {
         let scene = format!("members/{:04}.scene.json", member.index);
         let text = std::fs::read_to_string(array.join(&scene)).expect("a member scene");
-        assert_eq!(parse_scene_str(&text).expect("a valid scene"), member.scene);
+        assert_eq!(
+            parse_scene_str(&text).expect("a valid scene").scene(),
+            &member.scene
+        );
         let result = format!("members/{:04}.result.json", member.index);
         let output = tribosim(&["run", &scene, "-o", &result], &array);
         assert!(output.status.success(), "{}", stderr(&output));
-        let here = run(&member.scene, &mut |_| {}, &AtomicBool::new(false)).expect("a run");
+        let plan = Plan::new(member.scene.clone()).expect("a valid scene");
+        let here = run(&plan, &mut |_| {}, &AtomicBool::new(false)).expect("a run");
         let mut there: tribosim::simulation::Summary =
             serde_json::from_value(read_json(&array.join(&result))["summary"].clone())
                 .expect("a run summary");

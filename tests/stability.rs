@@ -8,7 +8,7 @@ mod common {
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use common::physics::{
-    LOAD_CHECK, check_tolerance, paper_hertz, paper_pair, relative_error, scene, simulate,
+    LOAD_CHECK, check_tolerance, paper_hertz, paper_pair, plan, relative_error, scene, simulate,
 };
 use tribosim::contact::{
     ContactError, ContactProblem, DcFft, ElasticPair, Grid, Kernel, Material, SolverOptions, solve,
@@ -228,7 +228,11 @@ fn the_papers_fixed_domain_cannot_hold_3600_cycles() {
             "test": {"cycles": 3600}, "numerics": {"grid": 32, "domain_um": 256}}}"#,
     );
     let mut last_seen = 0;
-    match run(&s, &mut |r| last_seen = r.cycle, &AtomicBool::new(false)) {
+    match run(
+        &plan(&s).expect("valid"),
+        &mut |r| last_seen = r.cycle,
+        &AtomicBool::new(false),
+    ) {
         Err(SimulationError::Contact {
             cycle,
             source: ContactError::ContactAtEdge { .. },
@@ -439,7 +443,7 @@ fn cancelled_before_the_first_cycle() {
     let cancel = AtomicBool::new(false);
     cancel.store(true, Ordering::Relaxed);
     let mut called = false;
-    let outcome = run(&s, &mut |_| called = true, &cancel);
+    let outcome = run(&plan(&s).expect("valid"), &mut |_| called = true, &cancel);
     assert!(matches!(
         outcome,
         Err(SimulationError::Cancelled { cycles_done: 0 })
@@ -472,7 +476,7 @@ fn a_femtonewton_contact_keeps_its_shape() {
     // (measured here: -5.5e-5 at every load from 1e-6 down to 1e-20 N, as the problem
     // scales).
     let s = scene(r#"{"test": {"load_n": 1e-15}, "wear": {"plasticity": "off"}}"#);
-    let contact = first_contact(&s).expect("solves");
+    let contact = first_contact(&plan(&s).expect("valid")).expect("solves");
     let error = contact.max_pressure_mpa / contact.hertz_peak_pressure_mpa - 1.0;
     assert!(error.abs() < 2e-4, "peak pressure error {error}");
 }

@@ -10,7 +10,7 @@ mod common {
 
 use std::sync::atomic::AtomicBool;
 
-use common::physics::{LOAD_CHECK, LOAD_N, check_tolerance, paper_hertz, paper_pair, scene};
+use common::physics::{LOAD_CHECK, LOAD_N, check_tolerance, paper_hertz, paper_pair, plan, scene};
 use tribosim::contact::{
     ContactProblem, ContactSolution, DcFft, Grid, Kernel, Operator, PeriodicHalfSpace,
     SolverOptions, solve, verify,
@@ -185,7 +185,12 @@ fn an_auto_domain_grows_when_the_first_rough_contact_reaches_its_edge() {
     // now the domain grows (to 192 cells) and the contact converges: 14 islands, 12
     // iterations.
     let s = scene(PAST_THE_AUTO_DOMAIN);
-    let result = run(&s, &mut |_| {}, &AtomicBool::new(false)).expect("runs");
+    let result = run(
+        &plan(&s).expect("valid"),
+        &mut |_| {},
+        &AtomicBool::new(false),
+    )
+    .expect("runs");
     let grown: Vec<&str> = result
         .models
         .iter()
@@ -200,7 +205,7 @@ fn an_auto_domain_grows_when_the_first_rough_contact_reaches_its_edge() {
     assert!(first.contact_islands > 1 && first.max_pressure_mpa.is_finite());
     // `tribosim contact`, the first cycle alone, grows the same way and finds the same
     // contact (on the whole grid, where the run solves on a window around the contact).
-    let alone = first_contact(&s).expect("converges");
+    let alone = first_contact(&plan(&s).expect("valid")).expect("converges");
     println!("run: {first:?}\nalone: {alone:?}");
     assert!(alone.grid > 144, "{}", alone.grid);
     assert!(
@@ -217,7 +222,11 @@ fn an_auto_domain_grows_when_the_first_rough_contact_reaches_its_edge() {
         r#""plasticity": "off"}"#,
         r#""plasticity": "off"}, "numerics": {"grid": 144, "domain_um": 144}"#,
     ));
-    match run(&fixed, &mut |_| {}, &AtomicBool::new(false)) {
+    match run(
+        &plan(&fixed).expect("valid"),
+        &mut |_| {},
+        &AtomicBool::new(false),
+    ) {
         Err(SimulationError::Contact { cycle: 1, source }) => {
             assert!(source.to_string().contains("domain edge"), "{source}");
         }
@@ -241,12 +250,12 @@ fn the_cap_on_nearly_every_contact_cell_of_a_rough_contact_converges() {
     // The same through the first cycle of a scene: H = 684 MPa gives Y = 244 MPa, 0.2 p0,
     // on the auto grid the cap sizes (256 cells of 1 um). Measured: 99.8% capped, 9
     // iterations.
-    let first = first_contact(&scene(
+    let rough = scene(
         r#"{"disc": {"hardness_table": null, "hardness_mpa": 684,
             "surface": {"kind": "synthetic", "rms_height_um": 0.65, "short_cutoff_um": 8,
                         "long_cutoff_um": 100}}}"#,
-    ))
-    .expect("converges");
+    );
+    let first = first_contact(&plan(&rough).expect("valid")).expect("converges");
     assert!(
         first.plastic_area_mm2 > 0.9 * first.contact_area_mm2,
         "{first:?}"
@@ -342,7 +351,13 @@ fn unrefused_spikes_would_carry_the_load_alone() {
             surface: Some(map),
             ..RunOptions::default()
         };
-        let result = run_with(&s, &options, &mut |_| {}, &AtomicBool::new(false)).expect("runs");
+        let result = run_with(
+            &plan(&s).expect("valid"),
+            &options,
+            &mut |_| {},
+            &AtomicBool::new(false),
+        )
+        .expect("runs");
         result.cycles[0].clone()
     };
     let clean = first(&map_of(0.0));

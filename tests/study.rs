@@ -5,7 +5,7 @@ use std::sync::atomic::AtomicBool;
 
 use serde_json::{Value, json};
 
-use tribosim::simulation::{SimulationError, Summary, parse_scene, run};
+use tribosim::simulation::{Plan, SimulationError, Summary, parse_scene, run};
 use tribosim::study::{MAX_MEMBERS, Member, Study, StudyError, StudySummary, run_members};
 
 /// The quick preset at the smallest grid and few cycles: a member runs in well under a
@@ -85,7 +85,8 @@ fn a_base_without_a_preset_is_set_at_the_path_itself() {
         .expect("valid");
     let mut direct =
         parse_scene(&json!({"test": {"cycles": 20, "load_n": 3}, "numerics": {"grid": 32}}))
-            .expect("valid scene");
+            .expect("valid scene")
+            .into_scene();
     // The member's name is the only difference: the base's name with the member's values.
     direct.name = format!("{} [test.load_n = 3]", direct.name);
     assert_eq!(members[0].scene, direct);
@@ -199,7 +200,8 @@ fn a_two_by_two_study_on_two_workers_equals_its_members_run_one_by_one() {
     assert_eq!(outcomes.len(), 4);
     for (member, outcome) in members.iter().zip(&outcomes) {
         assert_eq!(outcome.index, member.index);
-        let alone = run(&member.scene, &mut |_| {}, &AtomicBool::new(false)).expect("runs");
+        let plan = Plan::new(member.scene.clone()).expect("valid");
+        let alone = run(&plan, &mut |_| {}, &AtomicBool::new(false)).expect("runs");
         let in_study = outcome.result.as_ref().expect("runs in the study");
         // The same code on the same scene in one process takes the same floating-point
         // steps whichever thread runs it: equal to the last bit, no tolerance.

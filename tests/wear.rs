@@ -7,7 +7,7 @@ mod common {
 use std::f64::consts::PI;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use common::physics::{relative_error, scene};
+use common::physics::{plan, relative_error, scene};
 
 use tribosim::contact::{ContactError, ContactSolution, Grid};
 use tribosim::scene::Scene;
@@ -179,7 +179,7 @@ fn cancel_stops_within_a_cycle() {
     let cancel = AtomicBool::new(false);
     let mut seen = 0;
     let outcome = run(
-        &s,
+        &plan(&s).expect("valid"),
         &mut |record| {
             seen = record.cycle;
             if record.cycle == 5 {
@@ -200,7 +200,7 @@ fn invalid_scene_lists_every_field() {
     let mut s = Scene::default();
     s.test.load_n = -1.0;
     s.ball.poisson_ratio = 0.7;
-    match run(&s, &mut |_| {}, &AtomicBool::new(false)) {
+    match common::physics::simulate(&s) {
         Err(SimulationError::Scene(errors)) => {
             let paths: Vec<&str> = errors.0.iter().map(|e| e.path.as_str()).collect();
             assert!(paths.contains(&"test.load_n"), "{paths:?}");
@@ -217,7 +217,11 @@ fn a_fixed_domain_too_small_for_the_track_fails_by_name() {
         r#"{"preset": "dalmau2018-316l", "overrides": {
             "numerics": {"grid": 48, "domain_um": 110}}}"#,
     );
-    match run(&s, &mut |_| {}, &AtomicBool::new(false)) {
+    match run(
+        &plan(&s).expect("valid"),
+        &mut |_| {},
+        &AtomicBool::new(false),
+    ) {
         Err(SimulationError::Contact {
             cycle,
             source: ContactError::ContactAtEdge { .. },
@@ -287,7 +291,7 @@ fn coarse_cycle_steps_still_converge() {
     let cancel = AtomicBool::new(false);
     let mut solves = 0;
     let outcome = run(
-        &s,
+        &plan(&s).expect("valid"),
         &mut |record| {
             solves += 1;
             if record.cycle >= 400 {

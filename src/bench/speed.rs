@@ -24,7 +24,7 @@ use crate::contact::{
     ContactProblem, DcFft, Grid, Kernel, Preconditioning, SolverOptions, coarse_start, solve,
 };
 use crate::scene::{DEFAULT_TOLERANCE, Scene};
-use crate::simulation::{Setup, SimulationError, SimulationResult, run_setup};
+use crate::simulation::{Plan, RunOptions, Setup, SimulationError, SimulationResult, run_setup};
 
 /// The scene default's tolerance before it was set by what the error needs.
 pub const PREVIOUS_TOLERANCE: f64 = 1e-8;
@@ -188,8 +188,8 @@ fn warm_run(
 ) -> Result<SimulationResult, BenchError> {
     let mut scene = Scene::default();
     scene.numerics.tolerance = tolerance;
-    scene.validate().map_err(SimulationError::from)?;
-    let mut setup = Setup::new(&scene)?;
+    let plan = Plan::new(scene).map_err(SimulationError::from)?;
+    let mut setup = Setup::new(&plan, &RunOptions::default())?;
     setup.options.preconditioning = preconditioning;
     Ok(run_setup(&setup, &mut |_| {}, &AtomicBool::new(false))?)
 }

@@ -12,7 +12,7 @@ use crate::scene::{
     CycleStep, DALMAU2018_316L, DomainSize, GridSize, Scene, TestConditions, dalmau2018_316l,
 };
 use crate::simulation::{
-    MAX_STEP, STEP_CHANGE_BOUND, Setup, SimulationError, SimulationResult, run,
+    MAX_STEP, Plan, RunOptions, STEP_CHANGE_BOUND, Setup, SimulationError, SimulationResult, run,
 };
 
 /// Cycle counts of the cycle-step study: the preset's test and the paper's longest, where
@@ -146,10 +146,13 @@ pub(super) fn paper_scene_with(change: impl FnOnce(&mut Scene)) -> Scene {
     scene
 }
 
-/// Checks `scene` as a parsed scene would be checked, and runs it.
+/// Checks `scene` as a parsed scene is checked, and runs it.
 pub(super) fn simulate(scene: &Scene) -> Result<SimulationResult, SimulationError> {
-    scene.validate()?;
-    run(scene, &mut |_| {}, &AtomicBool::new(false))
+    run(
+        &Plan::new(scene.clone())?,
+        &mut |_| {},
+        &AtomicBool::new(false),
+    )
 }
 
 /// The paper scene with `change` applied, run.
@@ -161,7 +164,7 @@ pub(super) fn simulate_with(
 
 /// The first grid the simulation sets up for `scene`.
 pub(super) fn first_grid(scene: &Scene) -> Result<Grid, SimulationError> {
-    Ok(Setup::new(scene)?.grid)
+    Ok(Setup::new(&Plan::new(scene.clone())?, &RunOptions::default())?.grid)
 }
 
 /// The row of `result` in `study`, with its errors against `reference` (the same run for the
@@ -185,7 +188,7 @@ pub(super) fn row(
         setting,
         cycles: s.cycles,
         // The scene as run always sets up again.
-        grid: Setup::new(&result.scene).map_or(0, |setup| setup.grid.nx),
+        grid: first_grid(&result.scene).map_or(0, |grid| grid.nx),
         wall_s: s.wall_s,
         solves: s.solves,
         iterations: s.iterations,

@@ -18,7 +18,7 @@ use super::{
     require_increasing, require_points,
 };
 use crate::scene::{ArchardRegimeChange, Scene};
-use crate::simulation::run;
+use crate::simulation::{Plan, run};
 use crate::wear::archard_k_from_measurement;
 
 /// Settings of the Archard fit.
@@ -140,7 +140,7 @@ impl Problem {
         scene.wear.archard_k = Some(k);
         scene.wear.archard_calibration = None;
         scene.wear.archard_regime_change = change;
-        let result = run(&scene, &mut |_| {}, &AtomicBool::new(false))?;
+        let result = run(&Plan::new(scene)?, &mut |_| {}, &AtomicBool::new(false))?;
         self.runs += 1;
         let solved: Vec<f64> = result.cycles.iter().map(|r| r.cycle as f64).collect();
         let volumes: Vec<f64> = result.cycles.iter().map(|r| r.wear_volume_mm3).collect();

@@ -80,10 +80,12 @@ pub fn calibrate_files(
     };
     let parsed = Table::parse(&text).map_err(|e| fit_error(e.into()))?;
     let scene = match scene {
-        Some(path) => parse_scene_str(&read(path)?).map_err(|errors| CommandError::Scene {
-            path: path.to_owned(),
-            errors,
-        })?,
+        Some(path) => parse_scene_str(&read(path)?)
+            .map_err(|errors| CommandError::Scene {
+                path: path.to_owned(),
+                errors,
+            })?
+            .into_scene(),
         None => default_scene(),
     };
     let json = serde_json::to_string_pretty(

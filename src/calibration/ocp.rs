@@ -17,7 +17,7 @@ use super::{
 };
 use crate::corrosion::{CorrosionModel, real_contact_area_m2};
 use crate::scene::{AnodicArea, Corrosion, Scene};
-use crate::simulation::run;
+use crate::simulation::{Plan, run};
 
 /// The factor's search bracket starts here (a thousandth of the chosen area).
 const LOWEST_FACTOR: f64 = 1e-3;
@@ -167,7 +167,7 @@ fn model_areas(
         c.anodic_area = kind;
         c.anodic_area_factor = 1.0;
     }
-    let result = run(&scene, &mut |_| {}, &AtomicBool::new(false))?;
+    let result = run(&Plan::new(scene)?, &mut |_| {}, &AtomicBool::new(false))?;
     let solved: Vec<f64> = result.cycles.iter().map(|r| r.cycle as f64).collect();
     let areas: Vec<f64> = result
         .cycles

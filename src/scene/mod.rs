@@ -6,8 +6,9 @@
 //! checks every field against its own range, reporting every problem at once as
 //! [`FieldError`]s. Whether the simulation can run the scene (the contact's limits, which
 //! depend on several fields at once) is the simulation's to judge
-//! (`simulation::check`, `simulation::parse_scene`). The numerical core reads the scene
-//! through the SI accessors (`ball_radius_m`, `sliding_speed_m_s`, ...).
+//! (`simulation::Plan::new`, `simulation::parse_scene`). The numerical core reads the scene
+//! through the SI accessors (`ball_radius_m`, `sliding_speed_m_s`, ...); the `wear` section
+//! parses into the wear law ([`Wear::law`]).
 
 mod auto_or;
 mod error;
@@ -136,7 +137,7 @@ impl Scene {
     }
 
     /// Checks every field against its own range and the fields' consistency, returning all
-    /// problems at once. (What the simulation can run is `simulation::check`.)
+    /// problems at once. (What the simulation can run is `simulation::Plan::new`.)
     pub fn validate(&self) -> Result<(), SceneErrors> {
         let errors = validate::check(self);
         if errors.is_empty() {

@@ -15,14 +15,14 @@ use super::{FieldError, PAPER_ARCHARD_CALIBRATION, Scene, SceneErrors, preset};
 /// carries serde_json's line and column, and a key given twice is a single error at its path.
 /// See [`parse_scene`].
 pub fn parse_scene_str(text: &str) -> Result<Scene, SceneErrors> {
-    parse_scene_str_with(text, |_| Vec::new())
+    parse_scene_str_with(text, Ok)
 }
 
-/// [`parse_scene_str`] with the caller's further checks, as [`parse_scene_with`].
-pub fn parse_scene_str_with(
+/// [`parse_scene_str`] with the caller's further step, as [`parse_scene_with`].
+pub fn parse_scene_str_with<T>(
     text: &str,
-    further: impl FnOnce(&Scene) -> Vec<FieldError>,
-) -> Result<Scene, SceneErrors> {
+    further: impl FnOnce(Scene) -> Result<T, Vec<FieldError>>,
+) -> Result<T, SceneErrors> {
     let json = crate::json::from_str(text).map_err(|e| {
         let error = match e {
             JsonError::Syntax(_) => FieldError::new("", e.to_string()),
@@ -40,16 +40,16 @@ pub fn parse_scene_str_with(
 /// paths start with `overrides.`, which is where the user's text is. Whether the simulation
 /// can run the scene is not judged here: `simulation::parse_scene` adds that.
 pub fn parse_scene(json: &Value) -> Result<Scene, SceneErrors> {
-    parse_scene_with(json, |_| Vec::new())
+    parse_scene_with(json, Ok)
 }
 
-/// [`parse_scene`] with the caller's `further` checks, run on the scene once each of its
-/// fields is within its own range (they may then combine fields freely) and located in the
-/// document like the others.
-pub fn parse_scene_with(
+/// [`parse_scene`] followed by the caller's `further` step, which turns a scene whose fields
+/// are each within their own range into a `T` (it may combine fields freely) or refuses it
+/// with errors located in the document like the others.
+pub fn parse_scene_with<T>(
     json: &Value,
-    further: impl FnOnce(&Scene) -> Vec<FieldError>,
-) -> Result<Scene, SceneErrors> {
+    further: impl FnOnce(Scene) -> Result<T, Vec<FieldError>>,
+) -> Result<T, SceneErrors> {
     let (document, prefix) = preset::resolve(json)?;
     let mut errors = Vec::new();
     if let Some(mut scene) = deserialize_located(&document, &mut errors) {
@@ -57,10 +57,14 @@ pub fn parse_scene_with(
             scene.wear.archard_calibration = Some(PAPER_ARCHARD_CALIBRATION);
         }
         let own = validate::check(&scene);
-        let combined = if own.is_empty() { further(&scene) } else { own };
-        errors.extend(combined);
-        if errors.is_empty() {
-            return Ok(scene);
+        if !own.is_empty() {
+            errors.extend(own);
+        } else {
+            match further(scene) {
+                Ok(value) if errors.is_empty() => return Ok(value),
+                Ok(_) => {}
+                Err(more) => errors.extend(more),
+            }
         }
     }
     if !prefix.is_empty() {

@@ -1,7 +1,7 @@
 //! Each field of a deserialised scene against its own range, and the fields' consistency with
 //! each other (the hardness table's fit, k against its calibration); every message names
 //! the allowed range. Whether the contact such a scene describes can be simulated is
-//! judged by the simulation (`simulation::check`).
+//! judged by the simulation (`simulation::Plan::new`).
 
 use super::field::Field;
 use super::fields::{

@@ -19,7 +19,7 @@ use crate::calibration::{
 };
 use crate::json::{self, JsonError};
 use crate::scene::{FieldError, Scene};
-use crate::simulation::parse_scene;
+use crate::simulation::{Plan, parse_scene};
 
 /// Seconds a client is asked to wait when every fit slot is busy: about one Archard fit of
 /// Table 3 (7.5 s on a shared two-core machine, docs/calibration.md).
@@ -120,16 +120,18 @@ fn inputs(body: &[u8]) -> Result<(FitKind, Table, Scene, CommandOptions), ApiErr
     let table = Table::parse(&text).map_err(|e| invalid("table", e.to_string()))?;
     let scene = match &request.scene {
         None => default_scene(),
-        Some(document) => parse_scene(document).map_err(|errors| {
-            ApiError::unprocessable(
-                "invalid calibration: the scene has invalid fields",
-                errors
-                    .0
-                    .into_iter()
-                    .map(|f| FieldError::new(format!("scene.{}", f.path), f.message))
-                    .collect(),
-            )
-        })?,
+        Some(document) => parse_scene(document)
+            .map(Plan::into_scene)
+            .map_err(|errors| {
+                ApiError::unprocessable(
+                    "invalid calibration: the scene has invalid fields",
+                    errors
+                        .0
+                        .into_iter()
+                        .map(|f| FieldError::new(format!("scene.{}", f.path), f.message))
+                        .collect(),
+                )
+            })?,
     };
     let options = CommandOptions {
         without_bulk: !options.include_bulk.unwrap_or(true),

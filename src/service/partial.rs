@@ -12,7 +12,7 @@ use super::registry::Jobs;
 use super::store::Damage;
 use super::surfaces::{SurfaceLoadError, surface_id};
 use crate::scene::Scene;
-use crate::simulation::{CycleRecord, Setup, SimulationError, SimulationResult};
+use crate::simulation::{CycleRecord, Plan, RunOptions, Setup, SimulationError, SimulationResult};
 use crate::surface::HeightMap;
 
 /// Why a stopped job's partial result cannot be given.
@@ -84,12 +84,16 @@ fn partial(
     cycles: Vec<CycleRecord>,
     wall_s: f64,
 ) -> Result<SimulationResult, SimulationError> {
-    let setup = Setup::with_surface(scene, map)?;
+    let options = RunOptions {
+        surface: map,
+        ..RunOptions::default()
+    };
+    let setup = Setup::new(&Plan::new(scene.clone())?, &options)?;
     let summary = setup.summary(&cycles, wall_s);
     Ok(SimulationResult {
         complete: false,
         surface: setup.surface_report(),
-        scene: setup.scene,
+        scene: setup.plan.into_scene(),
         models: setup.models,
         warnings: setup.warnings,
         cycles,
@@ -109,7 +113,8 @@ mod tests {
         let scene = parse_scene_str(
             r#"{"preset": "dalmau2018-316l", "overrides": {"numerics": {"grid": 32}}}"#,
         )
-        .expect("valid scene");
+        .expect("valid scene")
+        .into_scene();
         let line = |cycle: u64, volume: f64| {
             format!(
                 r#"{{"cycle": {cycle}, "time_s": 1.0, "wear_volume_mm3": {volume}, "max_depth_um": 0.5, "max_pressure_mpa": 900.0, "contact_area_mm2": 0.02, "plastic_area_mm2": 0.0, "hardness_mpa": 2500.0, "approach_um": 1.5, "iterations": 7, "potential_v": -0.3}}"#

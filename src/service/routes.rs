@@ -29,7 +29,7 @@ use super::surfaces::surface_id;
 use super::{calibration_routes, study_routes, surface_routes};
 use crate::json::{self, JsonError};
 use crate::scene::{FieldError, SceneErrors, presets};
-use crate::simulation::parse_scene;
+use crate::simulation::{Plan, parse_scene};
 
 /// The OpenAPI description, served as is.
 pub const OPENAPI_YAML: &str = include_str!("../../openapi.yaml");
@@ -393,7 +393,9 @@ async fn submit(State(app): State<AppState>, request: Request) -> Result<Respons
             )]))
         }
     })?;
-    let scene = parse_scene(&document).map_err(ApiError::invalid_scene)?;
+    let scene = parse_scene(&document)
+        .map(Plan::into_scene)
+        .map_err(ApiError::invalid_scene)?;
     let jobs = Arc::clone(&app.jobs);
     let record = tokio::task::spawn_blocking(move || {
         // Only a scene naming a stored surface waits for (and holds off) its deletion.

@@ -20,7 +20,7 @@ use super::registry::Jobs;
 use super::store::CyclesWriter;
 use super::surfaces::surface_id;
 use crate::scene::Scene;
-use crate::simulation::{self, CycleRecord, RunOptions, SimulationError};
+use crate::simulation::{self, CycleRecord, Plan, RunOptions, SimulationError};
 
 impl Jobs {
     /// Starts `workers` threads that take jobs from the queue until [`Jobs::stop`].
@@ -122,8 +122,10 @@ impl Jobs {
             surface: map.as_ref(),
             concurrent_runs: NonZeroUsize::new(workers).unwrap_or(NonZeroUsize::MIN),
         };
+        // The scene was checked when submitted; kept on disk, it is checked again here.
+        let plan = Plan::new(scene.clone()).map_err(|e| e.to_string())?;
         let outcome = simulation::run_with(
-            scene,
+            &plan,
             &options,
             &mut |record: &CycleRecord| {
                 let line = match serde_json::to_string(record) {

@@ -1,20 +1,14 @@
 //! Whether the simulation can run a scene: the limits of the contact it describes, which
 //! depend on several fields at once (the materials, the load, the hardness law and the
-//! numerics) and on the sizing rules of [`super::sizing`]. [`check`] runs them after the
-//! scene's own field checks; [`super::Setup::new`] runs [`check`], and a caller can run it
-//! (or [`parse_scene`], which locates the errors in the user's document) before a run.
+//! numerics) and on the sizing rules of [`super::sizing`]. [`super::Plan`] judges every
+//! scene by them once its fields passed their own checks.
 
 use std::f64::consts::PI;
 
-use serde_json::Value;
-
-use super::sizing::{
-    LowestYield, auto_cell_m, auto_domain_m, elastic_pair, hertz, lowest_yield, punch_radius_m,
-    sizing_radius_m,
-};
-use crate::contact::{ElasticPair, Grid};
+use super::sizing::{LowestYield, auto_cell_m, auto_domain_m, punch_radius_m};
+use crate::contact::{ElasticPair, Grid, Hertz};
 use crate::scene::format::{num, sig};
-use crate::scene::{self, DomainSize, FieldError, GridSize, Scene, SceneErrors, Switch};
+use crate::scene::{DomainSize, FieldError, GridSize, Scene, Switch};
 
 /// Largest `mu |beta|` accepted with the coupling term, beta being Dundurs' second parameter
 /// `delta-nu / (2 (1 - nu*))`. Measured with `tribosim contact` on five pairs (|beta| 0.50 to
@@ -29,55 +23,36 @@ const MAX_COUPLING: f64 = 0.8;
 /// shrinks, up to 87% at 0.5 cells.
 const MIN_CELLS_PER_CONTACT_RADIUS: f64 = 1.5;
 
-/// Every problem with `scene`: its fields against their own ranges, then, when those pass,
-/// whether the simulation can run it. The paths are the scene's (`test.load_n`);
-/// [`parse_scene`] gives them as they stand in the user's document.
-pub fn check(scene: &Scene) -> Result<(), SceneErrors> {
-    scene.validate()?;
-    let errors = field_errors(scene);
-    if errors.is_empty() {
-        Ok(())
-    } else {
-        Err(SceneErrors(errors))
-    }
+/// What the check derived from a scene whose fields each passed their own checks, and judges
+/// it by.
+pub(super) struct Derived<'a> {
+    /// The scene's elastic pair.
+    pub(super) pair: &'a ElasticPair,
+    /// The lowest yield pressure of the run.
+    pub(super) lowest: &'a LowestYield,
+    /// Hertz's contact of the unworn ball.
+    pub(super) hertz: &'a Hertz,
+    /// Whether the cap may act (plasticity not "off").
+    pub(super) capped: bool,
+    /// The contact radius the grid is sized by.
+    pub(super) sizing_m: f64,
 }
 
-/// Parses a scene the simulation can run: [`scene::parse_scene`] with the checks of this
-/// module, every error located in the user's document (`overrides.test.load_n` under a
-/// preset). What the service and the command line accept.
-pub fn parse_scene(json: &Value) -> Result<Scene, SceneErrors> {
-    scene::parse_scene_with(json, field_errors)
-}
-
-/// [`parse_scene`] from JSON text.
-pub fn parse_scene_str(text: &str) -> Result<Scene, SceneErrors> {
-    scene::parse_scene_str_with(text, field_errors)
-}
-
-/// The limits of the contact `scene` describes, for a scene whose fields each passed their
-/// own checks (a message here would otherwise really be about one of those fields).
-fn field_errors(scene: &Scene) -> Vec<FieldError> {
+/// The limits of the contact `scene` describes that it breaks, for a scene whose fields each
+/// passed their own checks (a message here would otherwise really be about one of those
+/// fields): the coupling, then the capacity at the lowest cap, and only when both hold the
+/// resolution.
+pub(super) fn limits(scene: &Scene, derived: &Derived) -> Vec<FieldError> {
     let mut errors = Vec::new();
-    // The scene's own checks bound E, nu and the hardness table as the core does; neither
-    // can fail here.
-    let (Ok(pair), Ok(law)) = (elastic_pair(scene), scene.hardness_law()) else {
-        return errors;
-    };
-    check_coupling(&mut errors, scene, &pair);
-    let lowest = lowest_yield(&law, scene.test.cycles, scene.disc.yield_factor);
-    // Judged wherever the cap may act (plasticity not "off"): under "auto" the setup decides
-    // later, from the unworn contact's peak pressure, and where it leaves the cap out Hertz's
-    // contact is wider than the punch, so the sizing radius is the same either way.
-    let capped = scene.wear.plasticity != Switch::Off;
-    if capped {
-        check_capacity(&mut errors, scene, &lowest);
+    check_coupling(&mut errors, scene, derived.pair);
+    if derived.capped {
+        check_capacity(&mut errors, scene, derived.lowest);
     }
     if !errors.is_empty() {
         return errors;
     }
-    let hertz = hertz(scene, &pair);
-    let sizing = sizing_radius_m(&hertz, lowest.yield_pa, capped);
-    check_resolution(&mut errors, scene, hertz.contact_radius_m(), sizing);
+    let hertz_m = derived.hertz.contact_radius_m();
+    check_resolution(&mut errors, scene, hertz_m, derived.sizing_m);
     errors
 }
 
@@ -222,6 +197,13 @@ fn check_resolution(errors: &mut Vec<FieldError>, scene: &Scene, hertz_m: f64, s
 mod tests {
     use super::*;
     use crate::contact::Material;
+    use crate::scene::{self, SceneErrors};
+    use crate::simulation::Plan;
+
+    /// Whether `scene` passes the whole check: its fields, then these limits.
+    fn check(scene: &Scene) -> Result<(), SceneErrors> {
+        Plan::new(scene.clone()).map(drop)
+    }
 
     fn errors(scene: &Scene) -> Vec<FieldError> {
         check(scene).err().map(|e| e.0).unwrap_or_default()

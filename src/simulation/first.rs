@@ -5,10 +5,10 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::contact::{ContactError, ContactProblem, ContactSolution, Grid, cold_start};
-use crate::scene::{DomainSize, Scene};
+use crate::scene::DomainSize;
 
 use super::growth::widen;
-use super::{Model, ModelChoice, Setup, SimulationError};
+use super::{Model, ModelChoice, Plan, RunOptions, Setup, SimulationError};
 
 /// The unworn contact at cycle 1, in the units of its names (`docs/result.md`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -41,11 +41,11 @@ pub struct FirstContact {
     pub models: Vec<ModelChoice>,
 }
 
-/// Solves the first cycle of `scene` (unworn surfaces, Y at cycle 1). An auto domain grows
+/// Solves the first cycle of `plan` (unworn surfaces, Y at cycle 1). An auto domain grows
 /// when the contact reaches its edge, as the run's first cycle does.
-pub fn first_contact(scene: &Scene) -> Result<FirstContact, SimulationError> {
+pub fn first_contact(plan: &Plan) -> Result<FirstContact, SimulationError> {
     let started = Instant::now();
-    let mut setup = Setup::new(scene)?;
+    let mut setup = Setup::new(plan, &RunOptions::default())?;
     let cap = setup.yield_pressure_pa(1.0);
     let (grid, solution) = solve_growing(&mut setup, cap)?;
     Ok(FirstContact {
@@ -59,8 +59,8 @@ pub fn first_contact(scene: &Scene) -> Result<FirstContact, SimulationError> {
         grid: grid.nx,
         domain_um: grid.nx as f64 * grid.dx * 1e6,
         wall_s: started.elapsed().as_secs_f64(),
-        hertz_peak_pressure_mpa: setup.hertz.peak_pressure_pa() / 1e6,
-        hertz_contact_area_mm2: setup.hertz.contact_area_m2() * 1e6,
+        hertz_peak_pressure_mpa: setup.plan.hertz().peak_pressure_pa() / 1e6,
+        hertz_contact_area_mm2: setup.plan.hertz().contact_area_m2() * 1e6,
         models: setup.models,
     })
 }
@@ -69,17 +69,17 @@ pub fn first_contact(scene: &Scene) -> Result<FirstContact, SimulationError> {
 /// rough disc's can, `tests/stability_rough.rs`), on the grid grown along both axes until
 /// it fits or reaches the size limit; each growth is recorded in the setup's models.
 fn solve_growing(setup: &mut Setup, cap: f64) -> Result<(Grid, ContactSolution), SimulationError> {
-    let grows = setup.scene.numerics.domain_um == DomainSize::Auto;
+    let grows = setup.scene().numerics.domain_um == DomainSize::Auto;
     let mut grid = setup.grid;
     loop {
         let separation = setup.ball_separation(&grid);
         let problem = ContactProblem {
             grid,
             separation: &separation,
-            load_n: setup.scene.load_n(),
+            load_n: setup.scene().load_n(),
             yield_pressure_pa: cap,
         };
-        let start = cold_start(&problem, &setup.pair, &setup.options);
+        let start = cold_start(&problem, setup.plan.pair(), &setup.options);
         let solved = setup
             .solver(&grid)
             .solve(&problem, &setup.options, start.as_deref());

@@ -1,12 +1,14 @@
-//! A simulation run: whether a scene can run ([`check`], [`parse_scene`]), its setup and the
-//! sizing rules behind it, the per-cycle loop and its result. Plain synchronous code; a
-//! caller (the command line, the service) drives it through a callback and a cancel flag.
+//! A simulation run: whether a scene can run (the checked scene, [`Plan`], made by
+//! [`Plan::new`] and [`parse_scene`]), its setup and the sizing rules behind it, the
+//! per-cycle loop and its result. Plain synchronous code; a caller (the command line, the
+//! service) drives it through a callback and a cancel flag.
 
 mod electrochemistry;
 mod feasibility;
 mod first;
 mod growth;
 mod hardening;
+mod plan;
 mod result;
 mod roughness;
 mod run;
@@ -26,15 +28,15 @@ use crate::surface::SurfaceError;
 /// The default cycle-step bound, owned by the scene; here beside [`MAX_STEP`] for the
 /// callers that study the stepping (the benchmarks).
 pub use crate::scene::STEP_CHANGE_BOUND;
-pub use feasibility::{check, parse_scene, parse_scene_str};
 pub use first::{FirstContact, first_contact};
 pub use hardening::FAR_OFF_FRACTION;
+pub use plan::{Plan, parse_scene, parse_scene_str};
 pub use result::{
     CycleRecord, Model, ModelChoice, PressureMap, Profile, SimulationResult, Summary, SurfaceReport,
 };
 pub use roughness::{CELLS_PER_SHORT_WAVELENGTH, DiscSurface};
-pub use run::{RunOptions, run, run_setup, run_with};
-pub use setup::{COUPLING_SENSITIVITY, Setup};
+pub use run::{run, run_setup, run_with};
+pub use setup::{COUPLING_SENSITIVITY, RunOptions, Setup};
 pub use sizing::{CELLS_PER_CONTACT_RADIUS, DOMAIN_PER_CONTACT_RADIUS};
 pub use stepping::MAX_STEP;
 

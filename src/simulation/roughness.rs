@@ -236,8 +236,18 @@ fn measured(spec: &SurfaceSpec, supplied: &HeightMap, grid: &Grid) -> DiscSurfac
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::parse_scene_str;
-    use crate::simulation::Setup;
+    use crate::scene::{Scene, parse_scene_str};
+    use crate::simulation::{Plan, RunOptions, Setup};
+
+    /// The setup of `scene`, with the measured `surface` if any.
+    fn setup(scene: &Scene, surface: Option<&HeightMap>) -> Result<Setup, SimulationError> {
+        let plan = Plan::new(scene.clone())?;
+        let options = RunOptions {
+            surface,
+            ..RunOptions::default()
+        };
+        Setup::new(&plan, &options)
+    }
 
     #[test]
     fn a_height_that_gives_a_slope_above_the_theorys_limit_is_refused_by_name() {
@@ -250,7 +260,7 @@ mod tests {
             ))
             .expect("valid")
         };
-        match Setup::new(&scene(13.0)) {
+        match setup(&scene(13.0), None) {
             Err(SimulationError::Scene(SceneErrors(errors))) => {
                 assert_eq!(errors.len(), 1);
                 assert_eq!(errors[0].path, "disc.surface.rms_height_um");
@@ -262,8 +272,8 @@ mod tests {
             }
             other => panic!("expected the height refused, got {other:?}"),
         }
-        let setup = Setup::new(&scene(0.1)).expect("runs");
-        let slope = setup.surface.expect("rough").statistics.rms_slope;
+        let smooth = setup(&scene(0.1), None).expect("runs");
+        let slope = smooth.surface.expect("rough").statistics.rms_slope;
         assert!(slope < MAX_RMS_SLOPE, "{slope}");
     }
 
@@ -276,8 +286,8 @@ mod tests {
                                      "short_cutoff_um": 4, "long_cutoff_um": 60}}}"#,
         )
         .expect("valid");
-        let setup = Setup::new(&scene).expect("runs");
-        let surface = setup.surface.expect("rough");
+        let coarse = setup(&scene, None).expect("runs");
+        let surface = coarse.surface.expect("rough");
         assert!(
             surface.model.reason.contains("UNDER-RESOLVED"),
             "{}",
@@ -298,15 +308,15 @@ mod tests {
             parse_scene_str(r#"{"disc": {"surface": {"kind": "measured", "id": "lab.gsf"}}}"#)
                 .expect("valid");
         assert!(matches!(
-            Setup::new(&scene),
+            setup(&scene, None),
             Err(SimulationError::SurfaceNotSupplied { ref id }) if id == "lab.gsf"
         ));
         // Supplied, 1 um pixels: the grid's cells follow the pixel.
         let heights = (0..64 * 64).map(|i| 1e-8 * ((i % 7) as f64)).collect();
         let map = HeightMap::new(64, 64, 1e-6, 1e-6, heights).expect("valid");
-        let setup = Setup::with_surface(&scene, Some(&map)).expect("runs");
-        assert!(setup.grid.dx <= 1e-6 + 1e-15, "{}", setup.grid.dx);
-        let surface = setup.surface.expect("rough");
+        let supplied = setup(&scene, Some(&map)).expect("runs");
+        assert!(supplied.grid.dx <= 1e-6 + 1e-15, "{}", supplied.grid.dx);
+        let surface = supplied.surface.expect("rough");
         assert!(surface.source.is_some());
         assert!(surface.model.reason.contains("lab.gsf"));
     }

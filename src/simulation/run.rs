@@ -15,7 +15,6 @@
 //!    same pressure, and an auto domain grows if the contact nears its edge
 //!    ([`super::growth`]).
 
-use std::num::NonZeroUsize;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
@@ -23,8 +22,8 @@ use crate::contact::{
     ContactError, ContactProblem, ContactSolution, ContactSolver, Grid, MARGIN_FRACTION,
     MIN_MARGIN, Window, WindowFractions, WindowedSolver, cold_start,
 };
-use crate::scene::{DomainSize, Scene};
-use crate::surface::{HeightMap, count_islands};
+use crate::scene::DomainSize;
+use crate::surface::count_islands;
 use crate::wear::Groove;
 
 use super::electrochemistry::{Cell, Reading, Surface};
@@ -32,7 +31,8 @@ use super::growth::{GROW_AT_EDGE_CELLS, GROW_AT_FRACTION, near_edges, widen};
 use super::stepping::Stepper;
 use super::warm::WarmStart;
 use super::{
-    CycleRecord, Model, ModelChoice, PressureMap, Profile, Setup, SimulationError, SimulationResult,
+    CycleRecord, Model, ModelChoice, Plan, PressureMap, Profile, RunOptions, Setup,
+    SimulationError, SimulationResult,
 };
 
 /// Cycles at which the depth profile is kept when solved (paper Figs. 12 and 15 use 10 and
@@ -41,46 +41,24 @@ const PROFILE_CYCLES: [u64; 16] = [
     1, 2, 5, 10, 20, 50, 60, 100, 200, 300, 500, 1000, 1800, 2000, 3600, 5000,
 ];
 
-/// What a run takes beside its scene.
-#[derive(Debug, Clone, Copy)]
-pub struct RunOptions<'a> {
-    /// The height map of a scene whose `disc.surface` is measured.
-    pub surface: Option<&'a HeightMap>,
-    /// Runs solving at the same time as this one, among which its automatic thread counts
-    /// (`numerics.threads: "auto"`) share the cores; the results do not depend on it.
-    pub concurrent_runs: NonZeroUsize,
-}
-
-impl Default for RunOptions<'_> {
-    /// No measured surface; the only run of the process.
-    fn default() -> Self {
-        Self {
-            surface: None,
-            concurrent_runs: NonZeroUsize::MIN,
-        }
-    }
-}
-
-/// Runs `scene`. Calls `on_cycle` after every solved cycle and stops with
+/// Runs `plan`. Calls `on_cycle` after every solved cycle and stops with
 /// [`SimulationError::Cancelled`] once `cancel` is set (checked once per solved cycle).
 pub fn run(
-    scene: &Scene,
+    plan: &Plan,
     on_cycle: &mut dyn FnMut(&CycleRecord),
     cancel: &AtomicBool,
 ) -> Result<SimulationResult, SimulationError> {
-    run_with(scene, &RunOptions::default(), on_cycle, cancel)
+    run_with(plan, &RunOptions::default(), on_cycle, cancel)
 }
 
 /// [`run`] with `options`: a measured surface, other runs sharing the cores.
 pub fn run_with(
-    scene: &Scene,
+    plan: &Plan,
     options: &RunOptions,
     on_cycle: &mut dyn FnMut(&CycleRecord),
     cancel: &AtomicBool,
 ) -> Result<SimulationResult, SimulationError> {
-    let mut setup = Setup::with_surface(scene, options.surface)?;
-    setup.options.concurrent_runs = options.concurrent_runs;
-    run_setup(&setup, on_cycle, cancel)
+    run_setup(&Setup::new(plan, options)?, on_cycle, cancel)
 }
 
 /// [`run`] of a scene already set up, e.g. with its solver options changed.
@@ -91,7 +69,7 @@ pub fn run_setup(
 ) -> Result<SimulationResult, SimulationError> {
     let started = Instant::now();
     let mut state = Run::new(setup, |grid: &Grid| setup.solver(grid));
-    let total = setup.scene.test.cycles;
+    let total = setup.scene().test.cycles;
     let mut cycle = 1;
     while cycle <= total {
         if cancel.load(Ordering::Relaxed) {
@@ -134,7 +112,7 @@ struct Run<'a, F> {
 
 impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
     fn new(setup: &'a Setup, factory: F) -> Self {
-        let scene = &setup.scene;
+        let scene = setup.scene();
         let grid = setup.grid;
         Self {
             setup,
@@ -145,7 +123,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             groove: setup.unworn_disc(),
             stepper: Stepper::new(scene.numerics.cycle_step, scene.numerics.cycle_step_bound),
             record_cycles: scene.record_cycles(),
-            history: WarmStart::new(setup.pair.reduced_modulus_pa, grid.dx.min(grid.dy)),
+            history: WarmStart::new(setup.plan.pair().reduced_modulus_pa, grid.dx.min(grid.dy)),
             cell: scene.corrosion.as_ref().map(Cell::new),
             grows: scene.numerics.domain_um == DomainSize::Auto,
             models: setup.models.clone(),
@@ -169,7 +147,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let n = cycle as f64;
         // The hardness of this cycle and the cap it gives (eq. 12).
         let cap = setup.yield_pressure_pa(n);
-        let hardness_pa = setup.hardness.hardness_pa(n);
+        let hardness_pa = setup.plan.hardness().hardness_pa(n);
         // The contact on the current surface (eqs. 2-12).
         let (solution, separation) = self.solve_contact(cycle, cap)?;
         // Yielding truncates the rows under capped cells (eq. 13); the profile of one pass of
@@ -185,8 +163,8 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         // solving every cycle volume +1.42e-4 against +1.92e-4, WAC -1.46e-3 against
         // -1.60e-3.
         let cut = self.groove.area_m2() - worn_before;
-        let reshaped = yielded && cut > setup.scene.numerics.cycle_step_bound * worn_before;
-        let wear = &setup.wear;
+        let reshaped = yielded && cut > setup.scene().numerics.cycle_step_bound * worn_before;
+        let wear = setup.plan.wear();
         let pass = wear.pass_profile(&self.grid, &solution.pressure);
         // A step never passes a record cycle, so that cycle is solved; nor the first cycle
         // of a new wear rate (an Archard regime), whose rate the step was not chosen for.
@@ -197,18 +175,20 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             .chain(wear.rate_change_cycle())
             .filter(|&r| r > cycle)
             .min()
-            .unwrap_or(setup.scene.test.cycles);
+            .unwrap_or(setup.scene().test.cycles);
         // The step controller's rate of change was measured at the old rate: it starts
         // afresh (solving every cycle, then doubling) at the first cycle of a new one.
         if wear.rate_change_cycle() == Some(cycle) {
-            let numerics = &setup.scene.numerics;
+            let numerics = &setup.scene().numerics;
             self.stepper = Stepper::new(numerics.cycle_step, numerics.cycle_step_bound);
         }
         let step = self.stepper.next(cycle, stop, reshaped, &pass);
         self.max_step = self.max_step.max(step);
         // The profile update (eq. 17): the pass at this cycle's hardness, after the yielding.
-        self.groove
-            .deepen(&pass, wear.depth_scale(cycle..cycle + 1, &setup.hardness));
+        self.groove.deepen(
+            &pass,
+            wear.depth_scale(cycle..cycle + 1, setup.plan.hardness()),
+        );
         // Corrosion (eq. 18, Faraday), the record, then the cycles the solve stands for.
         let reading = self.corrode(cycle, &solution, hardness_pa)?;
         self.record(cycle, &solution, cap, reading, on_cycle);
@@ -230,13 +210,13 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let problem = ContactProblem {
             grid: self.grid,
             separation: &separation,
-            load_n: self.setup.scene.load_n(),
+            load_n: self.setup.scene().load_n(),
             yield_pressure_pa: cap,
         };
         let start = self
             .history
             .guess(cycle, cap)
-            .or_else(|| cold_start(&problem, &self.setup.pair, &self.setup.options));
+            .or_else(|| cold_start(&problem, self.setup.plan.pair(), &self.setup.options));
         let solved = self
             .solver
             .solve(&problem, &self.setup.options, start.as_deref());
@@ -273,7 +253,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         solution: &ContactSolution,
         hardness_pa: f64,
     ) -> Result<Option<Reading>, SimulationError> {
-        let scene = &self.setup.scene;
+        let scene = self.setup.scene();
         let Some(cell) = self.cell.as_mut() else {
             return Ok(None);
         };
@@ -301,18 +281,18 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
     ) {
         let (setup, grid) = (self.setup, &self.grid);
         let n = cycle as f64;
-        let track_length = setup.scene.track_length_m();
+        let track_length = setup.scene().track_length_m();
         let contact: Vec<bool> = solution.pressure.iter().map(|&p| p > 0.0).collect();
         let record = CycleRecord {
             cycle,
-            time_s: n * setup.scene.cycle_period_s(),
+            time_s: n * setup.scene().cycle_period_s(),
             wear_volume_mm3: self.groove.area_m2() * track_length * 1e9,
             max_depth_um: self.groove.max_depth_m() * 1e6,
             max_pressure_mpa: solution.max_pressure_pa() / 1e6,
             contact_area_mm2: solution.contact_area_m2(grid) * 1e6,
             contact_islands: count_islands(&contact, grid.nx),
             plastic_area_mm2: solution.plastic_area_m2(grid, cap) * 1e6,
-            hardness_mpa: setup.hardness.hardness_pa(n) / 1e6,
+            hardness_mpa: setup.plan.hardness().hardness_pa(n) / 1e6,
             approach_um: solution.approach_m * 1e6,
             iterations: solution.iterations,
             potential_v: reading.map(|r| r.potential_v),
@@ -327,7 +307,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         }
         if PROFILE_CYCLES.contains(&cycle)
             || self.record_cycles.contains(&cycle)
-            || cycle == setup.scene.test.cycles
+            || cycle == setup.scene().test.cycles
         {
             self.profiles.push(Profile::of(cycle, grid, &self.groove));
         }
@@ -338,11 +318,12 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
     fn wear_skipped(&mut self, cycle: u64, step: u64, pass: &[f64], reading: Option<&Reading>) {
         let setup = self.setup;
         let skipped = setup
-            .wear
-            .depth_scale(cycle + 1..cycle + step, &setup.hardness);
+            .plan
+            .wear()
+            .depth_scale(cycle + 1..cycle + step, setup.plan.hardness());
         self.groove.deepen(pass, skipped);
         if let (Some(cell), Some(reading)) = (self.cell.as_mut(), reading) {
-            cell.skipped(reading, (step - 1) as f64 * setup.scene.cycle_period_s());
+            cell.skipped(reading, (step - 1) as f64 * setup.scene().cycle_period_s());
         }
     }
 
@@ -387,7 +368,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
     /// The result: the last pressure map, the run's own model choices and the totals.
     fn finish(mut self, started: Instant) -> SimulationResult {
         let setup = self.setup;
-        let scene = &setup.scene;
+        let scene = setup.scene();
         // The last solved pressure, on the grid as it ended (embedded if the domain grew).
         if let (Some(record), Some(pressure)) = (self.records.last(), self.history.last()) {
             if record.cycle != 1 {
@@ -415,7 +396,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
     /// solve window, the wear law and corrosion.
     fn run_models(&mut self) -> Vec<ModelChoice> {
         let setup = self.setup;
-        let numerics = &setup.scene.numerics;
+        let numerics = &setup.scene().numerics;
         let mut models = std::mem::take(&mut self.models);
         models.push(ModelChoice {
             name: Model::CycleStep,
@@ -424,7 +405,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 "{:?}: {} solves for {} cycles, longest step {}; a step keeps the per-pass wear profile within {:.2}% of the solved one",
                 numerics.cycle_step,
                 self.solves,
-                setup.scene.test.cycles,
+                setup.scene().test.cycles,
                 self.max_step,
                 numerics.cycle_step_bound * 100.0
             ),
@@ -440,9 +421,9 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 100.0 * self.window_fractions.checked / self.solves as f64
             ),
         });
-        let law = setup.wear.choice();
+        let law = setup.plan.wear().choice();
         models.push(ModelChoice {
-            name: Model::of_law(&setup.wear),
+            name: Model::of_law(setup.plan.wear()),
             active: law.active,
             reason: law.reason,
         });
@@ -461,7 +442,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::parse_scene_str;
+    use crate::simulation::parse_scene_str;
 
     /// The paper's scene for 20 cycles, the plastic cap on, on a disc of `surface`.
     fn paper_scene(surface: &str) -> Setup {
@@ -469,7 +450,8 @@ mod tests {
             r#"{{"preset": "dalmau2018-316l", "overrides": {{"test": {{"cycles": 20}},
                 "wear": {{"plasticity": "on"}}, "disc": {{"surface": {surface}}}}}}}"#
         );
-        Setup::new(&parse_scene_str(&text).expect("valid")).expect("runs")
+        let plan = parse_scene_str(&text).expect("valid");
+        Setup::new(&plan, &RunOptions::default()).expect("runs")
     }
 
     /// 0.1 um rms, H 0.8, cut-offs 4 and 50 um: the grid has 288 cells of 0.5 um (11 s a
@@ -495,7 +477,7 @@ mod tests {
     #[test]
     fn asperities_flatten_and_the_rough_disc_wears_near_the_smooth_one() {
         let setup = paper_scene(ROUGH);
-        let radius = setup.hertz.contact_radius_m();
+        let radius = setup.plan.hertz().contact_radius_m();
         let mut state = Run::new(&setup, |grid: &Grid| setup.solver(grid));
         let mut rms = vec![rms_along_track(&state.groove, &state.grid, radius)];
         let mut cycle = 1;
@@ -533,13 +515,14 @@ mod tests {
                 truncated.push(iy);
             }
         }
-        let length = setup.scene.track_length_m();
+        let length = setup.scene().track_length_m();
         let volume = state.groove.area_m2() * length;
         // Archard's volume is k F L / H per cycle whatever the pressures (the solves carry the
         // load to 1e-11); the rest is exactly the asperity material cut. 1e-9 relative allows
         // the summation round-off of 20 cycles.
-        let archard =
-            setup.wear.depth_scale(1..21, &setup.hardness) * setup.scene.load_n() * length;
+        let archard = setup.plan.wear().depth_scale(1..21, setup.plan.hardness())
+            * setup.scene().load_n()
+            * length;
         let accounted = archard + cut * length;
         assert!(
             (volume / accounted - 1.0).abs() < 1e-9,
@@ -549,7 +532,7 @@ mod tests {
         // one cannot exceed it by more than the roughness above the lowest level it was cut
         // to, in the rows it was cut in.
         let smooth = run(
-            &paper_scene("null").scene,
+            &paper_scene("null").plan,
             &mut |_| {},
             &AtomicBool::new(false),
         )

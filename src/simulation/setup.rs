@@ -1,22 +1,22 @@
-//! From a scene to the numerical problem: materials, grid and domain, the hardness law, and
-//! the decisions of what to model, each recorded with its reason.
+//! From a checked scene to the numerical problem: the grid and domain, the disc's initial
+//! roughness on it, the solver's settings, and the decisions of what to model, each recorded
+//! with its reason.
+
+use std::num::NonZeroUsize;
 
 use crate::contact::{
     ContactSolver, CoupledSolver, DcFft, ElasticPair, Grid, Hertz, Kernel, NormalSolver,
     SolverOptions, split_threads,
 };
-use crate::hardness::HardnessLaw;
 use crate::scene::{Scene, SolverThreads, Switch};
 use crate::surface::HeightMap;
-use crate::wear::{Groove, WearLaw};
+use crate::wear::Groove;
 
-use super::feasibility::check;
 use super::hardening::work_hardening_report;
+use super::plan::Plan;
 use super::result::{CycleRecord, Summary, SurfaceReport};
 use super::roughness::{DiscSurface, build, wanted_cell_m};
-use super::sizing::{
-    GridPlan, LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m,
-};
+use super::sizing::{GridPlan, LowestYield, plan_grid};
 use super::{Model, ModelChoice, SimulationError};
 
 /// The coupling term changes the pressures by at least 1.2 |mu delta-nu| relative to p0
@@ -24,21 +24,34 @@ use super::{Model, ModelChoice, SimulationError};
 /// mu from 0.01 to 1). Below `tolerance / COUPLING_SENSITIVITY` it cannot matter.
 pub const COUPLING_SENSITIVITY: f64 = 1.2;
 
-/// A scene turned into numbers (SI) and modelling decisions.
+/// What a run takes beside its plan.
+#[derive(Debug, Clone, Copy)]
+pub struct RunOptions<'a> {
+    /// The height map of a scene whose `disc.surface` is measured.
+    pub surface: Option<&'a HeightMap>,
+    /// Runs solving at the same time as this one, among which its automatic thread counts
+    /// (`numerics.threads: "auto"`) share the cores; the results do not depend on it.
+    pub concurrent_runs: NonZeroUsize,
+}
+
+impl Default for RunOptions<'_> {
+    /// No measured surface; the only run of the process.
+    fn default() -> Self {
+        Self {
+            surface: None,
+            concurrent_runs: NonZeroUsize::MIN,
+        }
+    }
+}
+
+/// A checked scene turned into numbers (SI) and modelling decisions.
 #[derive(Debug, Clone)]
 pub struct Setup {
-    /// The validated scene, defaults filled in.
-    pub scene: Scene,
-    /// Combined elastic constants.
-    pub pair: ElasticPair,
+    /// The checked scene and what the check derived from it: the elastic pair, the
+    /// hardness law, Hertz's contact, the wear law.
+    pub plan: Plan,
     /// The first cycle's grid.
     pub grid: Grid,
-    /// Hertz's solution for the unworn ball, the yardstick for sizing.
-    pub hertz: Hertz,
-    /// Disc hardness against cycles.
-    pub hardness: HardnessLaw,
-    /// The wear law (Archard's, with its coefficient and change of regime).
-    pub wear: WearLaw,
     /// Whether pressures are capped at Y (eq. 12).
     pub plasticity: bool,
     /// Whether the friction coupling term is modelled (eq. 7).
@@ -97,44 +110,33 @@ impl Setup {
             max_depth_um: last.map_or(0.0, |c| c.max_depth_um),
             wac_volume_mm3: last.and_then(|c| c.wac_volume_mm3),
             potential_v: last.and_then(|c| c.potential_v),
-            wear: self.wear.summary(),
+            wear: self.plan.wear().summary(),
             wall_s,
             solves: cycles.len(),
             iterations: cycles.iter().map(|c| c.iterations).sum(),
         }
     }
 
-    /// Checks the scene ([`check`]: its fields, and whether it can be simulated) and makes
-    /// every decision.
-    pub fn new(scene: &Scene) -> Result<Self, SimulationError> {
-        Self::with_surface(scene, None)
-    }
-
-    /// [`Self::new`] with the height map of a scene whose `disc.surface` is measured.
-    pub fn with_surface(
-        scene: &Scene,
-        supplied: Option<&HeightMap>,
-    ) -> Result<Self, SimulationError> {
-        check(scene)?;
-        let pair = elastic_pair(scene).map_err(SimulationError::Setup)?;
-        let hardness = scene.hardness_law()?;
-        let wear = scene.wear.law(&scene.test, &hardness);
-        let hertz = hertz(scene, &pair);
-        let options = SolverOptions {
+    /// Makes every decision for `plan`, with the measured surface and the cores' share of
+    /// `options`.
+    pub fn new(plan: &Plan, options: &RunOptions) -> Result<Self, SimulationError> {
+        let scene = plan.scene();
+        let solver = SolverOptions {
             tolerance: scene.numerics.tolerance,
+            concurrent_runs: options.concurrent_runs,
             ..SolverOptions::default()
         };
-        let lowest = lowest_yield(&hardness, scene.test.cycles, scene.disc.yield_factor);
         let mut models = Vec::new();
-        let plasticity = decide_plasticity(&mut models, scene, &hertz, &lowest);
-        let coupling = decide_coupling(&mut models, scene, &pair, &options);
-        let radius = sizing_radius_m(&hertz, lowest.yield_pa, plasticity);
+        let plasticity = decide_plasticity(&mut models, scene, plan.hertz(), plan.lowest_yield());
+        let coupling = decide_coupling(&mut models, scene, plan.pair(), &solver);
+        let radius = plan.sizing_radius_m();
         let spec = scene.disc.surface.as_ref();
-        let surface_cell = spec.and_then(|s| wanted_cell_m(s, supplied));
-        let plan = plan_grid(&scene.numerics, radius, surface_cell);
-        let grid = Grid::square(plan.cells, plan.domain_m).map_err(SimulationError::Setup)?;
-        models.push(grid_choice(&grid, &plan, radius));
-        let mut surface = spec.map(|s| build(s, supplied, &grid)).transpose()?;
+        let surface_cell = spec.and_then(|s| wanted_cell_m(s, options.surface));
+        let grid_plan = plan_grid(&scene.numerics, radius, surface_cell);
+        let grid =
+            Grid::square(grid_plan.cells, grid_plan.domain_m).map_err(SimulationError::Setup)?;
+        models.push(grid_choice(&grid, &grid_plan, radius));
+        let mut surface = spec.map(|s| build(s, options.surface, &grid)).transpose()?;
         if let Some(surface) = &mut surface {
             if plasticity {
                 surface.model.reason.push_str(
@@ -144,29 +146,31 @@ impl Setup {
             }
             models.push(surface.model.clone());
         }
-        let (hardening, warnings) = work_hardening_report(&scene.disc, &hardness);
+        let (hardening, warnings) = work_hardening_report(&scene.disc, plan.hardness());
         models.push(hardening);
         Ok(Self {
-            scene: scene.clone(),
-            pair,
+            plan: plan.clone(),
             grid,
-            hertz,
-            hardness,
-            wear,
             plasticity,
             coupling,
-            options,
+            options: solver,
             models,
             warnings,
             surface,
         })
     }
 
+    /// The scene, defaults filled in.
+    pub fn scene(&self) -> &Scene {
+        self.plan.scene()
+    }
+
     /// The pressure cap at `cycle`: `H(n) / yield_factor`, or infinite without plasticity.
     pub fn yield_pressure_pa(&self, cycle: f64) -> f64 {
         if self.plasticity {
-            self.hardness
-                .yield_pressure_pa(cycle, self.scene.disc.yield_factor)
+            self.plan
+                .hardness()
+                .yield_pressure_pa(cycle, self.scene().disc.yield_factor)
         } else {
             f64::INFINITY
         }
@@ -176,7 +180,7 @@ impl Setup {
     /// `rho^2 / (r + sqrt(r^2 - rho^2))`: equal to `r - sqrt(r^2 - rho^2)`, which loses the
     /// height to round-off once it nears `r` times machine epsilon (tiny contacts).
     pub fn ball_height(&self, grid: &Grid) -> Vec<f64> {
-        let r = self.scene.ball_radius_m();
+        let r = self.scene().ball_radius_m();
         grid.sample(|x, y| {
             let rho2 = x * x + y * y;
             if rho2 >= r * r {
@@ -205,14 +209,18 @@ impl Setup {
 
     /// The contact solver of `grid`: the normal operator alone, or with the coupling term.
     pub fn solver(&self, grid: &Grid) -> Box<dyn ContactSolver> {
-        let normal = Kernel::normal(grid, &self.pair);
-        let requested = match self.scene.numerics.threads {
+        let normal = Kernel::normal(grid, self.plan.pair());
+        let requested = match self.scene().numerics.threads {
             SolverThreads::Auto => None,
             SolverThreads::Count(threads) => Some(threads),
         };
         let threads = split_threads(requested, grid.len(), self.options.concurrent_runs);
         if self.coupling {
-            let coupling = Kernel::coupling(grid, &self.pair, self.scene.test.friction_coefficient);
+            let coupling = Kernel::coupling(
+                grid,
+                self.plan.pair(),
+                self.scene().test.friction_coefficient,
+            );
             Box::new(CoupledSolver::new(&normal, &coupling).threaded(threads))
         } else {
             Box::new(NormalSolver::new(DcFft::new(&normal).threaded(threads)))
@@ -285,16 +293,20 @@ fn grid_choice(grid: &Grid, plan: &GridPlan, radius: f64) -> ModelChoice {
     )
 }
 
-/// The hardness law in words.
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::parse_scene_str;
+    use crate::simulation::parse_scene_str;
+
+    /// The setup of the scene `json`, without a measured surface.
+    fn setup(json: &str) -> Setup {
+        let plan = parse_scene_str(json).expect("valid");
+        Setup::new(&plan, &RunOptions::default()).expect("valid")
+    }
 
     #[test]
     fn paper_scene_gets_the_paper_cells_and_both_models() {
-        let scene = parse_scene_str(r#"{"preset": "dalmau2018-316l"}"#).expect("valid");
-        let setup = Setup::new(&scene).expect("valid");
+        let setup = setup(r#"{"preset": "dalmau2018-316l"}"#);
         // 3 radii of 44.2 um in 1 um cells is 133 cells, rounded up to 2^4 x 3^2.
         assert_eq!(setup.grid.nx, 144);
         assert!(
@@ -307,21 +319,18 @@ mod tests {
 
     #[test]
     fn identical_materials_or_no_friction_leave_the_coupling_out() {
-        let scene = parse_scene_str(
+        let same = setup(
             r#"{"ball": {"youngs_modulus_gpa": 205, "poisson_ratio": 0.28},
                 "test": {"friction_coefficient": 0.45}}"#,
-        )
-        .expect("valid");
-        assert!(!Setup::new(&scene).expect("valid").coupling);
-        let scene = parse_scene_str(r#"{"test": {"friction_coefficient": 0}}"#).expect("valid");
-        assert!(!Setup::new(&scene).expect("valid").coupling);
+        );
+        assert!(!same.coupling);
+        assert!(!setup(r#"{"test": {"friction_coefficient": 0}}"#).coupling);
     }
 
     #[test]
     fn light_load_on_hard_disc_is_elastic() {
-        let scene = parse_scene_str(r#"{"test": {"load_n": 0.1}}"#).expect("valid");
-        let setup = Setup::new(&scene).expect("valid");
-        assert!(!setup.plasticity);
-        assert!(setup.yield_pressure_pa(1.0).is_infinite());
+        let light = setup(r#"{"test": {"load_n": 0.1}}"#);
+        assert!(!light.plasticity);
+        assert!(light.yield_pressure_pa(1.0).is_infinite());
     }
 }

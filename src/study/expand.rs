@@ -46,11 +46,13 @@ impl Study {
             set(&mut document, path, value.clone())?;
         }
         let described = describe_values(&values);
-        let mut scene = parse_scene(&document).map_err(|source| StudyError::Member {
-            index,
-            values: described.clone(),
-            source,
-        })?;
+        let mut scene = parse_scene(&document)
+            .map_err(|source| StudyError::Member {
+                index,
+                values: described.clone(),
+                source,
+            })?
+            .into_scene();
         // Every member would otherwise carry the base's name, which for a member at another
         // load names the wrong test in a job list or a result file.
         scene.name = format!("{} [{described}]", scene.name);

@@ -5,7 +5,7 @@ use std::num::NonZeroUsize;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc;
 
-use crate::simulation::{RunOptions, SimulationError, SimulationResult, run_with};
+use crate::simulation::{Plan, RunOptions, SimulationError, SimulationResult, run_with};
 
 use super::Member;
 
@@ -52,7 +52,11 @@ pub fn run_members(
                     let result = if cancel.load(Ordering::Relaxed) {
                         Err(SimulationError::Cancelled { cycles_done: 0 })
                     } else {
-                        run_with(&member.scene, options, &mut |_| {}, cancel)
+                        // A member's scene is data (a Slurm file, a job's record): it is
+                        // checked again where it runs.
+                        Plan::new(member.scene.clone())
+                            .map_err(SimulationError::from)
+                            .and_then(|plan| run_with(&plan, options, &mut |_| {}, cancel))
                     };
                     // The receiver lives until every worker has ended.
                     let _ = sender.send(MemberOutcome { index, result });

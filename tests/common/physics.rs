@@ -9,7 +9,7 @@ use std::sync::atomic::AtomicBool;
 
 use tribosim::contact::{ElasticPair, Hertz, Material, SolverOptions};
 use tribosim::scene::Scene;
-use tribosim::simulation::{SimulationError, SimulationResult, parse_scene_str, run};
+use tribosim::simulation::{Plan, SimulationError, SimulationResult, parse_scene_str, run};
 
 /// The paper's ball radius, m.
 pub const RADIUS_M: f64 = 3e-3;
@@ -57,10 +57,15 @@ pub fn relative_error(got: f64, want: f64) -> f64 {
 
 /// A scene the simulation accepts, from JSON.
 pub fn scene(json: &str) -> Scene {
-    parse_scene_str(json).expect("valid scene")
+    parse_scene_str(json).expect("valid scene").into_scene()
 }
 
-/// `scene` run to the end, with no callback and no cancel.
+/// `scene`, checked (a changed scene may be refused).
+pub fn plan(scene: &Scene) -> Result<Plan, SimulationError> {
+    Ok(Plan::new(scene.clone())?)
+}
+
+/// `scene` checked and run to the end, with no callback and no cancel.
 pub fn simulate(scene: &Scene) -> Result<SimulationResult, SimulationError> {
-    run(scene, &mut |_| {}, &AtomicBool::new(false))
+    run(&plan(scene)?, &mut |_| {}, &AtomicBool::new(false))
 }
