@@ -1,5 +1,5 @@
 //! How big the contact is and what grid it gets: the one home of the sizing rules that the
-//! setup ([`super::Setup`]) applies and the feasibility checks ([`super::check`]) judge by.
+//! setup ([`super::Setup`]) applies and the checks of a plan ([`super::Plan`]) judge by.
 //!
 //! The grid is sized by a contact radius: Hertz's for the unworn ball, or, when the pressure
 //! cap can act, the flat punch that carries the load at the lowest yield pressure of the run
