@@ -6,12 +6,11 @@
 
 use std::ops::Range;
 
-use serde::{Deserialize, Serialize};
-
 use crate::contact::Grid;
 use crate::hardness::HardnessLaw;
 
-use super::law::{LawChoice, WearSummary};
+use super::regime::ArchardRegimeChange;
+use super::report::{LawChoice, WearSummary};
 
 /// Archard coefficient from a measured wear volume, k = V H / (F s) (eq. 1).
 pub fn archard_k_from_measurement(
@@ -37,30 +36,6 @@ pub fn pass_pressure_integral(grid: &Grid, pressure: &[f64]) -> Vec<f64> {
         .chunks_exact(grid.nx)
         .map(|row| row.iter().sum::<f64>() * grid.dx)
         .collect()
-}
-
-/// A change of Archard regime (the paper's Section 5.2: a low-wear period before about 300
-/// cycles, Archard wear after it): cycles up to and including `cycle` wear with
-/// `archard_k_before`, the later ones with the law's k. The scene's
-/// `wear.archard_regime_change` and the result's `summary.archard_regime_change`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ArchardRegimeChange {
-    /// The last cycle of the first regime.
-    pub cycle: u64,
-    /// k of the cycles up to and including `cycle`, dimensionless.
-    pub archard_k_before: f64,
-}
-
-impl ArchardRegimeChange {
-    /// k of `cycle` when `k_after` applies after the change.
-    pub fn k_at(&self, cycle: u64, k_after: f64) -> f64 {
-        if cycle <= self.cycle {
-            self.archard_k_before
-        } else {
-            k_after
-        }
-    }
 }
 
 /// A measured wear volume and the test it was measured in, from which eq. 1 derives k: as

@@ -1,16 +1,14 @@
 //! The wear law of a run, the one place that knows its coefficient: the depth a pass wears
 //! at a cycle, the cycle at which its rate changes, its words in the result's `models` and
-//! its fields in the result's `summary`.
+//! its fields in the result's `summary` ([`super::report`]).
 
-use std::fmt;
 use std::ops::Range;
-
-use serde::{Deserialize, Serialize};
 
 use crate::contact::Grid;
 use crate::hardness::HardnessLaw;
 
-use super::archard::{Archard, ArchardRegimeChange, pass_pressure_integral};
+use super::archard::{Archard, pass_pressure_integral};
+use super::report::{LawChoice, WearSummary};
 
 /// How a pass of the ball wears the disc. A pass at cycle `n` deepens each row of the track
 /// by [`WearLaw::depth_scale`] of `n..n + 1` times its [`WearLaw::pass_profile`].
@@ -18,26 +16,6 @@ use super::archard::{Archard, ArchardRegimeChange, pass_pressure_integral};
 pub enum WearLaw {
     /// Archard's law (eqs. 14-16), with its optional change of regime.
     Archard(Archard),
-}
-
-/// Whether a law wears at all, and why: the result's `models` entry of the law.
-#[derive(Debug, Clone, PartialEq)]
-pub struct LawChoice {
-    /// Whether it wears anything.
-    pub active: bool,
-    /// Its coefficients and where they come from, in words.
-    pub reason: String,
-}
-
-/// The law's fields of the result's `summary`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct WearSummary {
-    /// The Archard coefficient the run used (dimensionless), given or derived by eq. 14; the
-    /// one after the change when the regime changes.
-    pub archard_k: f64,
-    /// The change of Archard regime: k up to and including its cycle; absent with one k.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub archard_regime_change: Option<ArchardRegimeChange>,
 }
 
 impl WearLaw {
@@ -79,20 +57,6 @@ impl WearLaw {
     pub fn summary(&self) -> WearSummary {
         match self {
             Self::Archard(law) => law.summary(),
-        }
-    }
-}
-
-/// The summary's line of the law, as `tribosim run` prints it.
-impl fmt::Display for WearSummary {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match &self.archard_regime_change {
-            None => write!(f, "  Archard k        {:.4e}", self.archard_k),
-            Some(change) => write!(
-                f,
-                "  Archard k        {:.4e} to cycle {}, {:.4e} after",
-                change.archard_k_before, change.cycle, self.archard_k
-            ),
         }
     }
 }

@@ -10,10 +10,14 @@
 mod archard;
 mod groove;
 mod law;
+mod regime;
+mod report;
 
 pub use archard::{
-    Archard, ArchardK, ArchardRegimeChange, MeasuredPoint, archard_k_from_measurement,
-    archard_volume, pass_pressure_integral,
+    Archard, ArchardK, MeasuredPoint, archard_k_from_measurement, archard_volume,
+    pass_pressure_integral,
 };
 pub use groove::{EDGE_DEPTH_FRACTION, Groove};
-pub use law::{LawChoice, WearLaw, WearSummary};
+pub use law::WearLaw;
+pub use regime::ArchardRegimeChange;
+pub use report::{LawChoice, WearSummary};
