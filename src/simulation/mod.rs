@@ -21,7 +21,6 @@ use thiserror::Error;
 
 use crate::contact::ContactError;
 use crate::corrosion::CorrosionError;
-use crate::hardness::HardnessError;
 use crate::scene::SceneErrors;
 use crate::surface::SurfaceError;
 
@@ -47,8 +46,8 @@ pub enum SimulationError {
     /// of the problems listed).
     #[error(transparent)]
     Scene(#[from] SceneErrors),
-    /// The contact core refused a material or the grid built from a scene that passed its
-    /// checks: the scene's checks and the core disagree, a defect rather than bad input.
+    /// The contact core refused the grid built from a scene that passed its checks: the
+    /// scene's checks and the core disagree, a defect rather than bad input.
     #[error("setting up the contact: {0} (the scene passed its checks, so this is a defect)")]
     Setup(#[source] ContactError),
     /// The contact could not be solved at this cycle.
@@ -60,9 +59,6 @@ pub enum SimulationError {
         #[source]
         source: ContactError,
     },
-    /// The hardness law could not be built.
-    #[error("hardness: {0}")]
-    Hardness(#[from] HardnessError),
     /// The corrosion estimate failed (e.g. an anodic area larger than the exposed one).
     #[error("corrosion at cycle {cycle}: {source}")]
     Corrosion {

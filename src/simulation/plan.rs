@@ -92,9 +92,10 @@ pub fn parse_scene_str(text: &str) -> Result<Plan, SceneErrors> {
 /// contact it describes that it breaks.
 fn derive(scene: Scene) -> Result<Plan, Vec<FieldError>> {
     // The scene's own checks bound E, nu and the hardness table as the core does: neither
-    // refusal can happen, and each would name what the core refused.
+    // refusal can happen, and each would say what the core refused.
     let pair = elastic_pair(&scene).map_err(|e| {
-        let message = format!("the contact core refused the materials: {e}");
+        let message =
+            format!("the contact core refused materials the scene's checks passed (a defect): {e}");
         vec![FieldError::new("", message)]
     })?;
     let hardness = scene
