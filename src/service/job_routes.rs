@@ -11,10 +11,10 @@ use axum::response::{IntoResponse, Response};
 use super::AppState;
 use super::error::ApiError;
 use super::extract::{JobId, JobMeasurement, read_body, table_format};
+use super::files::is_disk_full;
 use super::job::JobStatus;
 use super::measurements::{self, Measurements};
 use super::registry::{Jobs, MeasuredError};
-use super::store::is_disk_full;
 
 /// `PUT /api/v1/jobs/{id}/measurements/{kind}`: reads, checks and stores a table; answers
 /// every table of the job.

@@ -7,9 +7,9 @@ use std::io;
 
 use thiserror::Error;
 
+use super::files::Damage;
 use super::job::Job;
 use super::registry::Jobs;
-use super::store::Damage;
 use super::surfaces::{SurfaceLoadError, surface_id};
 use crate::scene::Scene;
 use crate::simulation::{CycleRecord, Setup, SimulationError, SimulationResult};

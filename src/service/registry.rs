@@ -13,10 +13,11 @@ use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use time::OffsetDateTime;
 use uuid::Uuid;
 
+use super::files::{Damage, is_disk_full};
 use super::job::{Job, JobRecord, JobStatus};
 use super::measurements::{Columns, MeasurementKind, Measurements};
 use super::queue::Queue;
-use super::store::{Damage, Store, StoredJob, is_disk_full};
+use super::store::{Store, StoredJob};
 use super::surfaces::{Surfaces, surface_id};
 use crate::scene::Scene;
 

@@ -19,10 +19,10 @@ use serde_json::{Map, Value};
 use time::OffsetDateTime;
 use uuid::Uuid;
 
+use super::files::{quarantine, sweep_temporaries, sync_dir, to_json, write_atomic};
 use super::job::JobStatus;
 use super::registry::{Deletion, Jobs, SubmitError};
 use super::servable::servable;
-use super::store::{quarantine, sweep_temporaries, sync_dir, to_json, write_atomic};
 use super::study_record::{AxisRecord, StudyRecord, record_of};
 use super::surfaces::surface_id;
 use crate::simulation::Summary;

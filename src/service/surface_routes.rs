@@ -14,7 +14,7 @@ use serde::Deserialize;
 use super::AppState;
 use super::error::ApiError;
 use super::extract::{cut, is_map_body, path_id, read_body};
-use super::store::is_disk_full;
+use super::files::is_disk_full;
 use super::surfaces::SurfaceDeletion;
 use crate::scene::FieldError;
 use crate::surface::{Format, HeightMap, Statistics, SurfaceError, read, read_as};

@@ -22,7 +22,7 @@ use serde::{Deserialize, Serialize};
 use time::OffsetDateTime;
 use uuid::Uuid;
 
-use super::store::{Damage, Digest, quarantine, sync_dir, to_json, write_atomic};
+use super::files::{Damage, Digest, quarantine, sync_dir, to_json, write_atomic};
 use crate::scene::{Scene, SurfaceKind};
 use crate::surface::{Format, HeightMap, Statistics};
 
