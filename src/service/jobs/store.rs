@@ -7,8 +7,8 @@
 //! - `manifest.json`: the length and CRC-32 of `result.json` and `cycles.jsonl`, written
 //!   after them and before the final status. A succeeded job's files are checked against it
 //!   at startup and before they are served, so damage done to them on disk is found;
-//! - `measured_<kind>.json`: a table of measured points, with the length and CRC-32 of its
-//!   columns, so damage is found when it is read; written whenever a client replaces it.
+//! - `measured_<kind>.json`: a table of measured points, written by `measurements` (the job's
+//!   directory is its home, so the table goes when the job does).
 //!
 //! Whole-file writes are atomic (`files::write_atomic`), so a crash leaves either the old or
 //! the new file, never a torn one. A job directory is built
@@ -29,12 +29,11 @@ use serde::{Deserialize, Serialize};
 use time::OffsetDateTime;
 use uuid::Uuid;
 
-use super::files::{
+use super::job::JobRecord;
+use crate::scene::Scene;
+use crate::service::files::{
     Damage, Digest, quarantine, read_json, sweep_temporaries, sync_dir, to_json, write_atomic,
 };
-use super::job::JobRecord;
-use super::measurements::{Columns, MeasurementKind, Measurements};
-use crate::scene::Scene;
 
 const SCENE: &str = "scene.json";
 const STATUS: &str = "status.json";
@@ -56,14 +55,6 @@ pub struct Store {
 struct Manifest {
     result_json: Digest,
     cycles_jsonl: Digest,
-}
-
-/// What a `measured_<kind>.json` holds: the columns and the digest of their compact JSON
-/// (which serde_json writes the same for the same numbers, so it can be recomputed).
-#[derive(Debug, Serialize, Deserialize)]
-struct StoredTable {
-    digest: Digest,
-    columns: Columns,
 }
 
 /// A job directory as found on disk at startup.
@@ -134,7 +125,8 @@ impl Store {
         &self.quarantine_dir
     }
 
-    fn dir(&self, id: Uuid) -> PathBuf {
+    /// The directory of job `id`.
+    pub(super) fn dir(&self, id: Uuid) -> PathBuf {
         self.jobs_dir.join(id.to_string())
     }
 
@@ -217,51 +209,6 @@ impl Store {
     /// promised of it: the run stopped). Blocking.
     pub fn read_partial_cycles(&self, id: Uuid) -> io::Result<Vec<u8>> {
         fs::read(self.dir(id).join(CYCLES))
-    }
-
-    /// Replaces a job's table of `kind`. Blocking.
-    pub fn write_measurement(
-        &self,
-        id: Uuid,
-        kind: MeasurementKind,
-        columns: Columns,
-    ) -> io::Result<()> {
-        let compact = serde_json::to_vec(&columns).map_err(io::Error::other)?;
-        let stored = StoredTable {
-            digest: Digest::of(&compact),
-            columns,
-        };
-        write_atomic(&self.dir(id), kind.file(), &to_json(&stored)?)
-    }
-
-    /// Removes a job's table of `kind`, if it has one. Blocking.
-    pub fn remove_measurement(&self, id: Uuid, kind: MeasurementKind) -> io::Result<()> {
-        let dir = self.dir(id);
-        match fs::remove_file(dir.join(kind.file())) {
-            Ok(()) => sync_dir(&dir),
-            Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(()),
-            Err(e) => Err(e),
-        }
-    }
-
-    /// Every table of a job, each checked against its digest. Blocking.
-    pub fn read_measurements(&self, id: Uuid) -> Result<Measurements, Damage> {
-        let dir = self.dir(id);
-        let mut measurements = Measurements::default();
-        for kind in MeasurementKind::ALL {
-            let stored: StoredTable = match read_json(&dir, kind.file()) {
-                Ok(stored) => stored,
-                Err(Damage::Missing(_)) => continue,
-                Err(damage) => return Err(damage),
-            };
-            let compact = serde_json::to_vec(&stored.columns).map_err(|e| Damage::Invalid {
-                file: kind.file(),
-                message: e.to_string(),
-            })?;
-            stored.digest.check(kind.file(), &compact)?;
-            *measurements.slot(kind) = Some(stored.columns);
-        }
-        Ok(measurements)
     }
 
     /// A job's scene, read back. Blocking.
