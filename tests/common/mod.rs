@@ -204,6 +204,24 @@ pub async fn submit(client: &reqwest::Client, base: &str, scene: &Value) -> Valu
     response.json().await.expect("job JSON")
 }
 
+/// Asserts a 4xx answer with the JSON error shape; returns the body.
+pub async fn expect_client_error(response: reqwest::Response, status: u16) -> Value {
+    let url = response.url().clone();
+    assert_eq!(response.status(), status, "{url}");
+    let content_type = response.headers()["content-type"]
+        .to_str()
+        .expect("ascii")
+        .to_owned();
+    assert_eq!(content_type, "application/json", "{url}");
+    let body: Value = response.json().await.expect("error JSON");
+    assert!(
+        body["error"].as_str().is_some_and(|e| !e.is_empty()),
+        "{body}"
+    );
+    assert!(body["fields"].is_array(), "{body}");
+    body
+}
+
 /// GET `url`, expect 200, parse the JSON body.
 pub async fn get_json(client: &reqwest::Client, url: &str) -> Value {
     let response = client.get(url).send().await.expect("GET");
