@@ -1,6 +1,6 @@
-//! The one way a handler runs blocking work (reading and writing files, checking a body
-//! against what is stored): on tokio's blocking pool, so no runtime thread waits on a disk
-//! while other requests queue behind it.
+//! The one way a handler runs blocking work (reading and writing files, parsing and checking
+//! what a request brought): on tokio's blocking pool, so no runtime thread waits on a disk
+//! or a parser while other requests queue behind it.
 
 use super::error::ApiError;
 

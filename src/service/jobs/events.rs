@@ -45,7 +45,7 @@ struct Cursor {
 
 /// The event stream of `job` for a client that has seen the cycles up to `after`, with
 /// keep-alive comments. It ends after the final status, or when the server shuts down.
-pub(super) fn answer(jobs: Arc<Jobs>, job: Arc<Job>, after: u64, streams: &Streams) -> Response {
+pub(super) fn response(jobs: Arc<Jobs>, job: Arc<Job>, after: u64, streams: &Streams) -> Response {
     Sse::new(follow(jobs, job, after, streams.shutdown.clone()))
         .keep_alive(KeepAlive::default().interval(streams.keep_alive))
         .into_response()

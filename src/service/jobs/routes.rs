@@ -103,7 +103,7 @@ async fn job_events(
         .and_then(|value| value.to_str().ok())
         .and_then(|value| value.trim().parse::<u64>().ok())
         .unwrap_or(0);
-    Ok(events::answer(jobs, job, after, &streams))
+    Ok(events::response(jobs, job, after, &streams))
 }
 
 /// `GET /api/v1/jobs/{id}/result`: the result JSON, as a download.
