@@ -9,46 +9,22 @@
 //! in between leaves the members written so far as plain jobs, which run.
 
 use std::collections::HashMap;
-use std::fs;
 use std::io;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 use serde_json::{Map, Value};
 use time::OffsetDateTime;
 use uuid::Uuid;
 
-use super::job::JobStatus;
-use super::registry::{Deletion, Jobs, SubmitError};
-use super::servable::servable;
-use super::store::{quarantine, sweep_temporaries, sync_dir, to_json, write_atomic};
-use super::study_record::{AxisRecord, StudyRecord, record_of};
-use super::surfaces::surface_id;
+use super::record::{StudyRecord, record_of};
+use super::store::{AxisRecord, StoredMember, StoredStudy, StudyFiles};
+use crate::service::files::Damage;
+use crate::service::jobs::{DeleteError, Deletion, JobStatus, Jobs, SubmitError};
+use crate::service::surfaces::{servable, surface_id};
 use crate::simulation::Summary;
 use crate::study::{MemberRow, Pending, Study, StudyError, StudySummary, describe_values};
-
-/// Where study files live, under the data directory.
-const STUDIES_DIR: &str = "studies";
-
-/// A member as the study file stores it.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub(super) struct StoredMember {
-    pub(super) index: usize,
-    pub(super) job_id: Uuid,
-    pub(super) values: Map<String, Value>,
-}
-
-/// What `<uuid>.json` holds: everything of a study that does not change.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub(super) struct StoredStudy {
-    pub(super) id: Uuid,
-    pub(super) name: String,
-    #[serde(with = "time::serde::rfc3339")]
-    pub(super) created_at: OffsetDateTime,
-    pub(super) axes: Vec<AxisRecord>,
-    pub(super) members: Vec<StoredMember>,
-}
 
 /// Why a study was not accepted.
 #[derive(Debug)]
@@ -65,6 +41,18 @@ pub enum StudySubmitError {
     },
     /// The jobs could not be accepted (queue full now, disk full, storage).
     Submit(SubmitError),
+}
+
+/// Why a request on one study failed.
+#[derive(Debug)]
+pub enum StudiesError {
+    /// No study has this id, or a concurrent DELETE removed it.
+    Unknown(Uuid),
+    /// DELETE could not write a member's new status or remove a file.
+    NotChanged(io::Error),
+    /// A member's stored result could not be read (the machine's fault: the next request
+    /// may work).
+    ResultUnreadable(Damage),
 }
 
 /// What DELETE did to a study.
@@ -88,8 +76,7 @@ struct Entry {
 
 /// Every study by id, with the limits studies are accepted under.
 pub struct Studies {
-    dir: PathBuf,
-    quarantine_dir: PathBuf,
+    files: StudyFiles,
     studies: Mutex<HashMap<Uuid, Arc<Entry>>>,
     /// The most members a study may have (`--max-study-members`).
     max_members: usize,
@@ -102,65 +89,25 @@ fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
 }
 
 impl Studies {
-    /// Loads every study file under `data_dir`. A file that cannot be read or parsed, or
-    /// that names another study, is moved to `quarantine_dir` and logged; it never stops
-    /// the others from loading. Blocking.
+    /// Loads every study file under `data_dir` (see `store`). Blocking.
     pub fn open(
         data_dir: &Path,
         quarantine_dir: &Path,
         max_members: usize,
         workers: usize,
     ) -> io::Result<Self> {
-        let dir = data_dir.join(STUDIES_DIR);
-        fs::create_dir_all(&dir)?;
-        sync_dir(data_dir)?;
-        if let Err(e) = sweep_temporaries(&dir) {
-            // Leftover temporary files are harmless: they are not named as studies.
-            tracing::warn!(dir = %dir.display(), "cannot sweep temporary files: {e}");
-        }
+        let files = StudyFiles::open(data_dir, quarantine_dir)?;
+        let stored = files.load()?;
         let studies = Self {
-            dir,
-            quarantine_dir: quarantine_dir.to_owned(),
+            files,
             studies: Mutex::new(HashMap::new()),
             max_members,
             workers,
         };
-        for entry in fs::read_dir(&studies.dir)? {
-            let Ok(entry) = entry else { continue };
-            studies.load(&entry.path());
+        for study in stored {
+            studies.insert(study);
         }
         Ok(studies)
-    }
-
-    fn load(&self, path: &Path) {
-        let id = path
-            .file_name()
-            .and_then(|name| name.to_str())
-            .and_then(|name| name.strip_suffix(".json"))
-            .and_then(|stem| Uuid::parse_str(stem).ok());
-        let Some(id) = id else {
-            tracing::warn!(path = %path.display(), "not a study; left alone");
-            return;
-        };
-        let stored = fs::read(path)
-            .map_err(|e| e.to_string())
-            .and_then(|bytes| {
-                serde_json::from_slice::<StoredStudy>(&bytes).map_err(|e| e.to_string())
-            })
-            .and_then(|stored| {
-                if stored.id == id {
-                    Ok(stored)
-                } else {
-                    Err(format!("it names study {}", stored.id))
-                }
-            });
-        match stored {
-            Ok(stored) => self.insert(stored),
-            Err(damage) => {
-                tracing::error!(%id, "study file damaged: {damage}");
-                quarantine(&self.quarantine_dir, path);
-            }
-        }
     }
 
     fn insert(&self, stored: StoredStudy) {
@@ -176,23 +123,18 @@ impl Studies {
         lock(&self.studies).get(&id).cloned()
     }
 
-    fn path(&self, id: Uuid) -> PathBuf {
-        self.dir.join(format!("{id}.json"))
-    }
-
-    /// Accepts a study document: expands it (refusing it whole, with the axis or field
-    /// named, if anything is wrong), then submits its members as jobs and keeps the study.
-    /// Blocking (file writes).
-    pub fn submit(&self, jobs: &Jobs, text: &str) -> Result<StudyRecord, StudySubmitError> {
-        let study = Study::parse(text).map_err(StudySubmitError::Invalid)?;
+    /// Accepts a study: expands it (refusing it whole, with the axis or field named, if
+    /// anything is wrong), then submits its members as jobs and keeps the study. Blocking
+    /// (file writes).
+    pub fn submit(&self, jobs: &Jobs, study: &Study) -> Result<StudyRecord, StudySubmitError> {
         let members = study
             .members(self.max_members)
             .map_err(StudySubmitError::Invalid)?;
         // Held until the members are queued, so no surface they name is deleted meanwhile.
         let names_surface = members.iter().any(|m| surface_id(&m.scene).is_some());
-        let _hold = names_surface.then(|| jobs.surfaces.hold());
+        let _hold = names_surface.then(|| jobs.surfaces().hold());
         for member in &members {
-            servable(&member.scene, &jobs.surfaces).map_err(|source| {
+            servable(&member.scene, jobs.surfaces()).map_err(|source| {
                 StudySubmitError::Invalid(StudyError::Member {
                     index: member.index,
                     values: describe_values(&member.values),
@@ -200,7 +142,7 @@ impl Studies {
                 })
             })?;
         }
-        let capacity = jobs.queue.capacity();
+        let capacity = jobs.capacity();
         if members.len() > capacity {
             return Err(StudySubmitError::OverCapacity {
                 members: members.len(),
@@ -243,7 +185,7 @@ impl Studies {
                     })
                     .collect(),
             };
-            write_atomic(&self.dir, &format!("{id}.json"), &to_json(&study)?)?;
+            self.files.write(&study)?;
             stored = Some(study);
             Ok(())
         })
@@ -255,7 +197,7 @@ impl Studies {
         })?;
         tracing::info!(%id, members = stored.members.len(), "study queued");
         self.insert(stored);
-        self.record(jobs, id).ok_or_else(|| {
+        self.record(jobs, id).map_err(|_| {
             StudySubmitError::Submit(SubmitError::Storage(io::Error::other(
                 "the study vanished as it was accepted",
             )))
@@ -263,8 +205,9 @@ impl Studies {
     }
 
     /// The study's record with its members' current statuses.
-    pub fn record(&self, jobs: &Jobs, id: Uuid) -> Option<StudyRecord> {
-        self.get(id).map(|entry| record_of(&entry.stored, jobs))
+    pub fn record(&self, jobs: &Jobs, id: Uuid) -> Result<StudyRecord, StudiesError> {
+        let entry = self.get(id).ok_or(StudiesError::Unknown(id))?;
+        Ok(record_of(&entry.stored, jobs))
     }
 
     /// Every study's record, newest first.
@@ -279,53 +222,48 @@ impl Studies {
     }
 
     /// DELETE: cancels every member that has not ended, as a job's DELETE does; once every
-    /// member has ended, removes the members' jobs and the study. `None` for an unknown id,
-    /// including one a concurrent DELETE removed. Blocking (files).
-    pub fn delete(&self, jobs: &Jobs, id: Uuid) -> Option<io::Result<StudyDeletion>> {
-        let entry = self.get(id)?;
+    /// member has ended, removes the members' jobs and the study. Blocking (files).
+    pub fn delete(&self, jobs: &Jobs, id: Uuid) -> Result<StudyDeletion, StudiesError> {
+        let unknown = || StudiesError::Unknown(id);
+        let entry = self.get(id).ok_or_else(unknown)?;
         let _disk = lock(&entry.disk);
-        // `None` when a concurrent DELETE removed it while this one waited for the lock.
-        self.get(id)?;
+        // Unknown when a concurrent DELETE removed it while this one waited for the lock.
+        self.get(id).ok_or_else(unknown)?;
         let members = &entry.stored.members;
         let unfinished = members.iter().any(|member| {
             jobs.get(member.job_id)
                 .is_some_and(|job| !job.record().status.is_final())
         });
         if unfinished {
-            return Some(cancel_members(jobs, &entry.stored));
+            return cancel_members(jobs, &entry.stored).map_err(StudiesError::NotChanged);
         }
         for member in members {
-            if let Some(Err(e)) = jobs.delete(member.job_id) {
-                return Some(Err(e));
+            match jobs.delete(member.job_id) {
+                // Removed now, or deleted on its own before.
+                Ok(_) | Err(DeleteError::Unknown(_)) => {}
+                Err(DeleteError::Storage(e)) => return Err(StudiesError::NotChanged(e)),
             }
         }
         lock(&self.studies).remove(&id);
-        let path = self.path(id);
-        let removed = fs::remove_file(&path).and_then(|()| sync_dir(&self.dir));
-        if let Err(e) = removed {
-            if e.kind() != io::ErrorKind::NotFound {
-                self.insert(entry.stored.clone());
-                return Some(Err(e));
-            }
+        if let Err(e) = self.files.remove(id) {
+            self.insert(entry.stored.clone());
+            return Err(StudiesError::NotChanged(e));
         }
         tracing::info!(%id, "finished study removed");
-        Some(Ok(StudyDeletion::Removed))
+        Ok(StudyDeletion::Removed)
     }
 
     /// The study's summary as `tribosim study -o` writes it, taken now: succeeded members
     /// with their summaries, ended ones with why, the others marked `pending`. `wall_s` runs
-    /// from acceptance to the last member's end (or to now). `None` for an unknown id; an
-    /// error when a result cannot be read (the machine's fault, not the result's). Blocking.
-    pub fn summary(&self, jobs: &Jobs, id: Uuid) -> Option<io::Result<StudySummary>> {
-        let entry = self.get(id)?;
+    /// from acceptance to the last member's end (or to now). An error when a result cannot
+    /// be read (the machine's fault, not the result's). Blocking.
+    pub fn summary(&self, jobs: &Jobs, id: Uuid) -> Result<StudySummary, StudiesError> {
+        let entry = self.get(id).ok_or(StudiesError::Unknown(id))?;
         let mut last_end = entry.stored.created_at;
         let mut unfinished = false;
         let mut rows = Vec::with_capacity(entry.stored.members.len());
         for member in &entry.stored.members {
-            let (row, ended) = match member_row(jobs, &entry, member) {
-                Ok(row) => row,
-                Err(e) => return Some(Err(e)),
-            };
+            let (row, ended) = member_row(jobs, &entry, member)?;
             match ended {
                 Some(at) => last_end = last_end.max(at),
                 None => unfinished = true,
@@ -337,12 +275,12 @@ impl Studies {
         } else {
             last_end
         };
-        Some(Ok(StudySummary {
+        Ok(StudySummary {
             axes: entry.stored.axes.iter().map(|a| a.path.clone()).collect(),
             workers: self.workers,
             wall_s: (end - entry.stored.created_at).as_seconds_f64().max(0.0),
             members: rows,
-        }))
+        })
     }
 }
 
@@ -365,8 +303,11 @@ fn cancel_members(jobs: &Jobs, stored: &StoredStudy) -> io::Result<StudyDeletion
     };
     let mut stopping = false;
     for (_, job_id) in queued_first {
-        if let Some(cancelled) = jobs.cancel(job_id) {
-            stopping |= matches!(cancelled?, Some(Deletion::Cancelling(_)));
+        match jobs.cancel(job_id) {
+            Ok(cancelled) => stopping |= matches!(cancelled, Some(Deletion::Cancelling(_))),
+            // Deleted on its own: nothing to cancel.
+            Err(DeleteError::Unknown(_)) => {}
+            Err(DeleteError::Storage(e)) => return Err(e),
         }
     }
     let record = record_of(stored, jobs);
@@ -389,7 +330,7 @@ fn member_row(
     jobs: &Jobs,
     entry: &Entry,
     member: &StoredMember,
-) -> io::Result<(MemberRow, Option<OffsetDateTime>)> {
+) -> Result<(MemberRow, Option<OffsetDateTime>), StudiesError> {
     let mut row = MemberRow {
         index: member.index,
         values: member.values.clone(),
@@ -423,7 +364,7 @@ fn member_row(
                         }
                     },
                     Err(damage) if damage.is_read_failure() => {
-                        return Err(io::Error::other(damage.to_string()));
+                        return Err(StudiesError::ResultUnreadable(damage));
                     }
                     Err(damage) => {
                         // Runs again, deterministically, to the same numbers.

@@ -1,43 +1,84 @@
-//! What a failed or cancelled job computed before it stopped, in the shape of a whole
+//! What a job gives back from its files: the scene as run, the result (a succeeded job's,
+//! checked against its manifest; a damaged one sends the job back to the queue) and, for a
+//! failed or cancelled job, what it computed before it stopped, in the shape of a whole
 //! result with `complete: false`: the scene, the setup's model choices, the cycles its log
 //! holds and a summary over them. Profiles and pressure maps are made when a run finishes,
 //! so a stopped run has none.
 
 use std::io;
 
-use thiserror::Error;
+use uuid::Uuid;
 
-use super::job::Job;
+use super::error::{JobError, PartialError};
+use super::export;
+use super::job::{Job, JobStatus};
 use super::registry::Jobs;
-use super::store::Damage;
-use super::surfaces::{SurfaceLoadError, surface_id};
 use crate::scene::Scene;
+use crate::service::surfaces::surface_id;
 use crate::simulation::{CycleRecord, Plan, RunOptions, Setup, SimulationError, SimulationResult};
 use crate::surface::HeightMap;
 
-/// Why a stopped job's partial result cannot be given.
-#[derive(Debug, Error)]
-pub enum PartialError {
-    /// The stored scene cannot be read back.
-    #[error("the stored scene is damaged: {0}")]
-    Scene(#[from] Damage),
-    /// The cycle log cannot be read.
-    #[error("cycles.jsonl cannot be read: {0}")]
-    Cycles(#[from] io::Error),
-    /// The scene cannot be set up, so the run stopped before its first cycle.
-    #[error("{0}")]
-    Setup(#[from] SimulationError),
-    /// The height map the scene names is gone or damaged.
-    #[error("{0}")]
-    Surface(#[from] SurfaceLoadError),
-    /// The result cannot be written as JSON.
-    #[error("the result cannot be written: {0}")]
-    Json(#[from] serde_json::Error),
-}
-
 impl Jobs {
+    /// The scene as run, every default filled in, as stored when the job was accepted.
+    /// Blocking (a file).
+    pub fn scene(&self, id: Uuid) -> Result<Scene, JobError> {
+        let record = self.find(id)?.record();
+        if record.status == JobStatus::Damaged {
+            return Err(JobError::Damaged(record.error.unwrap_or_default()));
+        }
+        self.store.read_scene(id).map_err(|damage| {
+            if self.get(id).is_none() {
+                // Deleted since it was looked up.
+                JobError::Unknown(id)
+            } else if damage.is_read_failure() {
+                JobError::SceneUnreadable(damage)
+            } else {
+                JobError::SceneDamaged(damage)
+            }
+        })
+    }
+
+    /// The result of a finished job as JSON: a succeeded job's `result.json` (checked against
+    /// its manifest), what a failed or cancelled one computed. A damaged result sends the job
+    /// back to the queue. Blocking (files).
+    pub fn result_json(&self, id: Uuid) -> Result<Vec<u8>, JobError> {
+        let job = self.find(id)?;
+        let record = job.record();
+        match (record.status, record.error) {
+            (JobStatus::Succeeded, _) => {}
+            (JobStatus::Failed | JobStatus::Cancelled, _) => {
+                return self.partial_result(&job).map_err(JobError::Partial);
+            }
+            (JobStatus::Damaged, Some(error)) => return Err(JobError::Damaged(error)),
+            (status, _) => return Err(JobError::Unfinished(status)),
+        }
+        let damage = match self.store.read_result(id) {
+            Ok(stored) => return Ok(marked_complete(stored)),
+            Err(damage) if damage.is_read_failure() => {
+                return Err(JobError::ResultUnreadable(damage));
+            }
+            Err(damage) => damage,
+        };
+        Err(match self.rerun(&job, &damage) {
+            // Deleted between the status check and the read.
+            None => JobError::Unknown(id),
+            Some(record) => match record.error {
+                Some(error) if record.status == JobStatus::Damaged => JobError::Damaged(error),
+                _ => JobError::RunsAgain {
+                    damage,
+                    now: record.status,
+                },
+            },
+        })
+    }
+
+    /// The cycles of a finished job's result as CSV ([`export::cycles_csv`]). Blocking (files).
+    pub fn result_csv(&self, id: Uuid) -> Result<String, JobError> {
+        export::cycles_csv(&self.result_json(id)?).map_err(JobError::Export)
+    }
+
     /// The partial result of a failed or cancelled `job`, as JSON. Blocking (files).
-    pub fn partial_result(&self, job: &Job) -> Result<Vec<u8>, PartialError> {
+    fn partial_result(&self, job: &Job) -> Result<Vec<u8>, PartialError> {
         let record = job.record();
         let scene = self.store.read_scene(job.id)?;
         let log = match self.store.read_partial_cycles(job.id) {
@@ -53,7 +94,12 @@ impl Jobs {
         let map = surface_id(&scene)
             .map(|id| self.surfaces.load(id))
             .transpose()?;
-        let result = partial(&scene, map.as_ref(), cycles(&log), wall_s)?;
+        let result = partial(&scene, map.as_ref(), cycles(&log), wall_s).map_err(|source| {
+            PartialError::Setup {
+                source,
+                recorded: record.error,
+            }
+        })?;
         Ok(serde_json::to_vec(&result)?)
     }
 }
@@ -61,7 +107,7 @@ impl Jobs {
 /// A succeeded job's stored result, saying `"complete": true` as its first field: a result
 /// stored without the field (by a version that did not write it) is a succeeded job's, so
 /// complete.
-pub fn marked_complete(mut stored: Vec<u8>) -> Vec<u8> {
+fn marked_complete(mut stored: Vec<u8>) -> Vec<u8> {
     const FLAG: &[u8] = br#"{"complete":"#;
     if !stored.starts_with(FLAG) && stored.first() == Some(&b'{') {
         stored.splice(1..1, br#""complete":true,"#.iter().copied());

@@ -10,14 +10,26 @@
 use std::collections::VecDeque;
 use std::convert::Infallible;
 use std::sync::Arc;
+use std::time::Duration;
 
-use axum::response::sse::Event;
+use axum::response::sse::{Event, KeepAlive, Sse};
+use axum::response::{IntoResponse, Response};
 use futures_util::Stream;
 use serde::Deserialize;
 use tokio::sync::watch;
 
 use super::job::{Cycle, Job, JobRecord, JobStatus};
 use super::registry::Jobs;
+use crate::service::blocking::blocking;
+
+/// What every event stream is served with.
+#[derive(Clone)]
+pub(crate) struct Streams {
+    /// Time between keep-alive comments, under the idle timeout.
+    pub(crate) keep_alive: Duration,
+    /// Turns true when the server shuts down, ending every stream.
+    pub(crate) shutdown: watch::Receiver<bool>,
+}
 
 /// Where one client is in one job's stream.
 struct Cursor {
@@ -31,9 +43,15 @@ struct Cursor {
     done: bool,
 }
 
-/// The event stream of `job` for a client that has seen the cycles up to `after`. It ends
-/// after the final status, or when the server shuts down.
-pub fn follow(
+/// The event stream of `job` for a client that has seen the cycles up to `after`, with
+/// keep-alive comments. It ends after the final status, or when the server shuts down.
+pub(super) fn response(jobs: Arc<Jobs>, job: Arc<Job>, after: u64, streams: &Streams) -> Response {
+    Sse::new(follow(jobs, job, after, streams.shutdown.clone()))
+        .keep_alive(KeepAlive::default().interval(streams.keep_alive))
+        .into_response()
+}
+
+fn follow(
     jobs: Arc<Jobs>,
     job: Arc<Job>,
     after: u64,
@@ -100,37 +118,34 @@ impl Cursor {
     /// event still follows).
     async fn cycles_on_disk(&self, status: JobStatus) -> Option<Vec<Cycle>> {
         let (jobs, job) = (Arc::clone(&self.jobs), Arc::clone(&self.job));
-        let read = tokio::task::spawn_blocking(move || match status {
-            JobStatus::Succeeded => match jobs.store().read_cycles(job.id) {
-                Ok(bytes) => Some(bytes),
-                Err(damage) if damage.is_read_failure() => {
-                    tracing::error!(id = %job.id, "{damage}");
-                    Some(Vec::new())
-                }
-                Err(damage) => {
-                    jobs.rerun(&job, &damage);
-                    None
-                }
-            },
-            JobStatus::Damaged => Some(Vec::new()),
-            _ => match jobs.store().read_partial_cycles(job.id) {
-                Ok(bytes) => Some(bytes),
-                Err(e) => {
-                    if e.kind() != std::io::ErrorKind::NotFound {
-                        tracing::error!(id = %job.id, "cannot read the cycle log: {e}");
+        let read = blocking(move || {
+            Ok::<_, Infallible>(match status {
+                JobStatus::Succeeded => match jobs.store().read_cycles(job.id) {
+                    Ok(bytes) => Some(bytes),
+                    Err(damage) if damage.is_read_failure() => {
+                        tracing::error!(id = %job.id, "{damage}");
+                        Some(Vec::new())
                     }
-                    Some(Vec::new())
-                }
-            },
+                    Err(damage) => {
+                        jobs.rerun(&job, &damage);
+                        None
+                    }
+                },
+                JobStatus::Damaged => Some(Vec::new()),
+                _ => match jobs.store().read_partial_cycles(job.id) {
+                    Ok(bytes) => Some(bytes),
+                    Err(e) => {
+                        if e.kind() != std::io::ErrorKind::NotFound {
+                            tracing::error!(id = %job.id, "cannot read the cycle log: {e}");
+                        }
+                        Some(Vec::new())
+                    }
+                },
+            })
         })
         .await;
-        let bytes = match read {
-            Ok(bytes) => bytes?,
-            Err(e) => {
-                tracing::error!(id = %self.job.id, "reading the cycle log: {e}");
-                Vec::new()
-            }
-        };
+        // A read that panicked was logged as its error was made; the status event follows.
+        let bytes = read.unwrap_or(Some(Vec::new()))?;
         #[derive(Deserialize)]
         struct Number {
             cycle: u64,

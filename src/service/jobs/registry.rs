@@ -1,5 +1,6 @@
 //! The registry of every job by id: loading it from the store at startup, accepting new
-//! jobs, sending a job whose stored result is damaged back to the queue, and DELETE.
+//! jobs, sending a job whose stored result is damaged back to the queue, DELETE, and a job's
+//! directory for what is attached to it (measurements).
 //!
 //! Handlers touch the registry only through short, non-blocking critical sections; anything
 //! that writes files runs on tokio's blocking pool. Lock order: a job's disk lock, the queue,
@@ -7,47 +8,20 @@
 
 use std::collections::HashMap;
 use std::io;
+use std::path::Path;
 use std::sync::atomic::Ordering;
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 use time::OffsetDateTime;
 use uuid::Uuid;
 
+use super::error::{DeleteError, JobError, SubmitError};
 use super::job::{Job, JobRecord, JobStatus};
-use super::measurements::{Columns, MeasurementKind, Measurements};
 use super::queue::Queue;
-use super::store::{Damage, Store, StoredJob, is_disk_full};
-use super::surfaces::{Surfaces, surface_id};
+use super::store::{Store, StoredJob};
 use crate::scene::Scene;
-
-/// Why a job was not accepted.
-#[derive(Debug)]
-pub enum SubmitError {
-    /// The queue holds its capacity; retry after about this many seconds.
-    QueueFull {
-        /// The queue's capacity.
-        capacity: usize,
-        /// Places free now (fewer than asked for).
-        free: usize,
-        /// A hint for Retry-After.
-        retry_after_s: u64,
-    },
-    /// The disk is full: the job could not be made durable, and nothing of it is left.
-    DiskFull,
-    /// The job could not be made durable.
-    Storage(io::Error),
-}
-
-/// Why a job's measurements could not be read or changed.
-#[derive(Debug)]
-pub enum MeasuredError {
-    /// The job is damaged (its error says how), so nothing is attached to it.
-    JobDamaged(String),
-    /// A stored table does not match its digest; replacing or deleting it mends it.
-    Damaged(Damage),
-    /// A file could not be written.
-    Storage(io::Error),
-}
+use crate::service::files::{Damage, is_disk_full};
+use crate::service::surfaces::{SurfaceUsers, Surfaces, servable, surface_id};
 
 /// What DELETE did.
 pub enum Deletion {
@@ -177,30 +151,14 @@ impl Jobs {
         self.jobs.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
-    /// The queued and running jobs whose scene names surface `id`.
-    pub fn using_surface(&self, id: Uuid) -> Vec<Uuid> {
-        let jobs: Vec<Arc<Job>> = self.lock_jobs().values().cloned().collect();
-        let mut users: Vec<Uuid> = jobs
-            .iter()
-            .filter(|job| {
-                let state = job.state();
-                !state.record.status.is_final()
-                    && state
-                        .scene
-                        .as_deref()
-                        .and_then(surface_id)
-                        .and_then(|named| Uuid::try_parse(named).ok())
-                        == Some(id)
-            })
-            .map(|job| job.id)
-            .collect();
-        users.sort();
-        users
-    }
-
     /// The job with this id.
     pub fn get(&self, id: Uuid) -> Option<Arc<Job>> {
         self.lock_jobs().get(&id).cloned()
+    }
+
+    /// The job with this id, or why there is none.
+    pub fn find(&self, id: Uuid) -> Result<Arc<Job>, JobError> {
+        self.get(id).ok_or(JobError::Unknown(id))
     }
 
     /// A job's record as the API shows it, with its place in the queue.
@@ -231,8 +189,22 @@ impl Jobs {
         &self.store
     }
 
-    /// Accepts a validated scene: makes it durable, then queues it. Blocking (file writes).
+    /// The height maps that scenes with a measured surface name.
+    pub fn surfaces(&self) -> &Surfaces {
+        &self.surfaces
+    }
+
+    /// How many jobs may wait for a worker at once.
+    pub fn capacity(&self) -> usize {
+        self.queue.capacity()
+    }
+
+    /// Accepts a validated scene that the service can run (its surface, if it names one, is
+    /// stored): makes it durable, then queues it. Blocking (file writes).
     pub fn submit(&self, scene: Scene) -> Result<JobRecord, SubmitError> {
+        // Only a scene naming a stored surface waits for (and holds off) its deletion.
+        let _hold = surface_id(&scene).map(|_| self.surfaces.hold());
+        servable(&scene, &self.surfaces).map_err(SubmitError::Unservable)?;
         if !self.queue.reserve() {
             return Err(SubmitError::QueueFull {
                 capacity: self.queue.capacity(),
@@ -373,36 +345,57 @@ impl Jobs {
 
     /// DELETE: cancels a queued job at once, asks a running one to stop within a cycle, and
     /// removes a finished one with its files. A cancel is on disk before it is answered, so a
-    /// crash cannot bring the job back. `None` for an unknown id, including one a concurrent
-    /// DELETE removed. Blocking (files).
-    pub fn delete(&self, id: Uuid) -> Option<io::Result<Deletion>> {
-        let job = self.get(id)?;
+    /// crash cannot bring the job back. Blocking (files).
+    pub fn delete(&self, id: Uuid) -> Result<Deletion, DeleteError> {
+        let job = self.get(id).ok_or(DeleteError::Unknown(id))?;
         let _disk = job.disk();
         let record = job.record();
         if !record.status.is_final() {
-            return Some(self.cancel_locked(&job, record));
+            return self
+                .cancel_locked(&job, record)
+                .map_err(DeleteError::Storage);
         }
-        // `None` when a concurrent DELETE removed it first.
-        self.lock_jobs().remove(&id)?;
+        // Unknown when a concurrent DELETE removed it first.
+        self.lock_jobs()
+            .remove(&id)
+            .ok_or(DeleteError::Unknown(id))?;
         if let Err(e) = self.store.remove(id) {
             self.insert(Arc::clone(&job));
-            return Some(Err(e));
+            return Err(DeleteError::Storage(e));
         }
         tracing::info!(%id, "finished job removed");
-        Some(Ok(Deletion::Removed))
+        Ok(Deletion::Removed)
     }
 
     /// Cancels a job as DELETE does if it has not finished; leaves a finished one alone
-    /// (`Ok(None)`), so that a job ending meanwhile keeps its result. `None` for an unknown
-    /// id. Blocking (files).
-    pub fn cancel(&self, id: Uuid) -> Option<io::Result<Option<Deletion>>> {
-        let job = self.get(id)?;
+    /// (`Ok(None)`), so that a job ending meanwhile keeps its result. Blocking (files).
+    pub fn cancel(&self, id: Uuid) -> Result<Option<Deletion>, DeleteError> {
+        let job = self.get(id).ok_or(DeleteError::Unknown(id))?;
         let _disk = job.disk();
         let record = job.record();
         if record.status.is_final() {
-            return Some(Ok(None));
+            return Ok(None);
         }
-        Some(self.cancel_locked(&job, record).map(Some))
+        self.cancel_locked(&job, record)
+            .map(Some)
+            .map_err(DeleteError::Storage)
+    }
+
+    /// Runs `act` on the directory of job `id` under the job's disk lock, so that a DELETE of
+    /// the job cannot remove the directory meanwhile. Refused for an unknown job (or one
+    /// deleted first) and for a damaged one: nothing is attached to a job that cannot run.
+    /// Blocking (whatever `act` does to the files).
+    pub fn with_files<T>(&self, id: Uuid, act: impl FnOnce(&Path) -> T) -> Result<T, JobError> {
+        let job = self.find(id)?;
+        let _disk = job.disk();
+        if !self.get(id).is_some_and(|known| Arc::ptr_eq(&known, &job)) {
+            return Err(JobError::Unknown(id));
+        }
+        let record = job.record();
+        if record.status == JobStatus::Damaged {
+            return Err(JobError::Damaged(record.error.unwrap_or_default()));
+        }
+        Ok(act(&self.store.dir(id)))
     }
 
     /// Cancels a queued or running job, its disk lock held.
@@ -430,59 +423,26 @@ impl Jobs {
     }
 }
 
-impl Jobs {
-    /// A job's measurements; `None` for an unknown id. Blocking (files).
-    pub fn measurements(&self, id: Uuid) -> Option<Result<Measurements, MeasuredError>> {
-        self.measured(id, |_| Ok(()))
-    }
-
-    /// Stores a job's table of `kind`, replacing any; then every table. Blocking (files).
-    pub fn put_measurement(
-        &self,
-        id: Uuid,
-        kind: MeasurementKind,
-        columns: Columns,
-    ) -> Option<Result<Measurements, MeasuredError>> {
-        self.measured(id, |store| store.write_measurement(id, kind, columns))
-    }
-
-    /// Removes a job's table of `kind`, if any; then every table. Blocking (files).
-    pub fn delete_measurement(
-        &self,
-        id: Uuid,
-        kind: MeasurementKind,
-    ) -> Option<Result<Measurements, MeasuredError>> {
-        self.measured(id, |store| store.remove_measurement(id, kind))
-    }
-
-    /// Applies `change` to a job's files and reads its tables back, under the job's disk
-    /// lock, so that a DELETE of the job cannot remove its directory meanwhile; `None` when
-    /// the job is unknown or was deleted first.
-    fn measured(
-        &self,
-        id: Uuid,
-        change: impl FnOnce(&Store) -> io::Result<()>,
-    ) -> Option<Result<Measurements, MeasuredError>> {
-        let job = self.get(id)?;
-        let _disk = job.disk();
-        if !self.get(id).is_some_and(|known| Arc::ptr_eq(&known, &job)) {
-            return None;
-        }
-        let record = job.record();
-        if record.status == JobStatus::Damaged {
-            return Some(Err(MeasuredError::JobDamaged(
-                record.error.unwrap_or_default(),
-            )));
-        }
-        Some(
-            change(&self.store)
-                .map_err(MeasuredError::Storage)
-                .and_then(|()| {
-                    self.store
-                        .read_measurements(id)
-                        .map_err(MeasuredError::Damaged)
-                }),
-        )
+impl SurfaceUsers for Jobs {
+    /// The queued and running jobs whose scene names surface `id`.
+    fn using_surface(&self, id: Uuid) -> Vec<Uuid> {
+        let jobs: Vec<Arc<Job>> = self.lock_jobs().values().cloned().collect();
+        let mut users: Vec<Uuid> = jobs
+            .iter()
+            .filter(|job| {
+                let state = job.state();
+                !state.record.status.is_final()
+                    && state
+                        .scene
+                        .as_deref()
+                        .and_then(surface_id)
+                        .and_then(|named| Uuid::try_parse(named).ok())
+                        == Some(id)
+            })
+            .map(|job| job.id)
+            .collect();
+        users.sort();
+        users
     }
 }
 

@@ -22,8 +22,7 @@ use serde::{Deserialize, Serialize};
 use time::OffsetDateTime;
 use uuid::Uuid;
 
-use super::store::{Damage, Digest, quarantine, sync_dir, to_json, write_atomic};
-use crate::scene::{Scene, SurfaceKind};
+use crate::service::files::{Damage, Digest, quarantine, sync_dir, to_json, write_atomic};
 use crate::surface::{Format, HeightMap, Statistics};
 
 const RECORD: &str = "surface.json";
@@ -81,13 +80,27 @@ pub enum SurfaceLoadError {
 }
 
 /// Why a surface was not removed.
-pub enum SurfaceDeletion {
-    /// Gone.
-    Removed,
-    /// No such surface.
-    Unknown,
-    /// Queued or running jobs use it.
-    InUse(Vec<Uuid>),
+#[derive(Debug)]
+pub enum DeleteError {
+    /// No surface has this id.
+    Unknown(Uuid),
+    /// Queued or running jobs name it.
+    InUse {
+        /// The surface.
+        id: Uuid,
+        /// The jobs.
+        users: Vec<Uuid>,
+    },
+    /// Its directory could not be renamed aside.
+    Storage(io::Error),
+}
+
+/// Who may still need a stored surface: the jobs that name it and have not finished. A
+/// finished job keeps its result, which carries the surface's statistics, so it does not
+/// hold the map.
+pub trait SurfaceUsers: Send + Sync {
+    /// The queued and running jobs whose scene names surface `id`, in order.
+    fn using_surface(&self, id: Uuid) -> Vec<Uuid>;
 }
 
 /// Every stored surface.
@@ -255,37 +268,26 @@ impl Surfaces {
         })
     }
 
-    /// Removes surface `id` unless `in_use` names jobs that still need it. Blocking.
-    pub fn delete(
-        &self,
-        id: Uuid,
-        in_use: impl FnOnce() -> Vec<Uuid>,
-    ) -> io::Result<SurfaceDeletion> {
+    /// Removes surface `id` unless `users` has jobs that still need it. Blocking.
+    pub fn delete(&self, id: Uuid, users: &dyn SurfaceUsers) -> Result<(), DeleteError> {
         let _hold = self.hold();
         if self.get(id).is_none() {
-            return Ok(SurfaceDeletion::Unknown);
+            return Err(DeleteError::Unknown(id));
         }
-        let users = in_use();
+        let users = users.using_surface(id);
         if !users.is_empty() {
-            return Ok(SurfaceDeletion::InUse(users));
+            return Err(DeleteError::InUse { id, users });
         }
         let doomed = self.dir.join(format!("{id}{DELETED_SUFFIX}"));
-        fs::rename(self.dir.join(id.to_string()), &doomed)?;
-        sync_dir(&self.dir)?;
+        fs::rename(self.dir.join(id.to_string()), &doomed)
+            .and_then(|()| sync_dir(&self.dir))
+            .map_err(DeleteError::Storage)?;
         lock(&self.records).remove(&id);
         if let Err(e) = fs::remove_dir_all(&doomed) {
             tracing::error!(path = %doomed.display(), "cannot remove: {e}; swept at the next start");
         }
-        Ok(SurfaceDeletion::Removed)
+        Ok(())
     }
-}
-
-/// The id of the stored surface `scene` names, if its surface is measured.
-pub fn surface_id(scene: &Scene) -> Option<&str> {
-    let surface = scene.disc.surface.as_ref()?;
-    (surface.kind == SurfaceKind::Measured)
-        .then_some(surface.id.as_deref())
-        .flatten()
 }
 
 fn read_stored(dir: &Path) -> Result<Stored, Damage> {

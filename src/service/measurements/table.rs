@@ -216,12 +216,21 @@ impl MeasurementError {
     }
 }
 
+/// A table refused, with the kind it was sent as.
+#[derive(Debug)]
+pub struct InvalidTable {
+    /// The kind the table was sent as.
+    pub kind: MeasurementKind,
+    /// Why it was refused.
+    pub error: MeasurementError,
+}
+
 /// Reads and checks a table of `kind` from a request body.
-pub fn parse(
-    kind: MeasurementKind,
-    format: Format,
-    body: &[u8],
-) -> Result<Columns, MeasurementError> {
+pub fn parse(kind: MeasurementKind, format: Format, body: &[u8]) -> Result<Columns, InvalidTable> {
+    read(kind, format, body).map_err(|error| InvalidTable { kind, error })
+}
+
+fn read(kind: MeasurementKind, format: Format, body: &[u8]) -> Result<Columns, MeasurementError> {
     let table = match format {
         Format::Csv => {
             Table::from_csv(std::str::from_utf8(body).map_err(|_| MeasurementError::NotText)?)?
@@ -281,7 +290,9 @@ mod tests {
     use super::*;
 
     fn refused(kind: MeasurementKind, csv: &str) -> MeasurementError {
-        parse(kind, Format::Csv, csv.as_bytes()).expect_err("refused")
+        let refused = parse(kind, Format::Csv, csv.as_bytes()).expect_err("refused");
+        assert_eq!(refused.kind, kind);
+        refused.error
     }
 
     #[test]

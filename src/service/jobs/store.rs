@@ -7,11 +7,11 @@
 //! - `manifest.json`: the length and CRC-32 of `result.json` and `cycles.jsonl`, written
 //!   after them and before the final status. A succeeded job's files are checked against it
 //!   at startup and before they are served, so damage done to them on disk is found;
-//! - `measured_<kind>.json`: a table of measured points, with the length and CRC-32 of its
-//!   columns, so damage is found when it is read; written whenever a client replaces it.
+//! - `measured_<kind>.json`: a table of measured points, written by `measurements` (the job's
+//!   directory is its home, so the table goes when the job does).
 //!
-//! Whole-file writes are atomic: temporary file, fsync, rename, fsync of the directory, so a
-//! crash leaves either the old or the new file, never a torn one. A job directory is built
+//! Whole-file writes are atomic (`files::write_atomic`), so a crash leaves either the old or
+//! the new file, never a torn one. A job directory is built
 //! under `<uuid>.new` and renamed into place, so a job exists on disk completely or not at
 //! all; it is removed by renaming it to `<uuid>.deleted` first. Leftovers of both are swept at
 //! startup; what cannot be swept, and files where a job directory should be, are moved to
@@ -26,13 +26,14 @@ use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
-use thiserror::Error;
 use time::OffsetDateTime;
 use uuid::Uuid;
 
 use super::job::JobRecord;
-use super::measurements::{Columns, MeasurementKind, Measurements};
 use crate::scene::Scene;
+use crate::service::files::{
+    Damage, Digest, quarantine, read_json, sweep_temporaries, sync_dir, to_json, write_atomic,
+};
 
 const SCENE: &str = "scene.json";
 const STATUS: &str = "status.json";
@@ -49,106 +50,11 @@ pub struct Store {
     quarantine_dir: PathBuf,
 }
 
-/// Why a stored file is not what was written to it.
-#[derive(Debug, Error)]
-pub enum Damage {
-    /// The file is gone.
-    #[error("{0} is missing")]
-    Missing(&'static str),
-    /// The file or its directory cannot be read.
-    #[error("{file} cannot be read: {source}")]
-    Unreadable {
-        /// The file.
-        file: &'static str,
-        /// What failed.
-        #[source]
-        source: io::Error,
-    },
-    /// The file is longer or shorter than when it was written.
-    #[error("{file} holds {found} bytes; {expected} were written")]
-    Length {
-        /// The file.
-        file: &'static str,
-        /// Its length now.
-        found: u64,
-        /// Its length when written.
-        expected: u64,
-    },
-    /// The file has its length but other bytes.
-    #[error("{0} does not match its checksum")]
-    Checksum(&'static str),
-    /// The file does not parse as what it should hold.
-    #[error("{file} is not valid: {message}")]
-    Invalid {
-        /// The file.
-        file: &'static str,
-        /// The parser's complaint.
-        message: String,
-    },
-}
-
-impl Damage {
-    /// Whether the file could not be read at all: possibly a fault of the machine (too
-    /// many open files, an I/O error) rather than of the file, so a request that meets it
-    /// fails and the next one tries again, instead of running the job again.
-    pub fn is_read_failure(&self) -> bool {
-        matches!(self, Self::Unreadable { .. })
-    }
-
-    pub(super) fn reading(file: &'static str, source: io::Error) -> Self {
-        if source.kind() == io::ErrorKind::NotFound {
-            Self::Missing(file)
-        } else {
-            Self::Unreadable { file, source }
-        }
-    }
-}
-
-/// The length and CRC-32 of a file's bytes. CRC-32 finds every burst of damage up to 32 bits
-/// and all but one in 2^32 of the others; a truncation is caught by the length already.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Digest {
-    bytes: u64,
-    crc32: u32,
-}
-
-impl Digest {
-    pub(super) fn of(bytes: &[u8]) -> Self {
-        Self {
-            bytes: bytes.len() as u64,
-            crc32: crc32fast::hash(bytes),
-        }
-    }
-
-    pub(super) fn check(self, file: &'static str, bytes: &[u8]) -> Result<(), Damage> {
-        let found = Self::of(bytes);
-        if found.bytes != self.bytes {
-            return Err(Damage::Length {
-                file,
-                found: found.bytes,
-                expected: self.bytes,
-            });
-        }
-        if found.crc32 != self.crc32 {
-            return Err(Damage::Checksum(file));
-        }
-        Ok(())
-    }
-}
-
 /// What `manifest.json` holds.
 #[derive(Debug, Serialize, Deserialize)]
 struct Manifest {
     result_json: Digest,
     cycles_jsonl: Digest,
-}
-
-/// What a `measured_<kind>.json` holds: the columns and the digest of their compact JSON
-/// (which serde_json writes the same for the same numbers, so it can be recomputed).
-#[derive(Debug, Serialize, Deserialize)]
-struct StoredTable {
-    digest: Digest,
-    columns: Columns,
 }
 
 /// A job directory as found on disk at startup.
@@ -219,7 +125,8 @@ impl Store {
         &self.quarantine_dir
     }
 
-    fn dir(&self, id: Uuid) -> PathBuf {
+    /// The directory of job `id`.
+    pub(super) fn dir(&self, id: Uuid) -> PathBuf {
         self.jobs_dir.join(id.to_string())
     }
 
@@ -304,51 +211,6 @@ impl Store {
         fs::read(self.dir(id).join(CYCLES))
     }
 
-    /// Replaces a job's table of `kind`. Blocking.
-    pub fn write_measurement(
-        &self,
-        id: Uuid,
-        kind: MeasurementKind,
-        columns: Columns,
-    ) -> io::Result<()> {
-        let compact = serde_json::to_vec(&columns).map_err(io::Error::other)?;
-        let stored = StoredTable {
-            digest: Digest::of(&compact),
-            columns,
-        };
-        write_atomic(&self.dir(id), kind.file(), &to_json(&stored)?)
-    }
-
-    /// Removes a job's table of `kind`, if it has one. Blocking.
-    pub fn remove_measurement(&self, id: Uuid, kind: MeasurementKind) -> io::Result<()> {
-        let dir = self.dir(id);
-        match fs::remove_file(dir.join(kind.file())) {
-            Ok(()) => sync_dir(&dir),
-            Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(()),
-            Err(e) => Err(e),
-        }
-    }
-
-    /// Every table of a job, each checked against its digest. Blocking.
-    pub fn read_measurements(&self, id: Uuid) -> Result<Measurements, Damage> {
-        let dir = self.dir(id);
-        let mut measurements = Measurements::default();
-        for kind in MeasurementKind::ALL {
-            let stored: StoredTable = match read_json(&dir, kind.file()) {
-                Ok(stored) => stored,
-                Err(Damage::Missing(_)) => continue,
-                Err(damage) => return Err(damage),
-            };
-            let compact = serde_json::to_vec(&stored.columns).map_err(|e| Damage::Invalid {
-                file: kind.file(),
-                message: e.to_string(),
-            })?;
-            stored.digest.check(kind.file(), &compact)?;
-            *measurements.slot(kind) = Some(stored.columns);
-        }
-        Ok(measurements)
-    }
-
     /// A job's scene, read back. Blocking.
     pub fn read_scene(&self, id: Uuid) -> Result<Scene, Damage> {
         read_json(&self.dir(id), SCENE)
@@ -427,30 +289,6 @@ impl Store {
     }
 }
 
-fn read_json<T: serde::de::DeserializeOwned>(dir: &Path, file: &'static str) -> Result<T, Damage> {
-    let bytes = fs::read(dir.join(file)).map_err(|e| Damage::reading(file, e))?;
-    serde_json::from_slice(&bytes).map_err(|e| Damage::Invalid {
-        file,
-        message: e.to_string(),
-    })
-}
-
-/// Moves `path` into `quarantine_dir` under a unique name, logging where; logs if it cannot.
-pub(super) fn quarantine(quarantine_dir: &Path, path: &Path) {
-    let name = path.file_name().unwrap_or_default().to_string_lossy();
-    let target = quarantine_dir.join(format!("{name}.{}", Uuid::new_v4().simple()));
-    let parent = path.parent().unwrap_or(quarantine_dir);
-    let moved = fs::create_dir_all(quarantine_dir)
-        .and_then(|()| fs::rename(path, &target))
-        .and_then(|()| sync_dir(parent));
-    match moved {
-        Ok(()) => tracing::warn!(from = %path.display(), to = %target.display(), "quarantined"),
-        Err(e) => {
-            tracing::error!(path = %path.display(), "cannot quarantine: {e}; left in place");
-        }
-    }
-}
-
 /// Removes a file or a directory tree.
 fn remove_any(path: &Path) -> io::Result<()> {
     if fs::symlink_metadata(path)?.is_dir() {
@@ -458,19 +296,6 @@ fn remove_any(path: &Path) -> io::Result<()> {
     } else {
         fs::remove_file(path)
     }
-}
-
-/// Removes the temporary files of writes a crash interrupted.
-pub(super) fn sweep_temporaries(job_dir: &Path) -> io::Result<()> {
-    for entry in fs::read_dir(job_dir)? {
-        let entry = entry?;
-        let name = entry.file_name();
-        let name = name.to_string_lossy();
-        if name.starts_with('.') && name.ends_with(".tmp") {
-            fs::remove_file(entry.path())?;
-        }
-    }
-    Ok(())
 }
 
 /// Appends cycle records to a job's `cycles.jsonl`, keeping the digest of what it wrote.
@@ -500,44 +325,6 @@ impl CyclesWriter {
             .into_inner()
             .map_err(io::IntoInnerError::into_error)?;
         file.sync_all()?;
-        Ok(Digest {
-            bytes: self.bytes,
-            crc32: self.hasher.finalize(),
-        })
+        Ok(Digest::from_parts(self.bytes, self.hasher.finalize()))
     }
-}
-
-/// Whether an error means the disk (or the user's quota) is full.
-pub fn is_disk_full(error: &io::Error) -> bool {
-    matches!(
-        error.kind(),
-        io::ErrorKind::StorageFull | io::ErrorKind::QuotaExceeded
-    )
-}
-
-pub(super) fn to_json(value: &impl serde::Serialize) -> io::Result<Vec<u8>> {
-    serde_json::to_vec_pretty(value).map_err(io::Error::other)
-}
-
-/// Writes `dir/name` atomically and durably.
-pub(super) fn write_atomic(dir: &Path, name: &str, bytes: &[u8]) -> io::Result<()> {
-    // A unique temporary name, so two writers can never interleave in one temporary file.
-    let temporary = dir.join(format!(".{name}.{}.tmp", Uuid::new_v4()));
-    let written = (|| {
-        let mut file = File::create(&temporary)?;
-        file.write_all(bytes)?;
-        file.sync_all()?;
-        fs::rename(&temporary, dir.join(name))
-    })();
-    if written.is_err() {
-        // Best effort: the write already failed, and a leftover temporary file is harmless.
-        let _ = fs::remove_file(&temporary);
-    }
-    written?;
-    sync_dir(dir)
-}
-
-/// Makes a directory's entries (creations, renames) durable.
-pub(super) fn sync_dir(dir: &Path) -> io::Result<()> {
-    File::open(dir)?.sync_all()
 }

@@ -18,8 +18,8 @@ use time::OffsetDateTime;
 use super::job::{Job, JobStatus};
 use super::registry::Jobs;
 use super::store::CyclesWriter;
-use super::surfaces::surface_id;
 use crate::scene::Scene;
+use crate::service::surfaces::surface_id;
 use crate::simulation::{self, CycleRecord, Plan, RunOptions, SimulationError};
 
 impl Jobs {

@@ -1,23 +1,13 @@
 //! A study as the API shows it: the stored study with each member's status read from its
 //! job, the counts, and the study's status derived from them.
 
-use serde::{Deserialize, Serialize, Serializer};
+use serde::{Serialize, Serializer};
 use serde_json::{Map, Value};
 use time::OffsetDateTime;
 use uuid::Uuid;
 
-use super::job::JobStatus;
-use super::registry::Jobs;
-use super::studies::StoredStudy;
-
-/// An axis as the study record shows it: the path and every value, in order.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct AxisRecord {
-    /// The dotted scene path.
-    pub path: String,
-    /// Its values.
-    pub values: Vec<Value>,
-}
+use super::store::{AxisRecord, StoredStudy};
+use crate::service::jobs::{JobStatus, Jobs};
 
 /// Where a member is: its job's status, or `deleted` once its job has been removed on its
 /// own (DELETE on the job); `None` is that deleted job.
