@@ -706,6 +706,19 @@ async fn the_page_presets_and_description_are_served() {
     );
     let page = page.text().await.expect("text");
     assert!(page.contains("/api/v1/openapi.yaml") && page.contains("/api/v1/jobs"));
+    let styles = client
+        .get(server.url("/static/vendor/uplot/uPlot.min.css"))
+        .send()
+        .await
+        .expect("styles");
+    assert_eq!(styles.status(), 200);
+    assert_eq!(styles.headers()["content-type"], "text/css; charset=utf-8");
+    let response = client
+        .get(server.url("/static/js/nope.js"))
+        .send()
+        .await
+        .expect("no module");
+    expect_client_error(response, 404).await;
     let health: Value = get_json(&client, &server.url("/healthz")).await;
     assert_eq!(health, json!({"status": "ok"}));
     let presets: Value = get_json(&client, &server.url("/api/v1/presets")).await;
@@ -743,7 +756,7 @@ fn openapi_describes_exactly_the_routes_of_the_router() {
         .collect();
     let routed: BTreeSet<(String, String)> = ROUTES
         .iter()
-        .map(|route| (route.verb.openapi_name().to_owned(), route.path.to_owned()))
+        .map(|route| (route.verb.openapi_name().to_owned(), route.openapi_path()))
         .collect();
     assert_eq!(routed.len(), ROUTES.len(), "no route listed twice");
     let missing: Vec<_> = routed.difference(&described).collect();

@@ -14,6 +14,7 @@
 //!   persisted status, so they run again at the next start. Waiting for them instead could
 //!   take minutes, longer than a container runtime waits before killing the process anyway.
 
+mod assets;
 mod calibration_routes;
 mod calibrations;
 mod error;
@@ -97,8 +98,9 @@ pub struct ServeArgs {
     /// Origin allowed to call the API from a browser (repeatable); CORS is off without one.
     #[arg(long = "cors-origin", value_name = "ORIGIN")]
     pub cors_origins: Vec<String>,
-    /// Serve the web page from DIR/index.html instead of the copy built into the binary
-    /// (for working on the page without rebuilding).
+    /// Serve the web page's files (DIR/index.html, and the rest under /static/) from DIR
+    /// instead of the copies built into the binary (for working on the page without
+    /// rebuilding).
     #[arg(long, value_name = "DIR")]
     pub static_dir: Option<PathBuf>,
     /// Timeouts and the cap on connections.
@@ -238,7 +240,7 @@ struct AppState {
     studies: Arc<Studies>,
     calibrations: Arc<Calibrations>,
     token: Option<Arc<str>>,
-    /// Where the page is read from; the built-in copy when `None`.
+    /// Where the page's files are read from; the built-in copies when `None`.
     static_dir: Option<Arc<Path>>,
     /// Seconds a request's body may take to arrive.
     body_timeout_s: u64,

@@ -9,12 +9,13 @@ use axum::extract::{DefaultBodyLimit, Request, State};
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::middleware::Next;
 use axum::response::sse::{KeepAlive, Sse};
-use axum::response::{Html, IntoResponse, Response};
+use axum::response::{IntoResponse, Response};
 use axum::routing::{MethodFilter, MethodRouter, on};
 use serde_json::{Value, json};
 use uuid::Uuid;
 
 use super::AppState;
+use super::assets;
 use super::error::ApiError;
 use super::events;
 use super::export;
@@ -33,9 +34,6 @@ use crate::simulation::parse_scene;
 
 /// The OpenAPI description, served as is.
 pub const OPENAPI_YAML: &str = include_str!("../../openapi.yaml");
-
-/// The web page, built into the binary so that `serve` works from any directory.
-const PAGE_HTML: &str = include_str!("../../static/index.html");
 
 /// Longest request target (path and query) accepted: the longest route with a job id is
 /// under 70 bytes, and 8 KiB is what common proxies accept. Longer targets get 414 with
@@ -80,7 +78,8 @@ impl Verb {
 pub struct Route {
     /// The method.
     pub verb: Verb,
-    /// The path; axum's `{id}` syntax is also OpenAPI's.
+    /// The path; axum's `{id}` syntax is also OpenAPI's, and its catch-all `{*path}` is
+    /// OpenAPI's `{path}` ([`Route::openapi_path`]).
     pub path: &'static str,
     /// Whether the bearer token (when configured) is required.
     pub auth: bool,
@@ -88,21 +87,33 @@ pub struct Route {
 }
 
 impl Route {
+    /// The path as `openapi.yaml` writes it: a catch-all's value (which may hold slashes) is
+    /// an ordinary path parameter there.
+    pub fn openapi_path(&self) -> String {
+        self.path.replace("{*", "{")
+    }
+
     /// This route's method router.
     pub(super) fn method_router(&self) -> MethodRouter<AppState> {
         (self.handler)(self.verb.filter())
     }
 }
 
-/// Every route. The page, the health check and the API description are public (a health
-/// check and documentation carry no data); every other API call needs the token when one is
-/// configured.
+/// Every route. The page and its files, the health check and the API description are
+/// public (a health check and documentation carry no data); every other API call needs the
+/// token when one is configured.
 pub const ROUTES: &[Route] = &[
     Route {
         verb: Verb::Get,
         path: "/",
         auth: false,
-        handler: |f| on(f, index),
+        handler: |f| on(f, assets::index),
+    },
+    Route {
+        verb: Verb::Get,
+        path: "/static/{*path}",
+        auth: false,
+        handler: |f| on(f, assets::asset),
     },
     Route {
         verb: Verb::Get,
@@ -350,21 +361,6 @@ pub(super) async fn no_route() -> ApiError {
 /// 405 for a known path with another method.
 pub(super) async fn wrong_method() -> ApiError {
     ApiError::method_not_allowed()
-}
-
-async fn index(State(app): State<AppState>) -> Result<Html<Vec<u8>>, ApiError> {
-    let Some(dir) = &app.static_dir else {
-        return Ok(Html(PAGE_HTML.as_bytes().to_vec()));
-    };
-    let path = dir.join("index.html");
-    match tokio::fs::read(&path).await {
-        Ok(page) => Ok(Html(page)),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(ApiError::not_found(format!(
-            "no page: {} is missing (see --static-dir)",
-            path.display()
-        ))),
-        Err(e) => Err(ApiError::internal("reading the page", &e)),
-    }
 }
 
 async fn healthz() -> Json<Value> {
