@@ -705,14 +705,17 @@ async fn the_page_presets_and_description_are_served() {
             .starts_with("text/html")
     );
     let page = page.text().await.expect("text");
-    assert!(page.contains("/api/v1/openapi.yaml") && page.contains("/api/v1/jobs"));
-    let styles = client
-        .get(server.url("/static/vendor/uplot/uPlot.min.css"))
+    assert!(page.contains("/api/v1/openapi.yaml") && page.contains("/static/js/main.js"));
+    let module = client
+        .get(server.url("/static/js/main.js"))
         .send()
         .await
-        .expect("styles");
-    assert_eq!(styles.status(), 200);
-    assert_eq!(styles.headers()["content-type"], "text/css; charset=utf-8");
+        .expect("module");
+    assert_eq!(module.status(), 200);
+    assert_eq!(
+        module.headers()["content-type"],
+        "text/javascript; charset=utf-8"
+    );
     let response = client
         .get(server.url("/static/js/nope.js"))
         .send()
