@@ -246,7 +246,23 @@ async fn the_page_presets_and_description_are_served() {
             .starts_with("text/html")
     );
     let page = page.text().await.expect("text");
-    assert!(page.contains("/api/v1/openapi.yaml") && page.contains("/api/v1/jobs"));
+    assert!(page.contains("/api/v1/openapi.yaml") && page.contains("/static/js/main.js"));
+    let module = client
+        .get(server.url("/static/js/main.js"))
+        .send()
+        .await
+        .expect("module");
+    assert_eq!(module.status(), 200);
+    assert_eq!(
+        module.headers()["content-type"],
+        "text/javascript; charset=utf-8"
+    );
+    let response = client
+        .get(server.url("/static/js/nope.js"))
+        .send()
+        .await
+        .expect("no module");
+    expect_client_error(response, 404).await;
     let health: Value = get_json(&client, &server.url("/healthz")).await;
     assert_eq!(health, json!({"status": "ok"}));
     let presets: Value = get_json(&client, &server.url("/api/v1/presets")).await;
@@ -285,7 +301,7 @@ fn openapi_describes_exactly_the_routes_of_the_router() {
     let routes = routes();
     let routed: BTreeSet<(String, String)> = routes
         .iter()
-        .map(|route| (route.verb.openapi_name().to_owned(), route.path.to_owned()))
+        .map(|route| (route.verb.openapi_name().to_owned(), route.openapi_path()))
         .collect();
     assert_eq!(routed.len(), routes.len(), "no route listed twice");
     let missing: Vec<_> = routed.difference(&described).collect();

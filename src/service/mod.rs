@@ -22,6 +22,7 @@
 //!   persisted status, so they run again at the next start. Waiting for them instead could
 //!   take minutes, longer than a container runtime waits before killing the process anyway.
 
+mod assets;
 mod blocking;
 mod calibrations;
 mod error;
@@ -31,7 +32,6 @@ mod jobs;
 mod listen;
 mod measurements;
 mod meta;
-mod page;
 mod reply;
 mod route;
 mod router;
@@ -93,8 +93,9 @@ pub struct ServeArgs {
     /// Origin allowed to call the API from a browser (repeatable); CORS is off without one.
     #[arg(long = "cors-origin", value_name = "ORIGIN")]
     pub cors_origins: Vec<String>,
-    /// Serve the web page from DIR/index.html instead of the copy built into the binary
-    /// (for working on the page without rebuilding).
+    /// Serve the web page's files (DIR/index.html, and the rest under /static/) from DIR
+    /// instead of the copies built into the binary (for working on the page without
+    /// rebuilding).
     #[arg(long, value_name = "DIR")]
     pub static_dir: Option<PathBuf>,
     /// Timeouts and the cap on connections.

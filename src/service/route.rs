@@ -43,10 +43,19 @@ impl Verb {
 pub struct Route {
     /// The method.
     pub verb: Verb,
-    /// The path; axum's `{id}` syntax is also OpenAPI's.
+    /// The path; axum's `{id}` syntax is also OpenAPI's, and its catch-all `{*path}` is
+    /// OpenAPI's `{path}` ([`Route::openapi_path`]).
     pub path: &'static str,
     /// Whether the bearer token (when configured) is required.
     pub auth: bool,
+}
+
+impl Route {
+    /// The path as `openapi.yaml` writes it: a catch-all's value (which may hold slashes) is
+    /// an ordinary path parameter there.
+    pub fn openapi_path(&self) -> String {
+        self.path.replace("{*", "{")
+    }
 }
 
 /// A route and its handler, on a router whose state is `S`. A resource's table is generic

@@ -16,7 +16,7 @@ use tracing::Level;
 use super::error::ApiError;
 use super::route::{Endpoint, Route};
 use super::state::AppState;
-use super::{calibrations, jobs, measurements, meta, page, studies, surfaces};
+use super::{assets, calibrations, jobs, measurements, meta, studies, surfaces};
 
 /// Largest request body accepted: a scene is a few kilobytes, a measured table some tens
 /// (a profilometer trace of a few thousand points). A height map's route takes more.
@@ -27,10 +27,10 @@ pub const BODY_LIMIT_BYTES: usize = 1 << 20;
 /// the JSON body (hyper itself refuses targets over 64 KiB, with an empty body).
 pub const MAX_URI_BYTES: usize = 8 * 1024;
 
-/// Every route with its handler: the page's, the service's own, then each resource's.
+/// Every route with its handler: the page's and its files', the service's own, then each resource's.
 fn endpoints() -> Vec<Endpoint<AppState>> {
     [
-        page::endpoints(),
+        assets::endpoints(),
         meta::endpoints(),
         jobs::endpoints(),
         measurements::endpoints(),

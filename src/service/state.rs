@@ -24,7 +24,7 @@ pub(crate) struct AppState {
     pub(crate) surfaces: Arc<Surfaces>,
     /// The bearer token API calls need, if any.
     pub(crate) token: Option<Arc<str>>,
-    /// Where the page is read from; the built-in copy when `None`.
+    /// Where the page's files are read from; the built-in copies when `None`.
     pub(crate) static_dir: Option<Arc<Path>>,
     pub(crate) body_timeout: BodyTimeout,
     pub(crate) streams: Streams,
