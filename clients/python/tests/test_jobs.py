@@ -142,7 +142,7 @@ def test_progress_bar(small_job: tribosim.Job, capsys: pytest.CaptureFixture[str
 def test_progress_without_tqdm(
     small_job: tribosim.Job, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.setitem(sys.modules, "tqdm.auto", None)
+    monkeypatch.setitem(sys.modules, "tqdm", None)
     small_job.wait(progress=True)
     assert capsys.readouterr().err.endswith("pytest small: 20/20 succeeded\n")
 

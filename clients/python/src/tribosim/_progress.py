@@ -1,8 +1,9 @@
-"""A progress bar while waiting: tqdm's (``tqdm.auto``: a widget in a notebook) with the
-``progress`` extra, else a line on standard error rewritten in place."""
+"""A progress bar while waiting: tqdm's with the ``progress`` extra (a widget in a notebook
+that has ipywidgets), else a line on standard error rewritten in place."""
 
 from __future__ import annotations
 
+import importlib.util
 import sys
 from typing import Any
 
@@ -19,7 +20,7 @@ class Progress:
         if not enabled:
             return
         try:
-            from tqdm.auto import tqdm
+            tqdm = _tqdm()
         except ImportError:
             self._plain = True
             return
@@ -41,3 +42,16 @@ class Progress:
             self._bar.close()
         elif self._plain:
             sys.stderr.write("\n")
+
+
+def _tqdm() -> Any:
+    """tqdm.auto's bar where ipywidgets is there to draw it; tqdm's text bar otherwise, which
+    a notebook shows too (tqdm.auto would fall back to it with a warning in every notebook
+    without ipywidgets)."""
+    from tqdm import tqdm
+
+    if importlib.util.find_spec("ipywidgets") is None:
+        return tqdm
+    from tqdm.auto import tqdm as auto
+
+    return auto

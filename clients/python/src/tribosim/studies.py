@@ -97,7 +97,7 @@ class Study:
         `RunFailedError` unless every member succeeded; `timeout` (s) raises
         `WaitTimeoutError` and leaves the study running."""
         deadline = None if timeout is None else time.monotonic() + timeout
-        bar = Progress(len(self.info.members), f"study {self.info.name}", "members", progress)
+        bar = Progress(len(self.info.members), f"study {self.id[:8]}", "members", progress)
         try:
             while True:
                 info = self.refresh()
