@@ -36,14 +36,15 @@ START_TIMEOUT_S = 60.0
 
 
 class Server:
-    """A ``tribosim serve`` process; `url` once it answers ``/healthz``."""
+    """A ``tribosim serve`` process with its data in `directory` (its log there too, named
+    after `addr`'s port); `url` once it answers ``/healthz``."""
 
-    def __init__(self, directory: Path, args: list[str]) -> None:
+    def __init__(self, directory: Path, args: list[str], addr: str = "127.0.0.1:0") -> None:
         if not BIN.is_file():
             raise RuntimeError(
                 f"no tribosim binary at {BIN}: cargo build --release, or set TRIBOSIM_BIN"
             )
-        self.log = directory / "server.log"
+        self.log = directory / f"server-{addr.rsplit(':', 1)[1]}-{time.monotonic_ns()}.log"
         # The server reads TRIBOSIM_TOKEN itself: each test server gets only the token its
         # arguments give.
         env = {k: v for k, v in os.environ.items() if not k.startswith("TRIBOSIM_")}
@@ -53,7 +54,7 @@ class Server:
                     str(BIN),
                     "serve",
                     "--addr",
-                    "127.0.0.1:0",
+                    addr,
                     "--data-dir",
                     str(directory / "data"),
                     *args,

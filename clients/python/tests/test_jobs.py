@@ -6,18 +6,25 @@ import csv
 import io
 import json
 import re
+import socket
 import sys
+from datetime import datetime, timezone
 from pathlib import Path
 
 import pytest
 
 import tribosim
 
-from conftest import ENDLESS, REPO, SMALL
+from conftest import ENDLESS, REPO, SMALL, Server
 
 #: The cycle record's columns that are counts, not quantities with a unit.
 COUNTS = {"cycle", "iterations", "contact_islands"}
 UNIT = re.compile(r"_(s|mm3|mm2|um|mpa|v)$")
+#: A job that sends an event for every cycle.
+EVERY_CYCLE = {
+    "preset": "dalmau2018-316l",
+    "overrides": {"test": {"cycles": 1000}, "numerics": {"grid": 32, "cycle_step": 1}},
+}
 
 
 def test_submit_wait_and_result(small_job: tribosim.Job) -> None:
@@ -185,3 +192,36 @@ def test_a_deleted_job_is_not_found(client: tribosim.Client) -> None:
     for call in (job.refresh, job.result, job.result_csv, job.scene, lambda: list(job.events())):
         with pytest.raises(tribosim.NotFoundError):
             call()
+
+
+def test_events_follow_a_job_across_a_restart(tmp_path: Path) -> None:
+    # A fixed port, so that the client finds the restarted server where the first one was.
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        addr = f"127.0.0.1:{probe.getsockname()[1]}"
+    first = Server(tmp_path, ["--workers", "1"], addr)
+    try:
+        with tribosim.Client(first.url) as client:
+            job = client.jobs.submit(EVERY_CYCLE)
+            events = job.events()
+            seen = [next(events) for _ in range(3)]
+            # Stopped with the job running, the server runs it again from its first cycle
+            # once restarted on the same data; the same iterator goes on after the last
+            # cycle it received.
+            first.stop()
+            restarted = datetime.now(timezone.utc)
+            second = Server(tmp_path, ["--workers", "1"], addr)
+            try:
+                rest = list(events)
+            finally:
+                second.stop()
+    finally:
+        first.stop()
+    numbers = [e.cycle for e in seen + rest if isinstance(e, tribosim.CycleEvent)]
+    assert numbers == list(range(1, EVERY_CYCLE["overrides"]["test"]["cycles"] + 1))
+    assert first.panics() == [] and second.panics() == []
+    status = rest[-1]
+    assert isinstance(status, tribosim.StatusEvent) and status.job.status == "succeeded"
+    # The run that ended is the second server's.
+    assert status.job.started_at is not None
+    assert datetime.fromisoformat(status.job.started_at[:26] + "+00:00") > restarted
