@@ -79,6 +79,7 @@ class Calibrations:
             self._http, CalibrationInfo.from_json(self._http.json(_SUBMIT, json=body))
         )
 
+    @_SUBMIT.implements
     def fit(
         self,
         kind: str,
@@ -101,13 +102,13 @@ class Calibrations:
         )
         return calibration.wait(timeout=timeout)
 
+    @_GET.implements
     def get(self, calibration_id: str) -> Calibration:
         """The calibration of `calibration_id` (`NotFoundError` if the server has none:
         it keeps the last 100 in memory, and forgets them when it restarts)."""
         return Calibration(self._http, _fetch(self._http, calibration_id))
 
 
-@_GET.implements
 def _fetch(http: Http, calibration_id: str) -> CalibrationInfo:
     return CalibrationInfo.from_json(http.json(_GET, id=calibration_id))
 
@@ -123,10 +124,12 @@ class Calibration:
     def __repr__(self) -> str:
         return f"<Calibration {self.id} {self.info.kind} {self.info.status}>"
 
+    @_GET.implements
     def refresh(self) -> CalibrationInfo:
         self.info = _fetch(self._http, self.id)
         return self.info
 
+    @_GET.implements
     def wait(self, timeout: float | None = None, poll_s: float = 0.2) -> Fit:
         """Polls every `poll_s` seconds until the fit has ended; its `Fit`, or
         `RunFailedError` with the server's reason (it did not converge, a run failed)."""

@@ -69,12 +69,12 @@ class Jobs:
         """Every job, newest first."""
         return [Job(self._http, JobInfo.from_json(raw)) for raw in self._http.json(_LIST)]
 
+    @_GET.implements
     def get(self, job_id: str) -> Job:
         """The job of `job_id` (`NotFoundError` if there is none)."""
         return Job(self._http, _fetch(self._http, job_id))
 
 
-@_GET.implements
 def _fetch(http: Http, job_id: str) -> JobInfo:
     return JobInfo.from_json(http.json(_GET, id=job_id))
 
@@ -91,11 +91,13 @@ class Job:
     def __repr__(self) -> str:
         return f"<Job {self.id} {self.info.status} {self.info.name!r}>"
 
+    @_GET.implements
     def refresh(self) -> JobInfo:
         """The job's status and progress now."""
         self.info = _fetch(self._http, self.id)
         return self.info
 
+    @_EVENTS.implements
     def events(self, after: int = 0) -> Iterator[Event]:
         """The job's events as they come: a `CycleEvent` per solved cycle after cycle
         `after`, then its `StatusEvent`, then the end. If the stream breaks, it is followed
@@ -103,6 +105,7 @@ class Job:
         in a row."""
         return self._events(after, None)
 
+    @_EVENTS.implements
     def wait(
         self, progress: bool = True, timeout: float | None = None, check: bool = True
     ) -> JobInfo:
@@ -168,7 +171,6 @@ class Job:
         scene: dict[str, Any] = self._http.json(_SCENE, id=self.id)
         return scene
 
-    @_EVENTS.implements
     def _events(self, after: int, deadline: float | None) -> Iterator[Event]:
         failures = 0
         while True:

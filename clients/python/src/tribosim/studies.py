@@ -54,12 +54,12 @@ class Studies:
         """Every study, newest first."""
         return [Study(self._http, StudyInfo.from_json(raw)) for raw in self._http.json(_LIST)]
 
+    @_GET.implements
     def get(self, study_id: str) -> Study:
         """The study of `study_id` (`NotFoundError` if there is none)."""
         return Study(self._http, _fetch(self._http, study_id))
 
 
-@_GET.implements
 def _fetch(http: Http, study_id: str) -> StudyInfo:
     return StudyInfo.from_json(http.json(_GET, id=study_id))
 
@@ -75,6 +75,7 @@ class Study:
     def __repr__(self) -> str:
         return f"<Study {self.id} {self.info.status} {len(self.info.members)} members>"
 
+    @_GET.implements
     def refresh(self) -> StudyInfo:
         """The study and its members' statuses now."""
         self.info = _fetch(self._http, self.id)
@@ -85,6 +86,7 @@ class Study:
         jobs = Jobs(self._http)
         return [jobs.get(member["job_id"]) for member in self.info.members]
 
+    @_GET.implements
     def wait(
         self,
         progress: bool = True,
@@ -120,6 +122,7 @@ class Study:
         summary: dict[str, Any] = self._http.json(_SUMMARY, id=self.id)
         return summary
 
+    @_SUMMARY.implements
     def summary(self) -> pandas.DataFrame:
         """One row per member: ``member``, a column per axis (its dotted path), the run's
         summary (``wear_volume_mm3``, ``max_depth_um``, ``wac_volume_mm3``, ...), and

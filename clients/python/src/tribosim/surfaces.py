@@ -35,6 +35,7 @@ class Surfaces:
     def __init__(self, http: Http) -> None:
         self._http = http
 
+    @_UPLOAD.implements
     def upload(self, heights_m: np.ndarray, pixel_um: float, name: str | None = None) -> Surface:
         """Stores `heights_m` (a 2-D array of heights in m, indexed ``[iy, ix]``: one row
         per line across the track) with its square `pixel_um`; the answer has its id,
@@ -47,6 +48,7 @@ class Surfaces:
         require_numpy().savetxt(text, heights, fmt=f"%.{HEIGHT_DIGITS}g")
         return self._upload(text.getvalue().encode(), "text/plain", pixel_um, name, "matrix")
 
+    @_UPLOAD.implements
     def upload_file(
         self,
         path: str | os.PathLike[str],
@@ -62,7 +64,6 @@ class Surfaces:
         name = Path(path).name if name is None else name
         return self._upload(body, "application/octet-stream", pixel_um, name, format)
 
-    @_UPLOAD.implements
     def _upload(
         self,
         body: bytes,
