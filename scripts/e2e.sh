@@ -9,7 +9,7 @@
 # types, is tests/http.rs's to check.
 #
 # Environment: TRIBOSIM_BIN (a built binary; default: cargo build --release),
-# E2E_GRID and E2E_CYCLES (the test run's grid and cycles, default 64 and 3600),
+# E2E_GRID and E2E_CYCLES (the test run's grid and cycles, default 128 and 3600, tests/e2e/lib.mjs),
 # SCREENSHOT_DIR (default docs/screenshots).
 set -euo pipefail
 cd "$(dirname "$0")/.."

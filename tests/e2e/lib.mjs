@@ -12,6 +12,14 @@ fs.mkdirSync(shots, { recursive: true });
 export const LONG = 120_000;
 /** The limit for waiting on a run to end. */
 export const RUN_LIMIT = 600_000;
+/**
+ * The grid and cycles of the test's runs. 128 cells per side makes the preset's run last
+ * about 3 s (`tribosim run` of `{"numerics": {"grid": N}}`: 0.40 s at 64, 1.26 s at 96,
+ * 2.94 s at 128), long enough that the sampler sees the progress move mid-run on a loaded
+ * machine; at 64 cells the 0.4 s run ended before a frame showed it in 2 of 5 runs.
+ */
+export const GRID = process.env.E2E_GRID || "128";
+export const CYCLES = process.env.E2E_CYCLES || "3600";
 
 /** Prints a step's heading. */
 export const step = (name) => console.log(`-- ${name}`);

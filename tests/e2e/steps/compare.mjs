@@ -5,7 +5,7 @@ import fs from "node:fs";
 import path from "node:path";
 
 import { COMPARE, COMPARE_PLOT, COMPARE_X, FORM, JOBS, RUN, RUN_PLOT, fieldId } from "../../../static/js/ids.js";
-import { sel, shots, step, waitForStatus } from "../lib.mjs";
+import { GRID, sel, shots, step, waitForStatus } from "../lib.mjs";
 
 const selectedRow = `${sel(JOBS.table)} tbody tr.selected`;
 
@@ -31,7 +31,7 @@ async function editAgain(page) {
   const load = sel(fieldId("test.load_n"));
   await page.click(sel(RUN.editAgain));
   assert.equal(await page.inputValue(load), "10");
-  assert.equal(await page.inputValue(sel(fieldId("numerics.grid"))), "64");
+  assert.equal(await page.inputValue(sel(fieldId("numerics.grid"))), GRID);
   assert.match(await page.inputValue(sel(FORM.name)), /load 10 N/);
   await page.fill(load, "7");
   assert.match(await page.inputValue(sel(FORM.name)), /load 7 N/);

@@ -5,13 +5,13 @@ import fs from "node:fs";
 import path from "node:path";
 
 import { FORM, JOBS, RUN, RUN_PLOT, fieldId } from "../../../static/js/ids.js";
-import { points, sel, shots, step, waitForStatus } from "../lib.mjs";
+import { CYCLES, GRID, points, sel, shots, step, waitForStatus } from "../lib.mjs";
 
 async function start(page) {
   step("start the preset on a small grid, driven by the keyboard-usable form");
   await page.fill(sel(fieldId("test.load_n")), "5");
-  await page.fill(sel(fieldId("numerics.grid")), process.env.E2E_GRID || "64");
-  await page.fill(sel(fieldId("test.cycles")), process.env.E2E_CYCLES || "3600");
+  await page.fill(sel(fieldId("numerics.grid")), GRID);
+  await page.fill(sel(fieldId("test.cycles")), CYCLES);
   // Samples, every frame, the run's progress bar and the live volume plot's point count,
   // to show that both moved while the job was running (not only at its end).
   await page.evaluate(([progress, volume, status]) => {
@@ -121,7 +121,7 @@ async function pressureMaps(page) {
 
 async function downloads(page, found) {
   step("the run's parameters: the scene as run, and what differs from the preset");
-  assert.match(await page.textContent(sel(RUN.paramsDiff)), /Differs from the preset dalmau2018-316l in \d+ fields?:.*grid 64/);
+  assert.match(await page.textContent(sel(RUN.paramsDiff)), new RegExp(`Differs from the preset dalmau2018-316l in \\d+ fields?:.*grid ${GRID}`));
   assert.match(await page.textContent(sel(RUN.paramsJson)), /"load_n": 5/);
 
   step("download the JSON and the CSV");
