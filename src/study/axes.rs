@@ -8,10 +8,10 @@ use serde_json::{Number, Value};
 
 use super::StudyError;
 
-/// The most intervals a range may have. A range's values are built when the study is read,
-/// before the member limit is checked, so this bounds the memory a study file can ask for
-/// (a million values, 32 MB) whatever the member limit; a study of a million runs is years
-/// of a workstation's time.
+/// The most intervals a range may have: a study of a million runs is years of a
+/// workstation's time. A range's values are not built when the study is read (each is
+/// computed when a member needs it), so this bounds no memory; the member limit, checked on
+/// the axes' counts, bounds what is built.
 pub const MAX_RANGE_STEPS: u64 = 1_000_000;
 
 /// One axis: the path of a scene field and its values, in the order given.
@@ -20,8 +20,8 @@ pub struct Axis {
     /// The dotted path as in the scene document (`test.load_n`); under a preset, relative
     /// to `overrides`.
     pub path: String,
-    /// The values, at least one.
-    pub values: Vec<Value>,
+    /// The values, at least one, as written: a range is kept as its ends and steps.
+    pub values: AxisValues,
 }
 
 /// How an axis's values are written.
@@ -41,27 +41,44 @@ pub enum AxisValues {
 }
 
 impl AxisValues {
-    /// The values in order. A range whose ends are both integers gives integers where the
-    /// spacing lands on them, so that integer fields (`test.cycles`) accept them.
-    pub fn values(&self) -> Vec<Value> {
+    /// How many values, counted without building them.
+    pub fn len(&self) -> usize {
         match self {
-            Self::List(values) => values.clone(),
+            Self::List(values) => values.len(),
+            // At most MAX_RANGE_STEPS + 1, which fits any usize.
+            Self::Range { steps, .. } => usize::try_from(*steps).map_or(usize::MAX, |s| s + 1),
+        }
+    }
+
+    /// Whether there are no values (an empty list).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The value at `index` (below [`Self::len`]). A range whose ends are both integers
+    /// gives integers where the spacing lands on them, so that integer fields
+    /// (`test.cycles`) accept them.
+    pub fn get(&self, index: usize) -> Value {
+        match self {
+            Self::List(values) => values[index].clone(),
             Self::Range { from, to, steps } => {
                 let integers = from.is_i64() && to.is_i64();
                 let (a, b) = (from.as_f64().unwrap_or(0.0), to.as_f64().unwrap_or(0.0));
-                (0..=*steps)
-                    .map(|i| {
-                        // The ends exactly, not a + (b - a) * 1.0 with its rounding.
-                        let x = if i == *steps {
-                            b
-                        } else {
-                            a + (b - a) * i as f64 / *steps as f64
-                        };
-                        number(x, integers)
-                    })
-                    .collect()
+                let i = index as u64;
+                // The ends exactly, not a + (b - a) * 1.0 with its rounding.
+                let x = if i == *steps {
+                    b
+                } else {
+                    a + (b - a) * i as f64 / *steps as f64
+                };
+                number(x, integers)
             }
         }
+    }
+
+    /// Every value in order; built only once the member limit has bounded them.
+    pub fn to_vec(&self) -> Vec<Value> {
+        (0..self.len()).map(|i| self.get(i)).collect()
     }
 }
 
@@ -96,7 +113,6 @@ impl Axis {
                 )));
             }
         };
-        let values = values.values();
         if values.is_empty() {
             return Err(fail("has no values; give at least one".into()));
         }
@@ -162,5 +178,21 @@ mod tests {
         let most = serde_json::json!({"from": 0, "to": 1, "steps": MAX_RANGE_STEPS});
         let axis = Axis::from_json("test.load_n".into(), &most).expect("the largest range");
         assert_eq!(axis.values.len() as u64, MAX_RANGE_STEPS + 1);
+    }
+
+    #[test]
+    fn a_range_is_counted_and_its_values_computed_one_at_a_time() {
+        let range = serde_json::json!({"from": 2, "to": 4, "steps": 4});
+        let axis = Axis::from_json("test.load_n".into(), &range).expect("a range");
+        assert_eq!(axis.values.len(), 5);
+        let built = axis.values.to_vec();
+        assert_eq!(
+            built,
+            serde_json::json!([2, 2.5, 3, 3.5, 4]).as_array().cloned().unwrap_or_default()
+        );
+        let thirds = serde_json::json!({"from": 0.1, "to": 0.7, "steps": 3});
+        let axis = Axis::from_json("test.x".into(), &thirds).expect("a range");
+        // The last value is the end as written, not 0.1 + 0.6 * 1.0 with its rounding.
+        assert_eq!(axis.values.get(3), serde_json::json!(0.7));
     }
 }

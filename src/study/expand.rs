@@ -38,7 +38,7 @@ impl Study {
         let mut values = vec![(String::new(), Value::Null); self.axes.len()];
         for (slot, axis) in values.iter_mut().zip(&self.axes).rev() {
             let n = axis.values.len();
-            *slot = (axis.path.clone(), axis.values[rest % n].clone());
+            *slot = (axis.path.clone(), axis.values.get(rest % n));
             rest /= n;
         }
         let mut document = self.base.clone();
@@ -98,4 +98,29 @@ fn set(document: &mut Value, path: &str, value: Value) -> Result<(), StudyError>
             .or_insert_with(|| Value::Object(Map::new()));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn many_large_ranges_are_refused_on_their_counts_alone() {
+        // 200 axes of a million steps: built in full, each would take 32 MB (6 GB in all);
+        // counted, the study is refused at once.
+        let axes: Map<String, Value> = (0..200)
+            .map(|i| {
+                let range = serde_json::json!({"from": 0, "to": 1, "steps": 1_000_000});
+                (format!("test.a{i}"), range)
+            })
+            .collect();
+        let text = serde_json::json!({"base": {}, "axes": axes}).to_string();
+        let study = Study::parse(&text).expect("a well-formed study");
+        assert_eq!(study.member_count(), usize::MAX);
+        let err = study.members(1000).expect_err("over the member limit");
+        assert!(
+            matches!(err, StudyError::TooManyMembers { limit: 1000, .. }),
+            "{err}"
+        );
+    }
 }

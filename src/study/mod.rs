@@ -133,7 +133,8 @@ impl Study {
         })
     }
 
-    /// How many members the axes give, saturating rather than overflowing.
+    /// How many members the axes give, from their counts alone (no value is built),
+    /// saturating rather than overflowing.
     pub fn member_count(&self) -> usize {
         self.axes
             .iter()

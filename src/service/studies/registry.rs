@@ -159,7 +159,7 @@ impl Studies {
             .iter()
             .map(|axis| AxisRecord {
                 path: axis.path.clone(),
-                values: axis.values.clone(),
+                values: axis.values.to_vec(),
             })
             .collect();
         let values: Vec<Map<String, Value>> = members
