@@ -282,6 +282,83 @@ async fn a_study_survives_a_restart_and_a_damaged_study_file_is_quarantined() {
     assert_eq!(quarantined, 1);
 }
 
+/// A study of `members` loads from 1 to 6 N on short runs.
+fn load_range(members: u64) -> Value {
+    json!({
+        "base": {
+            "preset": "dalmau2018-316l",
+            "overrides": {"test": {"cycles": 3}, "numerics": {"grid": 16}, "corrosion": null}
+        },
+        "axes": {"test.load_n": {"from": 1, "to": 6, "steps": members - 1}}
+    })
+}
+
+/// How many jobs and studies the server lists.
+async fn counts(client: &reqwest::Client, server: &ServerProcess) -> (usize, usize) {
+    let jobs = get_json(client, &server.url("/api/v1/jobs?limit=1000")).await;
+    let studies = get_json(client, &server.url("/api/v1/studies?limit=1000")).await;
+    let len = |v: &Value| v.as_array().map_or(0, Vec::len);
+    (len(&jobs), len(&studies))
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_crash_while_a_study_is_accepted_leaves_the_whole_study_or_nothing() {
+    let dir = TempDir::new("study-crash");
+    let client = reqwest::Client::new();
+    let study = load_range(60);
+    // How long an acceptance takes here, to spread the kills across it.
+    let first = server(dir.path(), &["--queue-capacity", "1000"]);
+    let started = std::time::Instant::now();
+    let (code, _) = post(&client, &first.url("/api/v1/studies"), &study).await;
+    assert_eq!(code, 201);
+    let took = started.elapsed();
+    drop(first);
+    let tries = 8;
+    for attempt in 0..tries {
+        let mut victim = server(dir.path(), &["--queue-capacity", "1000"]);
+        let before = counts(&client, &victim).await;
+        let url = victim.url("/api/v1/studies");
+        let (sender, body) = (client.clone(), study.clone());
+        let posting = tokio::spawn(async move { sender.post(url).json(&body).send().await });
+        tokio::time::sleep(took * (2 * attempt + 1) / (2 * tries)).await;
+        victim.kill_9();
+        let _ = posting.await;
+        let after_restart = server(dir.path(), &["--queue-capacity", "1000"]);
+        let (jobs, studies) = counts(&client, &after_restart).await;
+        let added = (jobs - before.0, studies - before.1);
+        assert!(
+            added == (0, 0) || added == (60, 1),
+            "try {attempt}: {added:?} (jobs, studies) after the crash"
+        );
+    }
+
+    // The crash between the last member and the study file, laid out by hand: the members
+    // written, the study's file not yet.
+    let server_3 = server(dir.path(), &["--queue-capacity", "1000"]);
+    let before = counts(&client, &server_3).await;
+    let (code, accepted) = post(&client, &server_3.url("/api/v1/studies"), &study).await;
+    assert_eq!(code, 201, "{accepted}");
+    drop(server_3);
+    let id = accepted["id"].as_str().expect("id");
+    let studies = dir.path().join("studies");
+    let members: Vec<&str> = accepted["members"]
+        .as_array()
+        .expect("members")
+        .iter()
+        .filter_map(|m| m["job_id"].as_str())
+        .collect();
+    assert_eq!(members.len(), 60);
+    std::fs::remove_file(studies.join(format!("{id}.json"))).expect("remove the study file");
+    std::fs::write(
+        studies.join(format!("{id}.pending")),
+        json!({"job_ids": members}).to_string(),
+    )
+    .expect("write the mark");
+    let restarted = server(dir.path(), &[]);
+    assert_eq!(counts(&client, &restarted).await, before);
+    assert!(!studies.join(format!("{id}.pending")).exists());
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_hardness_calibration_over_http_gives_the_numbers_of_tribosim_calibrate() {
     let dir = TempDir::new("calibration-http");

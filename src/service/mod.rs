@@ -194,9 +194,10 @@ pub async fn serve_on(
     let (jobs, studies, surfaces) = tokio::task::spawn_blocking(move || {
         let store = Store::open(&data_dir)?;
         let quarantine = store.quarantine_dir().to_owned();
+        // Before the jobs load: a study interrupted as it was accepted takes its members.
+        let studies = Studies::open(&data_dir, &quarantine, &store, max_members, workers)?;
         let surfaces = Arc::new(Surfaces::open(&data_dir, &quarantine)?);
         let jobs = Jobs::open(store, capacity, Arc::clone(&surfaces))?;
-        let studies = Studies::open(&data_dir, &quarantine, max_members, workers)?;
         Ok::<_, io::Error>((jobs, Arc::new(studies), surfaces))
     })
     .await

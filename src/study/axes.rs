@@ -188,7 +188,10 @@ mod tests {
         let built = axis.values.to_vec();
         assert_eq!(
             built,
-            serde_json::json!([2, 2.5, 3, 3.5, 4]).as_array().cloned().unwrap_or_default()
+            serde_json::json!([2, 2.5, 3, 3.5, 4])
+                .as_array()
+                .cloned()
+                .unwrap_or_default()
         );
         let thirds = serde_json::json!({"from": 0.1, "to": 0.7, "steps": 3});
         let axis = Axis::from_json("test.x".into(), &thirds).expect("a range");

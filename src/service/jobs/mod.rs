@@ -19,7 +19,7 @@ mod worker;
 
 pub(crate) use error::{DeleteError, JobError, SubmitError};
 pub(crate) use events::Streams;
-pub(crate) use job::JobStatus;
+pub(crate) use job::{JobRecord, JobStatus};
 pub(crate) use registry::{Deletion, Jobs};
 pub(crate) use routes::endpoints;
 pub(crate) use store::Store;

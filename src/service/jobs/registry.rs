@@ -231,12 +231,14 @@ impl Jobs {
     }
 
     /// Accepts several validated scenes at once (a study's members), all or none: places
-    /// for all of them are reserved, each is made durable, `persist` records what owns them,
-    /// and only then are they queued. If any step fails, the jobs already written are
-    /// removed. Blocking (file writes).
+    /// for all of them are reserved, `begin` records the jobs about to be written (so that
+    /// a crash before `persist` can be undone), each is made durable, `persist` records
+    /// what owns them, and only then are they queued. If any step fails, the jobs already
+    /// written are removed. Blocking (file writes).
     pub fn submit_many(
         &self,
         scenes: Vec<Scene>,
+        begin: impl FnOnce(&[JobRecord]) -> io::Result<()>,
         persist: impl FnOnce(&[JobRecord]) -> io::Result<()>,
     ) -> Result<Vec<JobRecord>, SubmitError> {
         let count = scenes.len();
@@ -247,15 +249,21 @@ impl Jobs {
                 retry_after_s: self.retry_after_s(),
             });
         }
+        let planned: Vec<(JobRecord, Scene)> = scenes
+            .into_iter()
+            .map(|scene| (JobRecord::queued(&scene), scene))
+            .collect();
+        let all: Vec<JobRecord> = planned.iter().map(|(r, _)| r.clone()).collect();
         let mut created: Vec<(JobRecord, Scene)> = Vec::with_capacity(count);
-        let mut written = Ok(());
-        for scene in scenes {
-            let record = JobRecord::queued(&scene);
-            written = self.store.create(&record, &scene);
+        let mut written = begin(&all);
+        for (record, scene) in planned {
             if written.is_err() {
                 break;
             }
-            created.push((record, scene));
+            written = self.store.create(&record, &scene);
+            if written.is_ok() {
+                created.push((record, scene));
+            }
         }
         let records: Vec<JobRecord> = created.iter().map(|(r, _)| r.clone()).collect();
         if let Err(e) = written.and_then(|()| persist(&records)) {

@@ -4,9 +4,10 @@
 //! `<data-dir>/studies/<uuid>.json`. Its status and counts are not stored: they are read
 //! from the member jobs whenever the record is shown, so they can never disagree.
 //!
-//! A study's members are accepted all or none: the queue reserves a place for each, their
-//! job directories are written, then the study file, and only then do they queue. A crash
-//! in between leaves the members written so far as plain jobs, which run.
+//! A study's members are accepted all or none: the queue reserves a place for each, the
+//! study is marked as being accepted, their job directories are written, then the study
+//! file, and only then do they queue. A crash in between leaves the mark, and the next start
+//! removes the members written so far (`store.rs`).
 
 use std::collections::HashMap;
 use std::io;
@@ -21,7 +22,7 @@ use uuid::Uuid;
 use super::record::{StudyRecord, record_of};
 use super::store::{AxisRecord, StoredMember, StoredStudy, StudyFiles};
 use crate::service::files::Damage;
-use crate::service::jobs::{DeleteError, Deletion, JobStatus, Jobs, SubmitError};
+use crate::service::jobs::{DeleteError, Deletion, JobRecord, JobStatus, Jobs, Store, SubmitError};
 use crate::service::surfaces::{servable, surface_id};
 use crate::simulation::Summary;
 use crate::study::{MemberRow, Pending, Study, StudyError, StudySummary, describe_values};
@@ -90,13 +91,17 @@ fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
 
 impl Studies {
     /// Loads every study file under `data_dir` (see `store`). Blocking.
+    /// Studies whose acceptance a crash interrupted are removed with their member jobs
+    /// first, so call this before the jobs load from `jobs`.
     pub fn open(
         data_dir: &Path,
         quarantine_dir: &Path,
+        jobs: &Store,
         max_members: usize,
         workers: usize,
     ) -> io::Result<Self> {
         let files = StudyFiles::open(data_dir, quarantine_dir)?;
+        files.sweep_pending(jobs)?;
         let stored = files.load()?;
         let studies = Self {
             files,
@@ -168,7 +173,11 @@ impl Studies {
             .collect();
         let scenes = members.into_iter().map(|member| member.scene).collect();
         let mut stored = None;
-        jobs.submit_many(scenes, |records| {
+        let begin = |records: &[_]| {
+            let ids = records.iter().map(|record: &JobRecord| record.id).collect();
+            self.files.begin(id, ids)
+        };
+        jobs.submit_many(scenes, begin, |records| {
             let study = StoredStudy {
                 id,
                 name,
@@ -185,7 +194,7 @@ impl Studies {
                     })
                     .collect(),
             };
-            self.files.write(&study)?;
+            self.files.commit(&study)?;
             stored = Some(study);
             Ok(())
         })

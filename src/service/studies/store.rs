@@ -2,6 +2,12 @@
 //! not change (its name, axes, and members with their jobs), written atomically. A file that
 //! cannot be read or parsed, or that names another study, is moved to the quarantine and
 //! logged; it never stops the others from loading.
+//!
+//! A study and its member jobs are one step on disk: `<uuid>.pending`, naming the member
+//! jobs, is written before the first of them, and removed once `<uuid>.json` is. At startup,
+//! before the jobs load, a `.pending` without its `.json` is a study that was never
+//! accepted: the member jobs it names are removed with it, so a crash leaves the whole study
+//! or nothing.
 
 use std::fs;
 use std::io;
@@ -13,9 +19,19 @@ use time::OffsetDateTime;
 use uuid::Uuid;
 
 use crate::service::files::{quarantine, sweep_temporaries, sync_dir, to_json, write_atomic};
+use crate::service::jobs::Store;
 
 /// Where study files live, under the data directory.
 const STUDIES_DIR: &str = "studies";
+
+/// The suffix of a study being accepted.
+const PENDING_SUFFIX: &str = ".pending";
+
+/// What `<uuid>.pending` holds: the member jobs of a study being accepted.
+#[derive(Debug, Serialize, Deserialize)]
+struct Pending {
+    job_ids: Vec<Uuid>,
+}
 
 /// An axis as the study file stores it and the study record shows it: the path and every
 /// value, in order.
@@ -69,6 +85,46 @@ impl StudyFiles {
         })
     }
 
+    /// Removes the studies whose acceptance a crash interrupted, with their member jobs
+    /// (see the module's notes); a marker that cannot be read is quarantined, and its jobs,
+    /// unknown, are left. Run before the jobs load. Blocking.
+    pub(super) fn sweep_pending(&self, jobs: &Store) -> io::Result<()> {
+        for entry in fs::read_dir(&self.dir)? {
+            let Ok(entry) = entry else { continue };
+            let path = entry.path();
+            let Some(id) = path
+                .file_name()
+                .and_then(|name| name.to_str())
+                .and_then(|name| name.strip_suffix(PENDING_SUFFIX))
+                .and_then(|stem| Uuid::parse_str(stem).ok())
+            else {
+                continue;
+            };
+            if !self.dir.join(format!("{id}.json")).exists() {
+                let pending = fs::read(&path)
+                    .map_err(|e| e.to_string())
+                    .and_then(|bytes| {
+                        serde_json::from_slice::<Pending>(&bytes).map_err(|e| e.to_string())
+                    });
+                let Ok(pending) = pending.inspect_err(|damage| {
+                    tracing::error!(%id, "pending study damaged: {damage}");
+                }) else {
+                    quarantine(&self.quarantine_dir, &path);
+                    continue;
+                };
+                tracing::warn!(%id, jobs = pending.job_ids.len(), "study interrupted as it was accepted: its member jobs are removed");
+                for job in pending.job_ids {
+                    match jobs.remove(job) {
+                        Err(e) if e.kind() != io::ErrorKind::NotFound => return Err(e),
+                        _ => {}
+                    }
+                }
+            }
+            fs::remove_file(&path)?;
+        }
+        sync_dir(&self.dir)
+    }
+
     /// Every study that reads back; damaged files are quarantined. Blocking.
     pub(super) fn load(&self) -> io::Result<Vec<StoredStudy>> {
         let mut studies = Vec::new();
@@ -86,7 +142,9 @@ impl StudyFiles {
             .and_then(|name| name.strip_suffix(".json"))
             .and_then(|stem| Uuid::parse_str(stem).ok());
         let Some(id) = id else {
-            tracing::warn!(path = %path.display(), "not a study; left alone");
+            if !path.to_string_lossy().ends_with(PENDING_SUFFIX) {
+                tracing::warn!(path = %path.display(), "not a study; left alone");
+            }
             return None;
         };
         let stored = fs::read(path)
@@ -111,9 +169,26 @@ impl StudyFiles {
         }
     }
 
-    /// Writes a new study's file. Blocking.
-    pub(super) fn write(&self, study: &StoredStudy) -> io::Result<()> {
-        write_atomic(&self.dir, &format!("{}.json", study.id), &to_json(study)?)
+    /// Marks study `id` as being accepted with these member jobs, before any of them is
+    /// written. Blocking.
+    pub(super) fn begin(&self, id: Uuid, job_ids: Vec<Uuid>) -> io::Result<()> {
+        let pending = Pending { job_ids };
+        write_atomic(
+            &self.dir,
+            &format!("{id}{PENDING_SUFFIX}"),
+            &to_json(&pending)?,
+        )
+    }
+
+    /// Writes a new study's file, which accepts it, then drops its mark. Blocking.
+    pub(super) fn commit(&self, study: &StoredStudy) -> io::Result<()> {
+        write_atomic(&self.dir, &format!("{}.json", study.id), &to_json(study)?)?;
+        let id = study.id;
+        if let Err(e) = fs::remove_file(self.dir.join(format!("{id}{PENDING_SUFFIX}"))) {
+            // Harmless: the study's file stands, so the next start only drops the mark.
+            tracing::warn!(%id, "cannot remove the pending mark: {e}");
+        }
+        Ok(())
     }
 
     /// Removes a study's file; one already gone is not an error. Blocking.
