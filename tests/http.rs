@@ -46,12 +46,19 @@ struct Served {
 impl Served {
     /// Starts `tribosim serve` on a free port with `data_dir`, the extra `flags`, in `cwd`.
     fn start(data_dir: &Path, flags: &[&str], cwd: &Path) -> Self {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_tribosim"))
+        let mut command = Command::new(env!("CARGO_BIN_EXE_tribosim"));
+        command
             .args(["serve", "--addr", "127.0.0.1:0", "--data-dir"])
             .arg(data_dir)
             .args(flags)
             .current_dir(cwd)
-            .env_remove("TRIBOSIM_TOKEN")
+            .env_remove("TRIBOSIM_TOKEN");
+        Self::spawn(command)
+    }
+
+    /// Runs `command` (`tribosim serve` on a free port) and waits until it listens.
+    fn spawn(mut command: Command) -> Self {
+        let mut child = command
             .env("RUST_LOG", "warn,tribosim=info")
             .stdout(Stdio::null())
             .stderr(Stdio::piped())
@@ -327,6 +334,86 @@ async fn a_token_from_a_file_is_accepted_with_any_case_of_bearer() {
         let response = request.send().await.expect("list jobs");
         assert_eq!(response.status(), status, "{authorization:?}");
         let _: Value = response.json().await.expect("JSON body");
+    }
+}
+
+/// `tribosim serve` with `flags` and `token` in TRIBOSIM_TOKEN: its exit status and stderr,
+/// for a server that must refuse to start.
+fn refused_start(dir: &Path, flags: &[&str], token: Option<&str>) -> (bool, String) {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_tribosim"));
+    command
+        .args(["serve", "--addr", "127.0.0.1:0", "--data-dir"])
+        .arg(dir.join("data"))
+        .args(flags)
+        .env_remove("TRIBOSIM_TOKEN");
+    if let Some(token) = token {
+        command.env("TRIBOSIM_TOKEN", token);
+    }
+    let mut child = command
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn tribosim serve");
+    let deadline = std::time::Instant::now() + PATIENCE;
+    while child.try_wait().expect("poll").is_none() {
+        if std::time::Instant::now() > deadline {
+            let _ = child.kill();
+            panic!("the server started with {flags:?} and {token:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let output = child.wait_with_output().expect("its output");
+    (
+        output.status.success(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_token_that_cannot_work_stops_the_start_saying_why() {
+    let dir = TempDir::new("token-checks");
+    for (name, text) in [("empty", ""), ("blank", "  \n\nsecond-line\n")] {
+        let file = dir.path().join(name);
+        std::fs::write(&file, text).expect("write the token file");
+        let flag = file.to_str().expect("UTF-8 path");
+        let (started, stderr) = refused_start(dir.path(), &["--token-file", flag], None);
+        assert!(!started, "{name}");
+        assert!(stderr.contains("has no token"), "{name}: {stderr}");
+        assert!(stderr.contains(flag), "{name}: {stderr}");
+    }
+    let file = dir.path().join("accented");
+    std::fs::write(&file, "s\u{e9}cret\n").expect("write the token file");
+    let flag = file.to_str().expect("UTF-8 path");
+    let (started, stderr) = refused_start(dir.path(), &["--token-file", flag], None);
+    assert!(!started);
+    assert!(
+        stderr.contains("outside ASCII (U+00E9), at character 2"),
+        "{stderr}"
+    );
+    assert!(
+        !stderr.contains("s\u{e9}cret"),
+        "the token is not echoed: {stderr}"
+    );
+    let (started, stderr) = refused_start(dir.path(), &[], Some("two words"));
+    assert!(!started);
+    assert!(stderr.contains("TRIBOSIM_TOKEN has a space"), "{stderr}");
+
+    // The environment's token is trimmed as the file's is.
+    let mut command = Command::new(env!("CARGO_BIN_EXE_tribosim"));
+    command
+        .args(["serve", "--addr", "127.0.0.1:0", "--data-dir"])
+        .arg(dir.path().join("data"))
+        .env("TRIBOSIM_TOKEN", "  padded-token\n");
+    let served = Served::spawn(command);
+    let client = client();
+    for (authorization, status) in [("Bearer padded-token", 200), ("Bearer padded", 401)] {
+        let response = client
+            .get(served.url("/api/v1/jobs"))
+            .header("Authorization", authorization)
+            .send()
+            .await
+            .expect("list jobs");
+        assert_eq!(response.status(), status, "{authorization}");
     }
 }
 

@@ -83,11 +83,14 @@ pub struct ServeArgs {
     /// also fit in the queue (--queue-capacity).
     #[arg(long, default_value_t = default_max_study_members())]
     pub max_study_members: NonZeroUsize,
-    /// Bearer token required on every API call (`Authorization: Bearer <token>`). A token
-    /// on the command line shows in the process list: prefer TRIBOSIM_TOKEN or --token-file.
+    /// Bearer token required on every API call (`Authorization: Bearer <token>`):
+    /// printable ASCII without spaces; surrounding whitespace is ignored, and an empty one
+    /// is none. A token on the command line shows in the process list: prefer
+    /// TRIBOSIM_TOKEN or --token-file.
     #[arg(long, env = "TRIBOSIM_TOKEN", hide_env_values = true)]
     pub token: Option<String>,
-    /// File holding the bearer token (its first line; surrounding whitespace is ignored).
+    /// File holding the bearer token (its first line; surrounding whitespace is ignored). A
+    /// file without a token is an error.
     #[arg(long, value_name = "PATH")]
     pub token_file: Option<PathBuf>,
     /// Origin allowed to call the API from a browser (repeatable); CORS is off without one.
@@ -135,6 +138,32 @@ pub enum ServeError {
         /// What failed.
         #[source]
         source: io::Error,
+    },
+    /// The token file's first line is empty or blank: starting without a token would turn
+    /// authentication off while the operator meant it on.
+    #[error(
+        "the token file {} has no token (its first line is empty or blank); write the token \
+         on its first line, or leave out --token-file to run without one",
+        path.display()
+    )]
+    TokenFileEmpty {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A token with a character other than printable ASCII (a space, a control character,
+    /// a letter outside ASCII): clients send it in an HTTP header, where it cannot be
+    /// matched.
+    #[error(
+        "the token from {from} has {found}, at character {position}: a token is printable \
+         ASCII without spaces (! to ~), as HTTP headers carry it"
+    )]
+    TokenNotAscii {
+        /// Where the token came from: `--token-file PATH` or `--token or TRIBOSIM_TOKEN`.
+        from: String,
+        /// The character, described without echoing the token.
+        found: String,
+        /// Its position in the token, from 1.
+        position: usize,
     },
     /// The data directory cannot be used.
     #[error("data directory {}: {source}", path.display())]
@@ -266,10 +295,20 @@ fn keep_alive_interval(idle_timeout_s: u64) -> Duration {
 }
 
 impl ServeArgs {
-    /// The token from `--token`, `TRIBOSIM_TOKEN` or the first line of `--token-file`.
+    /// The token from `--token`, `TRIBOSIM_TOKEN` or the first line of `--token-file`,
+    /// trimmed alike and checked: an empty `--token` or `TRIBOSIM_TOKEN` is none (an unset
+    /// variable in a container's environment is often an empty one), a token file without
+    /// one is an error, and so is a token that is not printable ASCII.
     fn token(&self) -> Result<Option<String>, ServeError> {
         let Some(path) = &self.token_file else {
-            return Ok(self.token.clone());
+            let token = self
+                .token
+                .as_deref()
+                .map(str::trim)
+                .filter(|t| !t.is_empty());
+            return token
+                .map(|token| printable(token, "--token or TRIBOSIM_TOKEN".to_owned()))
+                .transpose();
         };
         if self.token.is_some() {
             return Err(ServeError::TokenTwice);
@@ -278,14 +317,39 @@ impl ServeArgs {
             path: path.clone(),
             source,
         })?;
-        Ok(text.lines().next().map(|line| line.trim().to_owned()))
+        match text.lines().next().map(str::trim).filter(|t| !t.is_empty()) {
+            Some(token) => printable(token, format!("--token-file {}", path.display())).map(Some),
+            None => Err(ServeError::TokenFileEmpty { path: path.clone() }),
+        }
     }
 }
 
-/// The token to require, if any; an error for a non-loopback address without one. An empty
-/// token (say, an empty `TRIBOSIM_TOKEN`) counts as none.
+/// `token` if every character is printable ASCII other than a space; otherwise the first
+/// that is not, described without echoing the token (which may be a secret's neighbour).
+fn printable(token: &str, from: String) -> Result<String, ServeError> {
+    match token.chars().position(|c| !c.is_ascii_graphic()) {
+        None => Ok(token.to_owned()),
+        Some(index) => {
+            let c = token.chars().nth(index).unwrap_or_default();
+            let found = if c == ' ' {
+                "a space".to_owned()
+            } else if c.is_ascii_control() {
+                format!("a control character (U+{:04X})", u32::from(c))
+            } else {
+                format!("a character outside ASCII (U+{:04X})", u32::from(c))
+            };
+            Err(ServeError::TokenNotAscii {
+                from,
+                found,
+                position: index + 1,
+            })
+        }
+    }
+}
+
+/// The token to require, if any; an error for a non-loopback address without one.
 fn check_exposure(addr: SocketAddr, token: Option<&str>) -> Result<Option<String>, ServeError> {
-    match token.filter(|token| !token.is_empty()) {
+    match token {
         Some(token) => Ok(Some(token.to_owned())),
         None if addr.ip().is_loopback() => Ok(None),
         None => Err(ServeError::TokenRequired(addr)),
