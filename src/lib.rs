@@ -11,6 +11,7 @@ pub mod bench;
 pub mod calibration;
 pub mod contact;
 pub mod corrosion;
+pub mod csv;
 pub mod hardness;
 pub mod json;
 pub mod scene;

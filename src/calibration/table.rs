@@ -31,6 +31,10 @@ pub enum TableError {
         /// What the cell holds.
         text: String,
     },
+    /// A column named twice or more in the header (after trimming): which one a fit would
+    /// read is not the table's to leave open.
+    #[error("the header names {} more than once; each column needs its own name", .0.iter().map(|c| format!("`{c}`")).collect::<Vec<_>>().join(", "))]
+    DuplicateColumns(Vec<String>),
     /// A column the fit needs is absent.
     #[error("no column `{wanted}`; the table has {}", found.iter().map(|c| format!("`{c}`")).collect::<Vec<_>>().join(", "))]
     MissingColumn {
@@ -89,6 +93,15 @@ impl Table {
             .split(',')
             .map(|n| n.trim().to_owned())
             .collect();
+        let mut repeated: Vec<String> = Vec::new();
+        for (i, name) in names.iter().enumerate() {
+            if names[..i].contains(name) && !repeated.contains(name) {
+                repeated.push(name.clone());
+            }
+        }
+        if !repeated.is_empty() {
+            return Err(TableError::DuplicateColumns(repeated));
+        }
         let mut columns = vec![Vec::new(); names.len()];
         for (index, line) in lines.enumerate() {
             let row = index + 1;
@@ -232,6 +245,11 @@ mod tests {
         let err = table.column("hardness_mpa").expect_err("missing");
         assert!(err.to_string().contains("`hardness_mpa`"), "{err}");
         assert!(matches!(Table::parse("cycles\n"), Err(TableError::Empty)));
+        let err = Table::parse("cycles, hardness_mpa,cycles,x,x\n1,2,3,4,5\n").expect_err("twice");
+        assert_eq!(
+            err.to_string(),
+            "the header names `cycles`, `x` more than once; each column needs its own name"
+        );
         assert!(Table::parse(r#"{"a": [1, 2], "b": [1]}"#).is_err());
         assert!(Table::parse(r#"[{"a": 1}, {"a": null}]"#).is_err());
         assert!(Table::from_columns(&[("a", &[1.0, 2.0]), ("b", &[1.0])]).is_err());

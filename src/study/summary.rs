@@ -189,15 +189,12 @@ impl StudySummary {
         text
     }
 
-    /// The rows as CSV (RFC 4180 quoting).
+    /// The rows as CSV ([`crate::csv::line`]: RFC 4180 quoting, formulas neutralised).
     pub fn to_csv(&self) -> String {
         let (header, rows) = self.cells();
         std::iter::once(header)
             .chain(rows)
-            .map(|cells| {
-                let quoted: Vec<String> = cells.iter().map(|c| csv_field(c)).collect();
-                quoted.join(",") + "\n"
-            })
+            .map(|cells| crate::csv::line(&cells, "\n"))
             .collect()
     }
 }
@@ -207,14 +204,6 @@ fn plain(value: &Value) -> String {
     match value {
         Value::String(s) => s.clone(),
         other => other.to_string(),
-    }
-}
-
-fn csv_field(cell: &str) -> String {
-    if cell.contains([',', '"', '\n']) {
-        format!("\"{}\"", cell.replace('"', "\"\""))
-    } else {
-        cell.to_owned()
     }
 }
 
@@ -245,6 +234,21 @@ mod tests {
         let row = csv.lines().nth(1).expect("a data row");
         // member, the axis, eight empty summary cells, then the quoted error.
         assert_eq!(row, r#"0,a|b,,,,,,,,,"cycle 3: ""x"", then y""#);
+    }
+
+    #[test]
+    fn a_value_a_spreadsheet_would_run_is_text_in_the_csv() {
+        let mut summary = failed_row("=1+1");
+        summary.members[0].values.insert(
+            "corrosion.model".to_owned(),
+            Value::from("=HYPERLINK(\"http://example.com\")"),
+        );
+        let csv = summary.to_csv();
+        let row = csv.lines().nth(1).expect("a data row");
+        assert_eq!(
+            row,
+            r#"0,"'=HYPERLINK(""http://example.com"")",,,,,,,,,'=1+1"#
+        );
     }
 
     #[test]

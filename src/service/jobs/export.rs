@@ -1,7 +1,5 @@
 //! The per-cycle table of a result as CSV, for spreadsheet users.
 
-use std::fmt::Write;
-
 use serde::Deserialize;
 
 use crate::simulation::CycleRecord;
@@ -26,33 +24,33 @@ struct Cycles {
 pub fn cycles_csv(result_json: &[u8]) -> Result<String, serde_json::Error> {
     let Cycles { cycles } = serde_json::from_slice(result_json)?;
     let mut csv = String::with_capacity(64 + cycles.len() * 160);
-    csv.push_str(HEADER);
-    csv.push_str("\r\n");
+    csv.push_str(&crate::csv::line(
+        &HEADER.split(',').collect::<Vec<_>>(),
+        "\r\n",
+    ));
     let mut previous = 0;
     for c in &cycles {
         let stepped_over = c.cycle.saturating_sub(previous + 1);
         previous = c.cycle;
         let optional = |value: Option<f64>| value.map(|v| v.to_string()).unwrap_or_default();
-        // Writing to a String cannot fail.
-        let _ = write!(
-            csv,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\r\n",
-            c.cycle,
-            c.time_s,
-            c.wear_volume_mm3,
-            c.max_depth_um,
-            c.max_pressure_mpa,
-            c.contact_area_mm2,
-            c.plastic_area_mm2,
-            c.contact_islands,
-            c.hardness_mpa,
-            c.approach_um,
-            c.iterations,
+        let cells = [
+            c.cycle.to_string(),
+            c.time_s.to_string(),
+            c.wear_volume_mm3.to_string(),
+            c.max_depth_um.to_string(),
+            c.max_pressure_mpa.to_string(),
+            c.contact_area_mm2.to_string(),
+            c.plastic_area_mm2.to_string(),
+            c.contact_islands.to_string(),
+            c.hardness_mpa.to_string(),
+            c.approach_um.to_string(),
+            c.iterations.to_string(),
             optional(c.potential_v),
             optional(c.anodic_area_mm2),
             optional(c.wac_volume_mm3),
-            stepped_over,
-        );
+            stepped_over.to_string(),
+        ];
+        csv.push_str(&crate::csv::line(&cells, "\r\n"));
     }
     Ok(csv)
 }

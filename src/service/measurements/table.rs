@@ -205,6 +205,7 @@ impl MeasurementError {
     pub fn column(&self) -> String {
         match self {
             Self::Table(TableError::NotANumber { column, .. }) => column.clone(),
+            Self::Table(TableError::DuplicateColumns(names)) => names.join(", "),
             Self::MissingColumn { wanted, .. } => wanted.join(" or "),
             Self::UnknownColumn { column, .. } => column.clone(),
             Self::Value(
