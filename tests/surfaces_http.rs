@@ -31,17 +31,22 @@ fn heights() -> Vec<f64> {
 /// The map as Gwyddion writes a `.gsf`: magic line, header, NUL padding to a multiple of 4,
 /// f32 heights.
 fn gsf() -> Vec<u8> {
+    gsf_of(NX, NY, PIXEL_M, &heights())
+}
+
+/// A `.gsf` of `nx` x `ny` `heights` on pixels of `pixel_m`.
+fn gsf_of(nx: usize, ny: usize, pixel_m: f64, heights: &[f64]) -> Vec<u8> {
     let mut bytes = b"Gwyddion Simple Field 1.0\n".to_vec();
     let header = format!(
-        "XRes = {NX}\nYRes = {NY}\nXReal = {:e}\nYReal = {:e}\nXYUnits = m\nZUnits = m\n",
-        NX as f64 * PIXEL_M,
-        NY as f64 * PIXEL_M
+        "XRes = {nx}\nYRes = {ny}\nXReal = {:e}\nYReal = {:e}\nXYUnits = m\nZUnits = m\n",
+        nx as f64 * pixel_m,
+        ny as f64 * pixel_m
     );
     bytes.extend_from_slice(header.as_bytes());
     let padding = 4 - bytes.len() % 4;
     bytes.extend(std::iter::repeat_n(0u8, padding));
-    for h in heights() {
-        bytes.extend_from_slice(&(h as f32).to_le_bytes());
+    for h in heights {
+        bytes.extend_from_slice(&(*h as f32).to_le_bytes());
     }
     bytes
 }
@@ -405,4 +410,141 @@ async fn a_stopped_measured_run_keeps_its_surface_statistics_in_the_partial_resu
     )
     .await;
     assert_eq!(again, partial);
+}
+
+/// A 20 x 20 text matrix of heights, m.
+fn small_matrix() -> Vec<u8> {
+    let rows: Vec<String> = (0..20)
+        .map(|y| {
+            let cells: Vec<String> = (0..20)
+                .map(|x| {
+                    format!(
+                        "{:e}",
+                        1e-7 * ((0.9 * x as f64).sin() + (0.7 * y as f64).cos())
+                    )
+                })
+                .collect();
+            cells.join(" ")
+        })
+        .collect();
+    (rows.join("\n") + "\n").into_bytes()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn uploads_are_bounded_before_they_are_read_and_every_accepted_map_reads_back() {
+    use std::io::Write;
+
+    let dir = TempDir::new("surface-budget");
+    let client = reqwest::Client::new();
+    let flags = ["--max-surface-pixels", "500", "--surface-parses", "1"];
+    let mut command = common::process::serve_command(dir.path(), 1);
+    command.args(flags);
+    let mut server = ServerProcess::spawn(command);
+    let base = server.base.clone();
+
+    // Declared over the limit (32 x 24 = 768 pixels): 413 naming the flag, before reading.
+    let (status, answer) = upload(&client, &base, "", "application/octet-stream", gsf()).await;
+    assert_eq!(status, 413, "{answer}");
+    assert!(
+        answer["error"]
+            .as_str()
+            .expect("message")
+            .contains("--max-surface-pixels")
+    );
+    // Pixel sizes whose statistics JSON could not hold: refused, not lost at the next start.
+    let (status, answer) = upload(
+        &client,
+        &base,
+        "?pixel_um=1e308",
+        "text/plain",
+        small_matrix(),
+    )
+    .await;
+    assert_eq!(status, 422, "{answer}");
+    assert_eq!(answer["fields"][0]["path"], "pixel_um", "{answer}");
+    let absurd = gsf_of(20, 20, 1e306, &heights()[..400]);
+    let (status, answer) = upload(&client, &base, "", "application/octet-stream", absurd).await;
+    assert_eq!(status, 422, "{answer}");
+    assert!(
+        answer["error"]
+            .as_str()
+            .expect("message")
+            .contains("pixel's side")
+    );
+
+    // One upload being read holds the only place: the next gets 429 before its body is read.
+    // The slow upload may reach the server after the next one: then it is the one refused,
+    // and it is sent again.
+    let address = base.trim_start_matches("http://").to_owned();
+    let open_slow = || {
+        let mut slow = std::net::TcpStream::connect(&address).expect("connect");
+        let head = "POST /api/v1/surfaces?pixel_um=4 HTTP/1.1\r\nHost: x\r\n\
+                    Content-Type: text/plain\r\nContent-Length: 100000\r\n\r\n0";
+        slow.write_all(head.as_bytes()).expect("send the head");
+        slow.set_nonblocking(true).expect("non-blocking");
+        slow
+    };
+    let mut slow = open_slow();
+    let mut accepted = Vec::new();
+    let mut refused = None;
+    for _ in 0..200 {
+        let response = client
+            .post(format!("{base}/api/v1/surfaces?pixel_um=4"))
+            .header("content-type", "text/plain")
+            .body(small_matrix())
+            .send()
+            .await
+            .expect("POST surface");
+        if response.status() == 429 {
+            refused = response.headers().get("retry-after").cloned();
+            break;
+        }
+        assert_eq!(response.status(), 201);
+        accepted.push(response.text().await.expect("the answer"));
+        tokio::time::sleep(std::time::Duration::from_millis(20)).await;
+        let mut answered = [0u8; 16];
+        if std::io::Read::read(&mut slow, &mut answered).is_ok() {
+            slow = open_slow();
+        }
+    }
+    assert!(
+        refused.is_some(),
+        "a second upload while one is read gets 429 with Retry-After"
+    );
+    drop(slow);
+    let answer = loop {
+        let response = client
+            .post(format!("{base}/api/v1/surfaces?pixel_um=4"))
+            .header("content-type", "text/plain")
+            .body(small_matrix())
+            .send()
+            .await
+            .expect("POST surface");
+        if response.status() != 429 {
+            assert_eq!(response.status(), 201);
+            break response.text().await.expect("the answer");
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    };
+    accepted.push(answer);
+
+    // Every map accepted reads back the same after a crash.
+    server.kill_9();
+    let mut command = common::process::serve_command(dir.path(), 1);
+    command.args(flags);
+    let server = ServerProcess::spawn(command);
+    for surface in &accepted {
+        let record: Value = serde_json::from_str(surface).expect("JSON");
+        let id = record["id"].as_str().expect("id");
+        let url = server.url(&format!("/api/v1/surfaces/{id}"));
+        let text = client
+            .get(url)
+            .send()
+            .await
+            .expect("GET")
+            .text()
+            .await
+            .expect("text");
+        assert_eq!(&text, surface);
+    }
 }

@@ -24,6 +24,7 @@
 
 mod assets;
 mod blocking;
+mod budget;
 mod calibrations;
 mod error;
 mod extract;
@@ -53,6 +54,7 @@ use tokio::net::TcpListener;
 use tokio::sync::watch;
 use tower_http::cors::CorsLayer;
 
+pub use budget::Budgets;
 pub use listen::Limits;
 pub use meta::OPENAPI_YAML;
 pub use route::{Route, Verb};
@@ -62,7 +64,7 @@ use extract::BodyTimeout;
 use jobs::{Jobs, Store, Streams};
 use state::AppState;
 use studies::Studies;
-use surfaces::Surfaces;
+use surfaces::{Surfaces, UploadLimits};
 
 /// Options of `tribosim serve`.
 #[derive(Debug, Clone, clap::Args)]
@@ -104,6 +106,9 @@ pub struct ServeArgs {
     /// Timeouts and the cap on connections.
     #[command(flatten)]
     pub limits: Limits,
+    /// What an upload or a fit may cost.
+    #[command(flatten)]
+    pub budgets: Budgets,
 }
 
 fn default_max_study_members() -> NonZeroUsize {
@@ -220,12 +225,16 @@ pub async fn serve_on(
     let data_dir = args.data_dir.clone();
     let capacity = args.queue_capacity.get();
     let (max_members, workers) = (args.max_study_members.get(), args.workers.get());
+    let upload_limits = UploadLimits {
+        max_pixels: args.budgets.max_surface_pixels,
+        parses: args.budgets.surface_parses.get(),
+    };
     let (jobs, studies, surfaces) = tokio::task::spawn_blocking(move || {
         let store = Store::open(&data_dir)?;
         let quarantine = store.quarantine_dir().to_owned();
         // Before the jobs load: a study interrupted as it was accepted takes its members.
         let studies = Studies::open(&data_dir, &quarantine, &store, max_members, workers)?;
-        let surfaces = Arc::new(Surfaces::open(&data_dir, &quarantine)?);
+        let surfaces = Arc::new(Surfaces::open(&data_dir, &quarantine, upload_limits)?);
         let jobs = Jobs::open(store, capacity, Arc::clone(&surfaces))?;
         Ok::<_, io::Error>((jobs, Arc::new(studies), surfaces))
     })

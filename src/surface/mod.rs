@@ -17,7 +17,7 @@ mod synthetic;
 use thiserror::Error;
 
 pub use islands::count_islands;
-pub use read::{Format, read, read_as, read_file};
+pub use read::{Format, MAX_PIXEL_M, MIN_PIXEL_M, declared_pixels, read, read_as, read_file};
 pub use spikes::SPIKE_RMS;
 pub use statistics::{Statistics, measured_fit_range, psd_slope, rms_height, rms_slope};
 pub use synthetic::{Roughness, SelfAffine};

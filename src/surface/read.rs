@@ -28,6 +28,14 @@ const GSF_MAGIC: &[u8] = b"Gwyddion Simple Field 1.0\n";
 /// each is 250 MB) fits.
 const MAX_FILE_BYTES: u64 = 256 << 20;
 
+/// The smallest pixel side read, m: below an atom's size no instrument measures.
+pub const MIN_PIXEL_M: f64 = 1e-12;
+
+/// The largest pixel side read, m: a centimetre, beyond which a map's pixel is wider than
+/// any ball-on-disc contact, and whose statistics in um (the pixel squared, the spectrum's
+/// wavevectors) stay finite numbers JSON can hold.
+pub const MAX_PIXEL_M: f64 = 1e-2;
+
 /// Relative tolerance on the spacing of XYZ points: coordinates printed with 7 significant
 /// digits (Gwyddion's default) err by up to 5e-7 of their value.
 const SPACING_TOLERANCE: f64 = 1e-5;
@@ -109,6 +117,56 @@ pub fn read_as(
     }
 }
 
+/// How many pixels the bytes of a file declare, read without parsing a height: a `.gsf`'s
+/// `XRes * YRes`, a matrix's data lines times the fields of its first, XYZ's data lines. The
+/// format is told as [`read`] and [`read_as`] tell it. A caller bounds its memory by this
+/// before reading the map (a map costs tens of bytes per pixel while it is read and its
+/// statistics are taken); the count is an upper bound for a map that then reads.
+pub fn declared_pixels(
+    bytes: &[u8],
+    format: Option<Format>,
+    pixel_m: Option<f64>,
+) -> Result<u64, SurfaceError> {
+    if let Some(rest) = bytes.strip_prefix(GSF_MAGIC) {
+        let (header, _) = gsf_header(rest)?;
+        let res = |name: &str| {
+            header
+                .get(name)
+                .and_then(|value| value.parse::<u64>().ok())
+                .unwrap_or(0)
+        };
+        return Ok(res("XRes").saturating_mul(res("YRes")));
+    }
+    let matrix = format == Some(Format::Matrix) || (format.is_none() && pixel_m.is_some());
+    let mut lines = bytes
+        .split(|&b| b == b'\n')
+        .map(<[u8]>::trim_ascii)
+        .filter(|line| !line.is_empty() && !line.starts_with(b"#"));
+    if !matrix {
+        return Ok(lines.count() as u64);
+    }
+    let Some(first) = lines.next() else {
+        return Ok(0);
+    };
+    let fields = first
+        .split(|&b| b.is_ascii_whitespace() || b == b',' || b == b';')
+        .filter(|field| !field.is_empty())
+        .count() as u64;
+    Ok(fields.saturating_mul(1 + lines.count() as u64))
+}
+
+/// Refuses a pixel outside [[`MIN_PIXEL_M`], [`MAX_PIXEL_M`]] (or not a number).
+fn check_pixel(dx_m: f64, dy_m: f64) -> Result<(), SurfaceError> {
+    let within = |side: f64| (MIN_PIXEL_M..=MAX_PIXEL_M).contains(&side);
+    if within(dx_m) && within(dy_m) {
+        return Ok(());
+    }
+    Err(SurfaceError::Invalid(format!(
+        "the pixel is {dx_m:e} x {dy_m:e} m; a pixel's side must be between \
+         {MIN_PIXEL_M:e} and {MAX_PIXEL_M:e} m"
+    )))
+}
+
 /// The numbered data lines of `text` as fields, without blank and `#` comment lines.
 fn data_lines(text: &str) -> impl Iterator<Item = (usize, Vec<&str>)> {
     text.lines().enumerate().filter_map(|(i, line)| {
@@ -132,6 +190,7 @@ fn number(field: &str, line: usize) -> Result<f64, SurfaceError> {
 }
 
 fn read_matrix(text: &str, pixel_m: f64) -> Result<HeightMap, SurfaceError> {
+    check_pixel(pixel_m, pixel_m)?;
     let mut heights = Vec::new();
     let (mut nx, mut ny) = (0, 0);
     for (line, fields) in data_lines(text) {
@@ -234,6 +293,7 @@ fn read_xyz(text: &str) -> Result<HeightMap, SurfaceError> {
             value: "missing".to_owned(),
         });
     }
+    check_pixel(dx, dy)?;
     HeightMap::new(nx, ny, dx, dy, cells.into_values().collect())
 }
 
@@ -301,6 +361,7 @@ fn read_gsf(rest: &[u8]) -> Result<HeightMap, SurfaceError> {
         return Err(SurfaceError::TooLarge { nx, ny });
     }
     let (width, height) = (real("XReal")?, real("YReal")?);
+    check_pixel(width / nx as f64, height / ny as f64)?;
     let data = rest.get(start..).unwrap_or_default();
     if data.len() != 4 * nx * ny {
         return Err(malformed(format!(
@@ -412,6 +473,23 @@ mod tests {
     }
 
     #[test]
+    fn the_declared_pixels_are_counted_without_reading_a_height() {
+        let map = sample();
+        assert_eq!(declared_pixels(&gsf_bytes(&map), None, None), Ok(12));
+        let matrix = b"# heights\n1 2 3\n\n4;5;6\n7,8\n";
+        // An upper bound: the ragged last row is the reader's to refuse.
+        assert_eq!(declared_pixels(matrix, None, Some(1e-6)), Ok(9));
+        assert_eq!(
+            declared_pixels(matrix, Some(Format::Matrix), Some(1e-6)),
+            Ok(9)
+        );
+        assert_eq!(declared_pixels(b"0 0 1\n1 0 1\n# c\n", None, None), Ok(2));
+        let mut header = GSF_MAGIC.to_vec();
+        header.extend_from_slice(b"XRes = 100000\nYRes = 100000\n\0\0\0");
+        assert_eq!(declared_pixels(&header, None, None), Ok(10_000_000_000));
+    }
+
+    #[test]
     fn refusals_name_the_problem() {
         let err = |bytes: &[u8], pixel| read(bytes, pixel).expect_err("refused");
         assert!(matches!(
@@ -452,6 +530,15 @@ mod tests {
         let mut short = gsf_bytes(&sample());
         short.truncate(short.len() - 4);
         assert!(matches!(err(&short, None), SurfaceError::Malformed { .. }));
+        for pixel in [1e308, 0.02, 1e-13, f64::NAN] {
+            let refused = err(b"1 2\n3 4\n", Some(pixel));
+            assert!(refused.to_string().contains("pixel's side"), "{refused}");
+        }
+        let mut absurd = sample();
+        absurd.dx_m = 1e300;
+        absurd.dy_m = 1e300;
+        let refused = err(&gsf_bytes(&absurd), None);
+        assert!(refused.to_string().contains("pixel's side"), "{refused}");
         let wide = format!("{}\n", vec!["0"; MAX_MAP_SIDE + 1].join(" "));
         assert!(matches!(
             err(wide.as_bytes(), Some(1e-6)),

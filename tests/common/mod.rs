@@ -15,7 +15,7 @@ use serde_json::{Value, json};
 use tokio::net::TcpListener;
 use tokio::sync::oneshot;
 use tokio::task::JoinHandle;
-use tribosim::service::{Limits, ServeArgs, ServeError, serve_on};
+use tribosim::service::{Budgets, Limits, ServeArgs, ServeError, serve_on};
 
 /// Generous bound on anything a test waits for: the machine may be loaded.
 pub const PATIENCE: Duration = Duration::from_secs(600);
@@ -94,6 +94,7 @@ pub fn args(data_dir: &Path) -> ServeArgs {
         cors_origins: Vec::new(),
         static_dir: None,
         limits: Limits::default(),
+        budgets: Budgets::default(),
     }
 }
 

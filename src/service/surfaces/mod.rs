@@ -10,4 +10,4 @@ mod upload;
 
 pub(crate) use named::{servable, surface_id};
 pub(crate) use routes::endpoints;
-pub(crate) use store::{SurfaceLoadError, SurfaceUsers, Surfaces};
+pub(crate) use store::{SurfaceLoadError, SurfaceUsers, Surfaces, UploadLimits};

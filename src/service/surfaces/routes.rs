@@ -13,6 +13,7 @@ use axum::http::StatusCode;
 use axum::http::request::Parts;
 use axum::response::Response;
 use axum::routing::on;
+use tokio::sync::OwnedSemaphorePermit;
 use uuid::Uuid;
 
 use super::store::{DeleteError, SurfaceRecord, SurfaceUsers, Surfaces};
@@ -57,6 +58,37 @@ impl<S: Send + Sync> FromRequestParts<S> for UploadOptions {
     }
 }
 
+/// Seconds a client is asked to wait when every upload slot is busy: about the time one
+/// map at the pixel limit takes to read and store.
+const BUSY_RETRY_AFTER_S: u64 = 5;
+
+/// A place among the uploads read at once (`--surface-parses`), taken before the body is
+/// read, so that uploads beyond them cost neither the body's memory nor its parse: 429.
+struct ParsePermit(OwnedSemaphorePermit);
+
+impl<S> FromRequestParts<S> for ParsePermit
+where
+    S: Send + Sync,
+    Arc<Surfaces>: FromRef<S>,
+{
+    type Rejection = ApiError;
+
+    async fn from_request_parts(_parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
+        let surfaces = Arc::<Surfaces>::from_ref(state);
+        let parses = Arc::clone(&surfaces.parses);
+        parses.try_acquire_owned().map(Self).map_err(|_| {
+            ApiError::too_many_requests(
+                format!(
+                    "{} height maps are being read, the most at once (--surface-parses); \
+                     retry later",
+                    surfaces.limits.parses
+                ),
+                BUSY_RETRY_AFTER_S,
+            )
+        })
+    }
+}
+
 /// A height map's body: the bytes of its file, declared `application/octet-stream` or
 /// `text/plain` (415 otherwise), read as every body is ([`Body`]) under this route's limit.
 struct MapBody(Bytes);
@@ -93,9 +125,15 @@ where
 async fn upload_surface(
     State(surfaces): State<Arc<Surfaces>>,
     options: UploadOptions,
+    ParsePermit(permit): ParsePermit,
     MapBody(bytes): MapBody,
 ) -> Result<Response, ApiError> {
-    let record = blocking(move || upload::store(&surfaces, options, &bytes)).await?;
+    let record = blocking(move || {
+        let stored = upload::store(&surfaces, options, &bytes);
+        drop(permit);
+        stored
+    })
+    .await?;
     let location = format!("/api/v1/surfaces/{}", record.id);
     Ok(created(StatusCode::CREATED, location, record))
 }

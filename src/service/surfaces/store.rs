@@ -16,10 +16,11 @@ use std::collections::BTreeMap;
 use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
-use std::sync::{Mutex, MutexGuard, PoisonError};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 use serde::{Deserialize, Serialize};
 use time::OffsetDateTime;
+use tokio::sync::Semaphore;
 use uuid::Uuid;
 
 use crate::service::files::{Damage, Digest, quarantine, sync_dir, to_json, write_atomic};
@@ -79,6 +80,24 @@ pub enum SurfaceLoadError {
     },
 }
 
+/// What an upload may cost (`--max-surface-pixels`, `--surface-parses`).
+#[derive(Debug, Clone, Copy)]
+pub struct UploadLimits {
+    /// The most pixels a map may declare.
+    pub max_pixels: u64,
+    /// Uploads read at once.
+    pub parses: usize,
+}
+
+/// Why a surface was not stored.
+#[derive(Debug)]
+pub enum CreateError {
+    /// Its record would not read back at the next start; why.
+    Unreadable(String),
+    /// Its files could not be written.
+    Storage(io::Error),
+}
+
 /// Why a surface was not removed.
 #[derive(Debug)]
 pub enum DeleteError {
@@ -107,6 +126,10 @@ pub trait SurfaceUsers: Send + Sync {
 pub struct Surfaces {
     dir: PathBuf,
     quarantine_dir: PathBuf,
+    /// What an upload may cost.
+    pub(super) limits: UploadLimits,
+    /// One permit per upload being read (`UploadLimits::parses`).
+    pub(super) parses: Arc<Semaphore>,
     records: Mutex<BTreeMap<Uuid, SurfaceRecord>>,
     /// Held by whoever checks that a surface exists and acts on it (a job's submission, a
     /// surface's deletion), so a job is never accepted for a surface being deleted.
@@ -121,12 +144,14 @@ impl Surfaces {
     /// Opens (creating if needed) `<data_dir>/surfaces`, sweeps interrupted uploads and
     /// deletions, and loads every surface whose files match their digest; the others are
     /// quarantined. Blocking.
-    pub fn open(data_dir: &Path, quarantine_dir: &Path) -> io::Result<Self> {
+    pub fn open(data_dir: &Path, quarantine_dir: &Path, limits: UploadLimits) -> io::Result<Self> {
         let dir = data_dir.join("surfaces");
         fs::create_dir_all(&dir)?;
         let surfaces = Self {
             dir,
             quarantine_dir: quarantine_dir.to_owned(),
+            parses: Arc::new(Semaphore::new(limits.parses)),
+            limits,
             records: Mutex::default(),
             referrals: Mutex::default(),
         };
@@ -200,7 +225,7 @@ impl Surfaces {
         format: Format,
         map: &HeightMap,
         statistics: Statistics,
-    ) -> io::Result<SurfaceRecord> {
+    ) -> Result<SurfaceRecord, CreateError> {
         let id = Uuid::new_v4();
         let heights: Vec<u8> = map.heights_m.iter().flat_map(|h| h.to_le_bytes()).collect();
         let record = SurfaceRecord {
@@ -220,10 +245,19 @@ impl Surfaces {
             dy_m: map.dy_m,
             heights: Digest::of(&heights),
         };
+        let json = to_json(&stored).map_err(CreateError::Storage)?;
+        // Read back as the next start will read it: a record that would not load (a number
+        // JSON cannot hold) would be accepted now and quarantined then.
+        let reread = serde_json::from_slice::<Stored>(&json).map_err(|e| e.to_string());
+        match reread {
+            Ok(again) if again.record == record => {}
+            Ok(_) => return Err(CreateError::Unreadable("it reads back different".into())),
+            Err(e) => return Err(CreateError::Unreadable(e)),
+        }
         let staging = self.dir.join(format!("{id}{NEW_SUFFIX}"));
         let created = fs::create_dir(&staging)
             .and_then(|()| write_atomic(&staging, HEIGHTS, &heights))
-            .and_then(|()| write_atomic(&staging, RECORD, &to_json(&stored)?))
+            .and_then(|()| write_atomic(&staging, RECORD, &json))
             .and_then(|()| fs::rename(&staging, self.dir.join(id.to_string())))
             .and_then(|()| sync_dir(&self.dir));
         if let Err(e) = created {
@@ -232,7 +266,7 @@ impl Surfaces {
                     tracing::error!(path = %staging.display(), "cannot clean up: {e}");
                 }
             }
-            return Err(e);
+            return Err(CreateError::Storage(e));
         }
         lock(&self.records).insert(id, record.clone());
         tracing::info!(%id, nx = map.nx, ny = map.ny, "surface stored");

@@ -6,9 +6,12 @@ use std::io;
 
 use serde::Deserialize;
 
-use super::store::{SurfaceRecord, Surfaces};
+use super::store::{CreateError, SurfaceRecord, Surfaces};
 use crate::service::extract::cut;
-use crate::surface::{Format, HeightMap, Statistics, SurfaceError, read, read_as};
+use crate::surface::{
+    Format, HeightMap, MAX_PIXEL_M, MIN_PIXEL_M, Statistics, SurfaceError, declared_pixels, read,
+    read_as,
+};
 
 /// The longest name kept with a surface, in characters.
 const MAX_NAME_CHARS: usize = 200;
@@ -67,11 +70,16 @@ impl UploadQuery {
         let pixel_m = match self.pixel_um.as_deref() {
             None => None,
             Some(text) => match text.trim().parse::<f64>() {
-                Ok(um) if um > 0.0 && um.is_finite() => Some(um * 1e-6),
+                Ok(um) if (MIN_PIXEL_M..=MAX_PIXEL_M).contains(&(um * 1e-6)) => Some(um * 1e-6),
                 _ => {
                     return Err(invalid(
                         "pixel_um",
-                        format!("{:?} is not a pixel size (a number > 0, um)", cut(text)),
+                        format!(
+                            "{:?} is not a pixel size (a number from {:e} to {:e}, um)",
+                            cut(text),
+                            MIN_PIXEL_M * 1e6,
+                            MAX_PIXEL_M * 1e6
+                        ),
                     ));
                 }
             },
@@ -91,16 +99,32 @@ impl UploadQuery {
     }
 }
 
-/// Reads the map of an upload's bytes and stores it. Blocking (parsing, files).
+/// Reads the map of an upload's bytes and stores it, once the pixels its bytes declare are
+/// within the limit. Blocking (parsing, files).
 pub(super) fn store(
     surfaces: &Surfaces,
     options: UploadOptions,
     bytes: &[u8],
 ) -> Result<SurfaceRecord, UploadError> {
+    let declared = declared_pixels(bytes, options.format, options.pixel_m)
+        .map_err(|e| invalid("body", e.to_string()))?;
+    let limit = surfaces.limits.max_pixels;
+    if declared > limit {
+        return Err(UploadError::TooLarge(format!(
+            "the map declares {declared} pixels; at most {limit} are read \
+             (--max-surface-pixels)"
+        )));
+    }
     let (map, format, statistics) = parse(bytes, options.format, options.pixel_m)?;
     surfaces
         .create(options.name, format, &map, statistics)
-        .map_err(UploadError::Storage)
+        .map_err(|e| match e {
+            CreateError::Unreadable(why) => invalid(
+                "body",
+                format!("the map's record would not read back after a restart: {why}"),
+            ),
+            CreateError::Storage(e) => UploadError::Storage(e),
+        })
 }
 
 /// The map of an upload's bytes (in the format given, or as the content tells) and its
