@@ -31,6 +31,7 @@ mod extract;
 mod files;
 mod jobs;
 mod listen;
+mod listing;
 mod measurements;
 mod meta;
 mod reply;
@@ -384,7 +385,7 @@ fn cors_layer(origins: &[String]) -> Result<Option<CorsLayer>, ServeError> {
                 header::CONTENT_TYPE,
                 HeaderName::from_static("last-event-id"),
             ])
-            .expose_headers([header::LOCATION, header::RETRY_AFTER]),
+            .expose_headers([header::LOCATION, header::RETRY_AFTER, header::LINK]),
     ))
 }
 

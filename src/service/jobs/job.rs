@@ -11,6 +11,7 @@ use tokio::sync::watch;
 use uuid::Uuid;
 
 use crate::scene::Scene;
+use crate::service::listing::{Filter, Listed};
 
 /// Where a job is in its life.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -32,6 +33,16 @@ pub enum JobStatus {
 }
 
 impl JobStatus {
+    /// Every status, as the API spells it.
+    pub const NAMES: &'static [&'static str] = &[
+        "queued",
+        "running",
+        "succeeded",
+        "failed",
+        "cancelled",
+        "damaged",
+    ];
+
     /// The status as the API spells it.
     pub fn name(self) -> &'static str {
         match self {
@@ -88,6 +99,21 @@ pub struct JobRecord {
     #[serde(with = "time::serde::rfc3339::option")]
     pub finished_at: Option<OffsetDateTime>,
 }
+
+impl Listed for JobRecord {
+    fn created_at(&self) -> OffsetDateTime {
+        self.created_at
+    }
+    fn id(&self) -> Uuid {
+        self.id
+    }
+}
+
+/// The filters of `GET /api/v1/jobs`.
+pub(super) const FILTERS: &[Filter<JobRecord>] = &[
+    Filter::OneOf("status", JobStatus::NAMES, |j| j.status.name()),
+    Filter::Contains("name", |j| &j.name),
+];
 
 impl JobRecord {
     /// The first record of a newly accepted scene.

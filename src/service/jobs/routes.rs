@@ -13,12 +13,13 @@ use serde_json::Value;
 
 use super::error::{DeleteError, JobError, PartialError, SubmitError};
 use super::events::{self, Streams};
-use super::job::JobRecord;
+use super::job::{FILTERS, JobRecord};
 use super::registry::{Deletion, Jobs};
 use crate::scene::{FieldError, Scene, SceneErrors};
 use crate::service::blocking::blocking;
 use crate::service::error::ApiError;
 use crate::service::extract::{BodyTimeout, JobId, JsonBody, JsonRequest};
+use crate::service::listing::{ListQuery, Page};
 use crate::service::reply::{attachment, created};
 use crate::service::route::{Endpoint, Verb};
 use crate::simulation::parse_scene;
@@ -70,8 +71,11 @@ async fn submit_job(
 }
 
 /// `GET /api/v1/jobs`: every job, newest first.
-async fn list_jobs(State(jobs): State<Arc<Jobs>>) -> Json<Vec<JobRecord>> {
-    Json(jobs.list())
+async fn list_jobs(
+    State(jobs): State<Arc<Jobs>>,
+    query: ListQuery,
+) -> Result<Page<JobRecord>, ApiError> {
+    query.page("/api/v1/jobs", jobs.list(), FILTERS)
 }
 
 /// `GET /api/v1/jobs/{id}`.

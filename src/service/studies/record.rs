@@ -8,6 +8,7 @@ use uuid::Uuid;
 
 use super::store::{AxisRecord, StoredStudy};
 use crate::service::jobs::{JobStatus, Jobs};
+use crate::service::listing::{Filter, Listed};
 
 /// Where a member is: its job's status, or `deleted` once its job has been removed on its
 /// own (DELETE on the job); `None` is that deleted job.
@@ -36,6 +37,30 @@ pub enum StudyStatus {
     Failed,
     /// Every member ended and some were cancelled.
     Cancelled,
+}
+
+impl StudyStatus {
+    /// Every status, as the API spells it.
+    pub const NAMES: &'static [&'static str] = &[
+        "queued",
+        "running",
+        "succeeded",
+        "partial",
+        "failed",
+        "cancelled",
+    ];
+
+    /// The status as the API spells it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Queued => "queued",
+            Self::Running => "running",
+            Self::Succeeded => "succeeded",
+            Self::Partial => "partial",
+            Self::Failed => "failed",
+            Self::Cancelled => "cancelled",
+        }
+    }
 }
 
 /// How many members are in each state.
@@ -120,6 +145,21 @@ pub struct StudyRecord {
     /// Members in each state.
     pub counts: Counts,
 }
+
+impl Listed for StudyRecord {
+    fn created_at(&self) -> OffsetDateTime {
+        self.created_at
+    }
+    fn id(&self) -> Uuid {
+        self.id
+    }
+}
+
+/// The filters of `GET /api/v1/studies`.
+pub(super) const FILTERS: &[Filter<StudyRecord>] = &[
+    Filter::OneOf("status", StudyStatus::NAMES, |s| s.status.name()),
+    Filter::Contains("name", |s| &s.name),
+];
 
 /// The record of a stored study, with its members' statuses read from their jobs now.
 pub(super) fn record_of(stored: &StoredStudy, jobs: &Jobs) -> StudyRecord {

@@ -9,7 +9,7 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::on;
 use serde_json::Value;
 
-use super::record::StudyRecord;
+use super::record::{FILTERS, StudyRecord};
 use super::registry::{Studies, StudiesError, StudyDeletion, StudySubmitError};
 use crate::json::JsonError;
 use crate::scene::FieldError;
@@ -17,6 +17,7 @@ use crate::service::blocking::blocking;
 use crate::service::error::ApiError;
 use crate::service::extract::{BodyTimeout, JsonBody, JsonRequest, StudyId};
 use crate::service::jobs::{Jobs, SubmitError};
+use crate::service::listing::{ListQuery, Page};
 use crate::service::reply::{attachment, created};
 use crate::service::route::{Endpoint, Verb};
 use crate::study::{Study, StudyError};
@@ -74,8 +75,9 @@ async fn submit_study(
 async fn list_studies(
     State(studies): State<Arc<Studies>>,
     State(jobs): State<Arc<Jobs>>,
-) -> Json<Vec<StudyRecord>> {
-    Json(studies.list(&jobs))
+    query: ListQuery,
+) -> Result<Page<StudyRecord>, ApiError> {
+    query.page("/api/v1/studies", studies.list(&jobs), FILTERS)
 }
 
 /// `GET /api/v1/studies/{id}`.
