@@ -7,6 +7,7 @@
 //! k from the last point; each run goes to the last measured cycle on the calibration grid.
 //! Each run starts cold: the simulation's warm start lives inside one run.
 
+use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
@@ -105,6 +106,8 @@ pub(super) struct Problem {
     pub(super) grid_cells: usize,
     /// Runs made so far.
     pub(super) runs: usize,
+    /// Set by the caller to stop the fit: its run under way ends within a cycle.
+    pub(super) cancel: Arc<AtomicBool>,
 }
 
 impl Problem {
@@ -121,6 +124,7 @@ impl Problem {
             scene,
             grid_cells,
             runs: 0,
+            cancel: Arc::default(),
         }
     }
 
@@ -140,7 +144,7 @@ impl Problem {
         scene.wear.archard_k = Some(k);
         scene.wear.archard_calibration = None;
         scene.wear.archard_regime_change = change;
-        let result = run(&Plan::new(scene)?, &mut |_| {}, &AtomicBool::new(false))?;
+        let result = run(&Plan::new(scene)?, &mut |_| {}, &self.cancel)?;
         self.runs += 1;
         let solved: Vec<f64> = result.cycles.iter().map(|r| r.cycle as f64).collect();
         let volumes: Vec<f64> = result.cycles.iter().map(|r| r.wear_volume_mm3).collect();
@@ -185,8 +189,19 @@ pub fn fit_archard(
     scene: &Scene,
     options: ArchardOptions,
 ) -> Result<ArchardFit, CalibrationError> {
+    fit_archard_until(table, scene, options, &Arc::default())
+}
+
+/// [`fit_archard`], stopped (failing with the run's `Cancelled`) once `cancel` is set.
+pub fn fit_archard_until(
+    table: &Table,
+    scene: &Scene,
+    options: ArchardOptions,
+    cancel: &Arc<AtomicBool>,
+) -> Result<ArchardFit, CalibrationError> {
     let started = Instant::now();
     let mut problem = problem(table, scene)?;
+    problem.cancel = Arc::clone(cancel);
     let eq14 = eq14_k(&problem, scene)?;
     let bracket = (eq14 / options.span, eq14 * options.span);
     let (k, tried) = golden_section("archard_k", bracket, options.tolerance, &mut |k| {
@@ -290,6 +305,7 @@ pub(super) fn problem(table: &Table, scene: &Scene) -> Result<Problem, Calibrati
         scene: run_scene,
         grid_cells,
         runs: 0,
+        cancel: Arc::default(),
     })
 }
 

@@ -32,15 +32,19 @@ use crate::hardness::HardnessError;
 use crate::scene::{GridSize, Scene, SceneErrors};
 use crate::simulation::SimulationError;
 
-pub use archard::{ArchardFit, ArchardOptions, VolumeResidual, fit_archard};
+pub use archard::{ArchardFit, ArchardOptions, VolumeResidual, fit_archard, fit_archard_until};
 pub use command::{CommandError, calibrate_files};
 pub use hardness::{HardnessFit, HardnessOptions, HardnessResidual, fit_hardness};
-pub use kind::{CommandOptions, Fit, FitKind, calibrate, check, default_scene};
+pub use kind::{
+    CommandOptions, Fit, FitKind, RunSize, calibrate, calibrate_until, check, default_scene,
+    run_size,
+};
 pub use minimise::Trial;
 pub use ocp::{OcpFit, OcpPoint, fit_ocp};
 pub use regime::{
     Candidate, ChangeCycle, ChangeCycleError, Comparison, MIN_POINTS_PER_REGIME, ModelScore,
     RegimeFit, RegimeOptions, RegimePoint, Regimes, TwoRegimeFit, fit_archard_regimes,
+    fit_archard_regimes_until,
 };
 pub use table::{Table, TableError};
 pub use tafel::{TafelDomain, TafelFit, TafelOptions, TafelResidual, fit_tafel};
@@ -158,6 +162,18 @@ pub enum CalibrationError {
     /// The hardness law could not be fitted.
     #[error("hardness: {0}")]
     Hardness(#[from] HardnessError),
+    /// The run the fit would make to the table's last point is one the simulation refuses
+    /// (a cycle count past its limit, say), found before any run.
+    #[error(
+        "the fit's runs go to the table's last point, cycle {cycles}, and the simulation refuses such a run: {source}"
+    )]
+    RunRefused {
+        /// The cycles the runs would go to.
+        cycles: u64,
+        /// What the simulation's check said.
+        #[source]
+        source: SceneErrors,
+    },
     /// A simulated run failed.
     #[error("simulation: {0}")]
     Simulation(#[from] SimulationError),

@@ -1,6 +1,6 @@
 //! Archard's k with a change of regime (the paper's Section 5.2 reads Table 3 as a low-wear
 //! period before about 300 cycles and Archard wear after it): k before and after a cycle the
-//! user gives or the fit finds, fitted over whole simulated runs as [`fit_archard`] fits one
+//! user gives or the fit finds, fitted over whole simulated runs as [`fit_archard`](super::fit_archard) fits one
 //! k, and compared with that one-k fit.
 //!
 //! At a given cycle the two k's are fitted by Gauss-Newton ([`gauss_newton`]), started from
@@ -19,6 +19,8 @@
 
 use std::collections::BTreeMap;
 use std::str::FromStr;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use serde::Serialize;
@@ -26,14 +28,14 @@ use thiserror::Error;
 
 use super::archard::{Problem, problem};
 use super::minimise::{PairFit, gauss_newton, standard_errors, sum_of_squares};
-use super::{ArchardFit, ArchardOptions, CalibrationError, Estimate, Table, fit_archard};
+use super::{ArchardFit, ArchardOptions, CalibrationError, Estimate, Table, fit_archard_until};
 use crate::scene::{ArchardRegimeChange, Scene};
 
 /// Points each regime needs: two fit its own k with one degree of freedom to spare, so a
 /// table of four points leaves the two-k fit with a fitted cycle one degree of freedom.
 pub const MIN_POINTS_PER_REGIME: usize = 2;
 
-/// Step in ln k of the standard errors' central differences, as [`fit_archard`]'s: 1% is
+/// Step in ln k of the standard errors' central differences, as [`fit_archard`](super::fit_archard)'s: 1% is
 /// far above the cycle stepping's 1e-4 noise on the volume, and the volume is linear in k
 /// across it.
 const ERROR_STEP: f64 = 0.01;
@@ -170,7 +172,7 @@ pub struct Comparison {
 /// One k against a change of regime, side by side.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RegimeFit {
-    /// The one-k fit ([`fit_archard`]).
+    /// The one-k fit ([`fit_archard`](super::fit_archard)).
     pub one_regime: ArchardFit,
     /// The two-k fit.
     pub two_regimes: TwoRegimeFit,
@@ -195,11 +197,23 @@ pub fn fit_archard_regimes(
     scene: &Scene,
     options: RegimeOptions,
 ) -> Result<RegimeFit, CalibrationError> {
+    fit_archard_regimes_until(table, scene, options, &Arc::default())
+}
+
+/// [`fit_archard_regimes`], stopped (failing with the run's `Cancelled`) once `cancel` is
+/// set.
+pub fn fit_archard_regimes_until(
+    table: &Table,
+    scene: &Scene,
+    options: RegimeOptions,
+    cancel: &Arc<AtomicBool>,
+) -> Result<RegimeFit, CalibrationError> {
     let started = Instant::now();
-    let problem = checked(table, scene, options.change)?;
+    let mut problem = checked(table, scene, options.change)?;
+    problem.cancel = Arc::clone(cancel);
     let cycles = problem.cycles.clone();
     let points = cycles.len();
-    let one = fit_archard(table, scene, options.archard)?;
+    let one = fit_archard_until(table, scene, options.archard, cancel)?;
     let k = one.archard_k.value;
     let mut search = Search {
         problem,
