@@ -429,3 +429,129 @@ async fn a_hardness_calibration_over_http_gives_the_numbers_of_tribosim_calibrat
         );
     }
 }
+
+/// DELETE `url`: the status and the JSON body (null for none).
+async fn delete(client: &reqwest::Client, url: &str) -> (u16, Value) {
+    let response = client.delete(url).send().await.expect("DELETE");
+    let status = response.status().as_u16();
+    let text = response.text().await.expect("body");
+    (status, serde_json::from_str(&text).unwrap_or(Value::Null))
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn calibrations_are_bounded_up_front_listed_cancelled_and_deleted() {
+    let dir = TempDir::new("calibration-limits");
+    let server = server(&dir.path().join("data"), &[]);
+    let client = reqwest::Client::new();
+    let url = server.url("/api/v1/calibrations");
+    let every_cycle =
+        json!({"preset": "dalmau2018-316l", "overrides": {"numerics": {"cycle_step": 1}}});
+    let on_2048 = json!({"preset": "dalmau2018-316l", "overrides": {"numerics": {"grid": 2048}}});
+    let refusals = [
+        (
+            "cycles,volume_mm3\n10,0.001\n2000000,0.01\n",
+            json!(null),
+            "table",
+            "test.cycles",
+        ),
+        (
+            "cycles,volume_mm3\n10,0.001\n1000000,0.01\n",
+            every_cycle.clone(),
+            "table",
+            "--calibration-max-cell-cycles",
+        ),
+        (
+            "cycles,volume_mm3\n10,0.001\n3600,0.01\n",
+            on_2048,
+            "scene.numerics.grid",
+            "--calibration-max-grid",
+        ),
+        (
+            "cycles,volume_mm3,cycles\n10,0.001,10\n3600,0.01,3600\n",
+            json!(null),
+            "table",
+            "`cycles` more than once",
+        ),
+    ];
+    for (table, scene, path, words) in refusals {
+        let mut request = json!({"kind": "archard", "table": table});
+        if !scene.is_null() {
+            request["scene"] = scene;
+        }
+        let (code, error) = post(&client, &url, &request).await;
+        assert_eq!(code, 422, "{error}");
+        assert_eq!(error["fields"][0]["path"], path, "{error}");
+        assert!(
+            error["error"].as_str().expect("message").contains(words),
+            "{error}"
+        );
+    }
+    let rows: String = (1..=20_001)
+        .map(|n| format!("{n},{}\n", 2500 + n % 7))
+        .collect();
+    let request = json!({"kind": "hardness", "table": format!("cycles,hardness_mpa\n{rows}")});
+    let (code, error) = post(&client, &url, &request).await;
+    assert_eq!(code, 422, "{error}");
+    assert!(
+        error["error"]
+            .as_str()
+            .expect("message")
+            .contains("at most 20000")
+    );
+
+    // Two fits of whole runs, every cycle solved, hold both places until cancelled.
+    let table3 = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/calibration/table3_wear.csv"),
+    )
+    .expect("read the wear table");
+    let archard = json!({"kind": "archard", "table": table3, "scene": every_cycle});
+    let mut running = Vec::new();
+    for _ in 0..2 {
+        let (code, started) = post(&client, &url, &archard).await;
+        assert_eq!(code, 202, "{started}");
+        running.push(started["id"].as_str().expect("id").to_owned());
+    }
+    let hardness =
+        json!({"kind": "hardness", "table": "cycles,hardness_mpa\n10,2551\n60,2727\n300,2842\n"});
+    let (code, _) = post(&client, &url, &hardness).await;
+    assert_eq!(code, 429, "both places are taken");
+    for id in &running {
+        let (code, cancelled) = delete(&client, &format!("{url}/{id}")).await;
+        assert_eq!(code, 202, "{cancelled}");
+        assert_eq!(cancelled["status"], "cancelled");
+    }
+    // Each run stops within a cycle, and its place frees then.
+    let fit = loop {
+        let (code, fit) = post(&client, &url, &hardness).await;
+        if code == 202 {
+            break fit;
+        }
+        assert_eq!(code, 429, "{fit}");
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    };
+    let id = fit["id"].as_str().expect("id").to_owned();
+    wait_for(&client, &format!("{url}/{id}"), |c| {
+        c["status"] == "succeeded"
+    })
+    .await;
+
+    // Listed newest first without results, filtered by status; DELETE forgets an ended fit.
+    let listed = get_json(&client, &url).await;
+    let ids: Vec<&str> = listed
+        .as_array()
+        .expect("a list")
+        .iter()
+        .filter_map(|c| c["id"].as_str())
+        .collect();
+    assert_eq!(ids.first().copied(), Some(id.as_str()), "{listed}");
+    assert_eq!(ids.len(), 3, "{listed}");
+    assert!(listed[0].get("result").is_none(), "{listed}");
+    let cancelled = get_json(&client, &format!("{url}?status=cancelled")).await;
+    assert_eq!(cancelled.as_array().map(Vec::len), Some(2), "{cancelled}");
+    for id in running.iter().chain([&id]) {
+        let (code, _) = delete(&client, &format!("{url}/{id}")).await;
+        assert_eq!(code, 204);
+        let response = client.get(format!("{url}/{id}")).send().await.expect("GET");
+        assert_eq!(response.status(), 404);
+    }
+}

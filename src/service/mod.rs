@@ -61,6 +61,7 @@ pub use meta::OPENAPI_YAML;
 pub use route::{Route, Verb};
 pub use router::{BODY_LIMIT_BYTES, MAX_URI_BYTES, routes};
 
+use calibrations::{Calibrations, FitLimits};
 use extract::BodyTimeout;
 use jobs::{Jobs, Store, Streams};
 use state::AppState;
@@ -260,7 +261,11 @@ pub async fn serve_on(
     let app = AppState {
         jobs: Arc::clone(&jobs),
         studies,
-        calibrations: Arc::default(),
+        calibrations: Arc::new(Calibrations::new(FitLimits {
+            max_grid: args.budgets.calibration_max_grid,
+            max_cell_cycles: args.budgets.calibration_max_cell_cycles,
+            kept_bytes: args.budgets.calibration_kept_bytes,
+        })),
         surfaces,
         token: token.map(Arc::from),
         static_dir: args.static_dir.as_deref().map(Arc::from),

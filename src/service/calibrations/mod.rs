@@ -6,5 +6,5 @@ mod registry;
 mod request;
 mod routes;
 
-pub(crate) use registry::Calibrations;
+pub(crate) use registry::{Calibrations, FitLimits};
 pub(crate) use routes::endpoints;

@@ -12,6 +12,11 @@ use crate::scene::{FieldError, Scene};
 use crate::service::error::ApiError;
 use crate::simulation::{Plan, parse_scene};
 
+/// The most rows a table may have, counted before it is parsed: a Tafel scan at 1 mV steps
+/// has about a thousand and an OCP log at 1 Hz over an hour 3600; a fit's result holds a
+/// residual per row (about 150 bytes), so this bounds one result near 3 MB.
+pub(super) const MAX_TABLE_ROWS: usize = 20_000;
+
 /// The request body.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -97,6 +102,13 @@ impl CalibrationRequest {
                 ));
             }
         };
+        let rows = declared_rows(&self.table);
+        if rows > MAX_TABLE_ROWS {
+            return Err(invalid(
+                "table",
+                format!("the table has {rows} rows; a fit takes at most {MAX_TABLE_ROWS}"),
+            ));
+        }
         let table = Table::parse(&text).map_err(|e| invalid("table", e.to_string()))?;
         let scene = match &self.scene {
             None => default_scene(),
@@ -124,6 +136,27 @@ impl CalibrationRequest {
             scene,
             options,
         })
+    }
+}
+
+/// The rows a table declares, counted without reading a cell: a CSV text's data lines (not
+/// blank, not `#` comments, after the header), a JSON array's rows, a JSON object's longest
+/// column.
+fn declared_rows(table: &Value) -> usize {
+    match table {
+        Value::String(text) => text
+            .lines()
+            .map(str::trim)
+            .filter(|line| !line.is_empty() && !line.starts_with('#'))
+            .count()
+            .saturating_sub(1),
+        Value::Array(rows) => rows.len(),
+        Value::Object(columns) => columns
+            .values()
+            .map(|column| column.as_array().map_or(0, Vec::len))
+            .max()
+            .unwrap_or(0),
+        _ => 0,
     }
 }
 
