@@ -94,3 +94,15 @@ def test_a_fit_that_fails_raises(client: tribosim.Client) -> None:
 def test_an_unknown_calibration(client: tribosim.Client) -> None:
     with pytest.raises(tribosim.NotFoundError):
         client.calibrations.get(str(uuid.uuid4()))
+
+
+def test_a_running_fit_is_listed_cancelled_and_deleted(client: tribosim.Client) -> None:
+    every_cycle = {"preset": "dalmau2018-316l", "overrides": {"numerics": {"cycle_step": 1}}}
+    calibration = client.calibrations.submit("archard", TABLE3_WEAR, every_cycle)
+    assert calibration.id in [c.id for c in client.calibrations.list(kind="archard")]
+    assert calibration.cancel().status == "cancelled"
+    listed = client.calibrations.list(status="cancelled")
+    assert calibration.id in [c.id for c in listed]
+    calibration.delete()
+    with pytest.raises(tribosim.NotFoundError):
+        calibration.refresh()

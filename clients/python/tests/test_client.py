@@ -60,3 +60,7 @@ def test_no_server_is_a_transport_error() -> None:
         pytest.raises(tribosim.TransportError),
     ):
         client.health()
+
+
+def test_the_page_files_are_served(client: tribosim.Client) -> None:
+    assert b"body" in client.static_file("page.css")

@@ -225,3 +225,17 @@ def test_events_follow_a_job_across_a_restart(tmp_path: Path) -> None:
     # The run that ended is the second server's.
     assert status.job.started_at is not None
     assert datetime.fromisoformat(status.job.started_at[:26] + "+00:00") > restarted
+
+
+def test_the_list_pages_and_filters(client: tribosim.Client, small_job: tribosim.Job) -> None:
+    other = client.jobs.submit(SMALL, name="pytest list Other")
+    other.wait(progress=False)
+    every = client.jobs.list()
+    # Pages of one job at a time, followed to the end, give the same list, newest first.
+    assert [job.id for job in client.jobs.list(page_size=1)] == [job.id for job in every]
+    assert every.index(next(j for j in every if j.id == other.id)) < every.index(
+        next(j for j in every if j.id == small_job.id)
+    )
+    named = client.jobs.list(name="LIST other", status="succeeded,failed")
+    assert [job.id for job in named] == [other.id]
+    assert client.jobs.list(status="queued", name="pytest list other") == []

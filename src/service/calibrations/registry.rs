@@ -259,7 +259,7 @@ impl Calibrations {
                 let outcome = panic::catch_unwind(AssertUnwindSafe(|| {
                     calibrate_until(kind, &table, &scene, options, &cancel)
                         .map_err(|e| e.to_string())
-                        .and_then(|fit| serde_json::to_string(&fit).map_err(|e| e.to_string()))
+                        .and_then(|fit| result_text(&fit).map_err(|e| e.to_string()))
                 }))
                 .unwrap_or_else(|_| Err("internal error: the fit panicked".to_owned()));
                 // The inputs go before the result is kept.
@@ -317,6 +317,13 @@ impl Calibrations {
         tracing::info!(%id, "ended calibration removed");
         Some(CalibrationDeletion::Removed)
     }
+}
+
+/// The fit's JSON text as the API has always answered it: through a JSON value, whose
+/// objects list their keys in order, so a client sees the same text as before the result
+/// was kept as text. The value lives only while the text is written.
+fn result_text(fit: &crate::calibration::Fit) -> serde_json::Result<String> {
+    serde_json::to_string(&serde_json::to_value(fit)?)
 }
 
 /// Forgets the oldest ended fits beyond [`MAX_KEPT`] of them or `kept_bytes` of results.

@@ -33,6 +33,13 @@ def _plain(value: Any) -> Any:
     raise TypeError(f"{type(value).__name__} is not JSON serialisable")
 
 
+def list_params(page_size: int, **filters: str | None) -> dict[str, str | int]:
+    """A paged list's query: the page size and the filters given."""
+    params: dict[str, str | int] = {"limit": page_size}
+    params.update({key: value for key, value in filters.items() if value is not None})
+    return params
+
+
 class Http:
     """The connection to one server, with its token."""
 
@@ -67,6 +74,21 @@ class Http:
     def json(self, route: Route, **kwargs: Any) -> Any:
         """The JSON answer of `send`."""
         return self.send(route, **kwargs).json()
+
+    def pages(self, route: Route, params: Params | None = None) -> Iterator[Any]:
+        """Every item of a paged list (``GET /api/v1/jobs``, ...): the page `route` answers
+        with `params`, then each next page its ``Link: <...>; rel="next"`` header names."""
+        response = self.send(route, params=params)
+        while True:
+            yield from response.json()
+            following = response.links.get("next", {}).get("url")
+            if not following:
+                return
+            try:
+                response = self._client.get(following)
+            except httpx.TransportError as e:
+                raise TransportError(f"GET {following}: {e}") from e
+            _check(response)
 
     @contextmanager
     def stream(

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import builtins
 import json
 import os
 import time
@@ -10,7 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ._http import Http
+from ._http import Http, list_params
 from ._routes import route
 from ._tables import TableInput, frame, table_json
 from .errors import RunFailedError, WaitTimeoutError
@@ -20,7 +21,9 @@ if TYPE_CHECKING:
     import pandas
 
 _SUBMIT = route("POST", "/api/v1/calibrations")
+_LIST = route("GET", "/api/v1/calibrations")
 _GET = route("GET", "/api/v1/calibrations/{id}")
+_DELETE = route("DELETE", "/api/v1/calibrations/{id}")
 
 
 @dataclass(frozen=True)
@@ -102,6 +105,19 @@ class Calibrations:
         )
         return calibration.wait(timeout=timeout)
 
+    @_LIST.implements
+    def list(
+        self, *, status: str | None = None, kind: str | None = None, page_size: int = 100
+    ) -> builtins.list[Calibration]:
+        """The calibrations the server keeps, newest first, or those with `status` or of
+        `kind` (one, or several comma-separated); their `info` lacks the result until
+        `refresh()`."""
+        params = list_params(page_size, status=status, kind=kind)
+        return [
+            Calibration(self._http, CalibrationInfo.from_json(raw))
+            for raw in self._http.pages(_LIST, params)
+        ]
+
     @_GET.implements
     def get(self, calibration_id: str) -> Calibration:
         """The calibration of `calibration_id` (`NotFoundError` if the server has none:
@@ -128,6 +144,24 @@ class Calibration:
     def refresh(self) -> CalibrationInfo:
         self.info = _fetch(self._http, self.id)
         return self.info
+
+    @_DELETE.implements
+    def cancel(self) -> CalibrationInfo:
+        """Stops a running fit (its run under way ends within a cycle); an ended fit is
+        left as it is."""
+        if self.refresh().status != "running":
+            return self.info
+        answer = self._http.send(_DELETE, id=self.id)
+        if answer.status_code != 204:
+            self.info = CalibrationInfo.from_json({**answer.json(), "result": None})
+        return self.info
+
+    @_DELETE.implements
+    def delete(self) -> None:
+        """Forgets the fit on the server, cancelling it first if it runs."""
+        answer = self._http.send(_DELETE, id=self.id)
+        if answer.status_code != 204:
+            self._http.send(_DELETE, id=self.id)
 
     @_GET.implements
     def wait(self, timeout: float | None = None, poll_s: float = 0.2) -> Fit:

@@ -13,7 +13,7 @@ from typing import Any, Union
 
 import httpx
 
-from ._http import Http, dumps
+from ._http import Http, dumps, list_params
 from ._progress import Progress
 from ._routes import route
 from .errors import RunFailedError, TransportError, WaitTimeoutError
@@ -65,9 +65,14 @@ class Jobs:
         )
 
     @_LIST.implements
-    def list(self) -> builtins.list[Job]:
-        """Every job, newest first."""
-        return [Job(self._http, JobInfo.from_json(raw)) for raw in self._http.json(_LIST)]
+    def list(
+        self, *, status: str | None = None, name: str | None = None, page_size: int = 100
+    ) -> builtins.list[Job]:
+        """Every job, newest first, or those with `status` (one, or several
+        comma-separated) whose name contains `name` (case-insensitively); read a page of
+        `page_size` at a time."""
+        params = list_params(page_size, status=status, name=name)
+        return [Job(self._http, JobInfo.from_json(raw)) for raw in self._http.pages(_LIST, params)]
 
     @_GET.implements
     def get(self, job_id: str) -> Job:

@@ -66,8 +66,9 @@ class StudyInfo(Record):
 
 @dataclass(frozen=True)
 class CalibrationInfo(Record):
-    """A calibration: ``running``, then ``succeeded`` with its `result` or ``failed`` with
-    its `error` (openapi.yaml, ``Calibration``)."""
+    """A calibration: ``running``, then ``succeeded`` with its `result`, ``failed`` with
+    its `error`, or ``cancelled`` (openapi.yaml, ``Calibration``; in a list,
+    ``CalibrationInfo``, without the result)."""
 
     id: str
     kind: str

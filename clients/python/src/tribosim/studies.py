@@ -10,7 +10,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Union
 
-from ._http import Http, dumps
+from ._http import Http, dumps, list_params
 from ._progress import Progress
 from ._routes import route
 from ._tables import frame
@@ -50,9 +50,15 @@ class Studies:
         return Study(self._http, StudyInfo.from_json(raw))
 
     @_LIST.implements
-    def list(self) -> builtins.list[Study]:
-        """Every study, newest first."""
-        return [Study(self._http, StudyInfo.from_json(raw)) for raw in self._http.json(_LIST)]
+    def list(
+        self, *, status: str | None = None, name: str | None = None, page_size: int = 100
+    ) -> builtins.list[Study]:
+        """Every study, newest first, or those with `status` (one, or several
+        comma-separated) whose name contains `name` (case-insensitively)."""
+        params = list_params(page_size, status=status, name=name)
+        return [
+            Study(self._http, StudyInfo.from_json(raw)) for raw in self._http.pages(_LIST, params)
+        ]
 
     @_GET.implements
     def get(self, study_id: str) -> Study:
