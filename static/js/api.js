@@ -9,8 +9,8 @@ export function authHeaders() {
 }
 
 /**
- * Calls the API: { ok, status, body } with the body parsed as JSON (or { error: text }).
- * A 401 shows the token form.
+ * Calls the API: { ok, status, body, link } with the body parsed as JSON (or { error: text })
+ * and a list's Link header (its next page). A 401 shows the token form.
  */
 export async function api(path, options = {}) {
   const response = await fetch(path, { ...options, headers: { ...authHeaders(), ...(options.headers || {}) } });
@@ -22,7 +22,7 @@ export async function api(path, options = {}) {
     const text = await response.text();
     try { body = text ? JSON.parse(text) : null; } catch { body = { error: text }; }
   }
-  return { ok: response.ok, status: response.status, body };
+  return { ok: response.ok, status: response.status, body, link: response.headers.get("Link") };
 }
 
 /** Posts a JSON body. */

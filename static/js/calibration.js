@@ -2,7 +2,7 @@
 // measurements; the fitted values with their standard errors, each point's residual, the
 // measured and fitted points, and the fitted scene run on request.
 import { api, errorText, postJson } from "./api.js";
-import { $, reveal, sleep } from "./dom.js";
+import { $, button, reveal, sleep } from "./dom.js";
 import * as form from "./form.js";
 import { CALIB } from "./ids.js";
 import { COLORS, MEASURED_COLOR, linePlot, lineSeries, markerSeries } from "./plots.js";
@@ -42,7 +42,48 @@ async function submitCalibration(event) {
   if (!r.ok) { $(CALIB.errors).textContent = "Not fitted: " + readable(errorText(r)); return; }
   $(CALIB.panel).hidden = false;
   reveal($(CALIB.panel), false);
+  refreshList();
   follow(r.body);
+}
+
+let listTimer = null;
+
+// The fits the server keeps (the newest 20), with Show, and Cancel for a running fit or
+// Delete for an ended one; read again every second while one runs.
+async function refreshList() {
+  clearTimeout(listTimer);
+  const r = await api("/api/v1/calibrations?limit=20");
+  if (!r.ok) return;
+  $(CALIB.list).hidden = r.body.length === 0;
+  document.querySelector(`#${CALIB.list} tbody`).replaceChildren(...r.body.map(listRow));
+  if (r.body.some((c) => c.status === "running")) listTimer = setTimeout(refreshList, 1000);
+}
+
+function listRow(fit) {
+  const tr = document.createElement("tr");
+  tr.dataset.id = fit.id;
+  for (const text of [fit.kind, fit.status, new Date(fit.created_at).toLocaleString()]) {
+    const td = document.createElement("td");
+    td.textContent = text;
+    tr.appendChild(td);
+  }
+  const actions = document.createElement("td");
+  const show = button("Show", async () => {
+    const r = await api(`/api/v1/calibrations/${fit.id}`);
+    if (!r.ok) return;
+    $(CALIB.panel).hidden = false;
+    follow(r.body);
+  });
+  show.setAttribute("aria-label", `Show the ${fit.kind} fit`);
+  const running = fit.status === "running";
+  const remove = button(running ? "Cancel" : "Delete", async () => {
+    await api(`/api/v1/calibrations/${fit.id}`, { method: "DELETE" });
+    refreshList();
+  });
+  remove.setAttribute("aria-label", `${running ? "Cancel" : "Delete"} the ${fit.kind} fit`);
+  actions.append(show, remove);
+  tr.appendChild(actions);
+  return tr;
 }
 
 // Polls the calibration's record until it has ended.
@@ -50,7 +91,7 @@ async function follow(record) {
   calibration = record;
   for (;;) {
     render(calibration);
-    if (calibration.status !== "running") return;
+    if (calibration.status !== "running") { refreshList(); return; }
     await sleep(500);
     const r = await api(`/api/v1/calibrations/${record.id}`);
     if (!r.ok || !calibration || calibration.id !== record.id) return;
@@ -158,4 +199,5 @@ async function runFittedScene() {
 export function init() {
   $(CALIB.form).addEventListener("submit", submitCalibration);
   $(CALIB.run).addEventListener("click", runFittedScene);
+  refreshList();
 }

@@ -30,7 +30,15 @@ export const FORM = Object.freeze({
 export const fieldId = (path) => "f-" + path.replace(/\./g, "-");
 
 /** The job list. */
-export const JOBS = Object.freeze({ table: "jobs", message: "jobs-message", compare: "compare-button" });
+export const JOBS = Object.freeze({
+  table: "jobs",
+  message: "jobs-message",
+  compare: "compare-button",
+  filter: "jobs-filter",
+  status: "jobs-status",
+  name: "jobs-name",
+  more: "jobs-more",
+});
 
 /** The run panel. */
 export const RUN = Object.freeze({
@@ -132,6 +140,7 @@ export const CALIB = Object.freeze({
   text: "calib-text",
   submit: "calib-submit",
   errors: "calib-errors",
+  list: "calib-list",
   panel: "calib-panel",
   title: "calib-title",
   status: "calib-status",

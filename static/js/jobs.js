@@ -1,5 +1,7 @@
 // The job list, polled from /api/v1/jobs: each job's status, progress and why it is where
-// it is, with View, Cancel and Delete, and the ticks that choose runs to compare.
+// it is, with View, Cancel and Delete, and the ticks that choose runs to compare. The page
+// asks for the newest jobs it shows (a page of PAGE, more on "Show older jobs"), narrowed by
+// the status and name filters, so polling costs the same however many jobs the server keeps.
 import { api } from "./api.js";
 import { $, button } from "./dom.js";
 import { JOBS } from "./ids.js";
@@ -7,6 +9,11 @@ import { topic } from "./topic.js";
 import { readable } from "./words.js";
 
 const ACTIVE = new Set(["queued", "running"]);
+/** Jobs asked for at a time. */
+const PAGE = 50;
+/** The most the server gives in one page (openapi.yaml, `limit`). */
+const MOST = 1000;
+let wanted = PAGE;
 /** Jobs that may have a result, whole or partial, to show and compare. */
 export const ENDED = new Set(["succeeded", "failed", "cancelled"]);
 
@@ -44,9 +51,13 @@ export function highlight(id) {
 export async function refresh() {
   clearTimeout(pollTimer);
   try {
-    const r = await api("/api/v1/jobs");
+    const query = new URLSearchParams({ limit: String(wanted) });
+    if ($(JOBS.status).value) query.set("status", $(JOBS.status).value);
+    if ($(JOBS.name).value.trim()) query.set("name", $(JOBS.name).value.trim());
+    const r = await api("/api/v1/jobs?" + query);
     if (r.ok) {
       jobs = r.body;
+      $(JOBS.more).hidden = !/rel="next"/.test(r.link || "") || wanted >= MOST;
       render();
     } else {
       $(JOBS.message).textContent = r.status === 401 ? "Enter the server's token to see the jobs." : "Error: " + r.body.error;
@@ -56,6 +67,18 @@ export async function refresh() {
   }
   const busy = jobs.some((j) => ACTIVE.has(j.status));
   pollTimer = setTimeout(refresh, busy ? 1000 : 5000);
+}
+
+/** Wires the filters and "Show older jobs". */
+export function init() {
+  $(JOBS.filter).addEventListener("submit", (event) => { event.preventDefault(); refresh(); });
+  $(JOBS.status).addEventListener("change", () => { wanted = PAGE; refresh(); });
+  let typing;
+  $(JOBS.name).addEventListener("input", () => {
+    clearTimeout(typing);
+    typing = setTimeout(() => { wanted = PAGE; refresh(); }, 300);
+  });
+  $(JOBS.more).addEventListener("click", () => { wanted = Math.min(wanted + PAGE, MOST); refresh(); });
 }
 
 /** "3 / 10", with the time left of a running job or the place of a queued one. */
@@ -138,7 +161,8 @@ function row(job) {
 function render() {
   const tbody = document.querySelector(`#${JOBS.table} tbody`);
   $(JOBS.table).hidden = jobs.length === 0;
-  $(JOBS.message).textContent = jobs.length ? "" : "No jobs yet.";
+  const filtered = $(JOBS.status).value || $(JOBS.name).value.trim();
+  $(JOBS.message).textContent = jobs.length ? "" : filtered ? "No job matches." : "No jobs yet.";
   for (const id of ticked) if (!jobs.some((j) => j.id === id && ENDED.has(j.status))) ticked.delete(id);
   const rows = jobs.map(row);
   // Re-rendering must not take the keyboard's place: the focused control is found again.

@@ -54,6 +54,7 @@ function followResize() {
 
 async function start() {
   form.init();
+  jobs.init();
   addExportButtons();
   run.init();
   measurements.init();

@@ -57,7 +57,7 @@ async function submitStudy(event) {
 /** Reads the list (and the study shown); polls again in a second while one is active, else in five. */
 export async function refresh() {
   clearTimeout(timer);
-  const r = await api("/api/v1/studies");
+  const r = await api("/api/v1/studies?limit=50");
   if (!r.ok) {
     $(STUDY.message).textContent = r.status === 404 ? "This server runs no studies." : "";
     return;
