@@ -79,7 +79,10 @@ fn a_change_of_regime_through_the_command_line() {
         .iter()
         .filter(|r| [10, 40, 70, 100, 140, 200].contains(&r.cycle))
     {
-        csv.push_str(&format!("{},{:e}\n", record.cycle, record.wear_volume_mm3));
+        // What a profilometer measures, and what the fit compares with when the scene has
+        // corrosion: the total, wear plus WAC.
+        let total = record.total_volume_mm3.expect("the preset has corrosion");
+        csv.push_str(&format!("{},{:e}\n", record.cycle, total));
     }
     let table = scratch("regime_table.csv");
     std::fs::write(&table, csv).expect("written");

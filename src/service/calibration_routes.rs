@@ -136,7 +136,9 @@ fn inputs(body: &[u8]) -> Result<(FitKind, Table, Scene, CommandOptions), ApiErr
     let options = CommandOptions {
         without_bulk: !options.include_bulk.unwrap_or(true),
         corrosion_potential_v: options.e_corr_v,
+        scene_given: request.scene.is_some(),
         regime_change,
+        ..CommandOptions::default()
     };
     Ok((kind, table, scene, options))
 }
