@@ -1,29 +1,19 @@
 #!/usr/bin/env bash
-# End-to-end test of the results page (static/index.html) in headless Chromium: Debian's
-# chromium (installed with apt-get when /usr/bin/chromium is missing; needs root), driven
-# by playwright-core from tests/e2e (npm ci). Starts the release binary on a free loopback
-# port with a temporary data directory, runs tests/e2e/page.test.mjs against it (which
+# End-to-end test of the results page (static/: index.html, its ES modules and the vendored
+# uPlot) in headless Chromium: Debian's chromium (installed with apt-get when
+# /usr/bin/chromium is missing; needs root), driven by playwright-core from tests/e2e (npm
+# ci). Starts the release binary on a free loopback port with a temporary data directory,
+# serving static/ from disk (--static-dir), runs tests/e2e/page.test.mjs against it (which
 # also writes docs/screenshots/*.png), and stops the server. Exits non-zero on failure.
+# That the binary's built-in copies are these files, byte for byte and with their content
+# types, is tests/http.rs's to check.
 #
 # Environment: TRIBOSIM_BIN (a built binary; default: cargo build --release),
-# E2E_GRID and E2E_CYCLES (the test run's grid and cycles, default 64 and 3600),
+# E2E_GRID and E2E_CYCLES (the test run's grid and cycles, default 128 and 3600, tests/e2e/lib.mjs),
 # SCREENSHOT_DIR (default docs/screenshots).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repo="$(pwd)"
-
-# The page carries uPlot inline (the service serves only index.html): it must be the
-# vendored files, byte for byte.
-python3 - <<'PY'
-import re, sys
-page = open("static/index.html", encoding="utf-8").read()
-for tag, ident, name in [("style", "vendor-uplot-css", "uPlot.min.css"), ("script", "vendor-uplot-js", "uPlot.iife.min.js")]:
-    m = re.search(r'<%s id="%s">(.*?)</%s>' % (tag, ident, tag), page, re.S)
-    vendored = open("static/vendor/uplot/" + name, encoding="utf-8").read().rstrip("\n")
-    if not m or m.group(1) != vendored:
-        sys.exit("static/index.html: the inline %s differs from static/vendor/uplot/%s" % (ident, name))
-print("== the inline uPlot matches static/vendor/uplot/")
-PY
 
 if [ ! -x /usr/bin/chromium ]; then
     echo "== installing Debian's chromium"

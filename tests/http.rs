@@ -330,25 +330,112 @@ async fn a_token_from_a_file_is_accepted_with_any_case_of_bearer() {
     }
 }
 
+/// The files under `dir`, by their paths relative to `root` with `/` between folders.
+fn files_under(root: &Path, dir: &Path, out: &mut Vec<(String, Vec<u8>)>) {
+    for entry in std::fs::read_dir(dir).expect("read the folder") {
+        let path = entry.expect("a folder entry").path();
+        if path.is_dir() {
+            files_under(root, &path, out);
+        } else {
+            let relative = path.strip_prefix(root).expect("under the root");
+            let parts: Vec<_> = relative
+                .components()
+                .map(|c| c.as_os_str().to_str().expect("a UTF-8 file name"))
+                .collect();
+            out.push((
+                parts.join("/"),
+                std::fs::read(&path).expect("read the file"),
+            ));
+        }
+    }
+}
+
+/// GETs `path` and checks the answer: 200, the content type starting with `content_type`,
+/// `no-cache`; returns the body.
+async fn page_file(client: &reqwest::Client, url: String, content_type: &str) -> Vec<u8> {
+    let response = client.get(&url).send().await.expect("page file");
+    assert_eq!(response.status(), 200, "{url}");
+    let given = response.headers()["content-type"].to_str().expect("ascii");
+    assert!(given.starts_with(content_type), "{url}: {given}");
+    assert_eq!(response.headers()["cache-control"], "no-cache", "{url}");
+    response.bytes().await.expect("body").to_vec()
+}
+
+/// GETs `path` and checks the answer is the JSON 404.
+async fn no_page_file(client: &reqwest::Client, url: String) {
+    let response = client.get(&url).send().await.expect("page file");
+    assert_eq!(response.status(), 404, "{url}");
+    assert_eq!(
+        response.headers()["content-type"],
+        "application/json",
+        "{url}"
+    );
+    let body: Value = response.json().await.expect("error JSON");
+    assert!(body["error"].is_string(), "{url}: {body}");
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_page_is_served_from_any_directory_and_static_dir_overrides_it() {
     let dir = TempDir::new("page");
     let elsewhere = TempDir::new("cwd");
     let built_in = Served::start(dir.path(), &[], elsewhere.path());
     let client = client();
-    let page = client.get(built_in.url("/")).send().await.expect("page");
-    assert_eq!(page.status(), 200);
-    let page = page.text().await.expect("page text");
-    let source = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/static/index.html"))
-        .expect("static/index.html");
-    assert_eq!(page, source);
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("static");
+    let page = page_file(&client, built_in.url("/"), "text/html").await;
+    assert_eq!(
+        page,
+        std::fs::read(root.join("index.html")).expect("index.html")
+    );
+    // Every file of static/ as it is on disk, the modules and styles with their types.
+    let mut files = Vec::new();
+    files_under(&root, &root, &mut files);
+    for (path, bytes) in &files {
+        let content_type = match path.rsplit_once('.').map(|(_, extension)| extension) {
+            Some("js") => "text/javascript",
+            Some("css") => "text/css",
+            Some("html") => "text/html",
+            _ => "",
+        };
+        let served = page_file(
+            &client,
+            built_in.url(&format!("/static/{path}")),
+            content_type,
+        )
+        .await;
+        assert!(&served == bytes, "/static/{path} is not static/{path}");
+    }
+    assert!(
+        files
+            .iter()
+            .any(|(path, _)| path == "vendor/uplot/uPlot.iife.min.js")
+    );
+    no_page_file(&client, built_in.url("/static/js/nope.js")).await;
     drop(built_in);
 
-    std::fs::write(elsewhere.path().join("index.html"), "<p>draft</p>").expect("write page");
-    let flag = elsewhere.path().to_str().expect("UTF-8 path");
+    let draft = elsewhere.path().join("draft");
+    std::fs::create_dir_all(draft.join("js")).expect("create the draft's folders");
+    std::fs::write(draft.join("index.html"), "<p>draft</p>").expect("write page");
+    std::fs::write(draft.join("js/main.js"), "// draft").expect("write a module");
+    std::fs::write(elsewhere.path().join("secret"), "outside the page").expect("write a file");
+    let flag = draft.to_str().expect("UTF-8 path");
     let overridden = Served::start(dir.path(), &["--static-dir", flag], dir.path());
-    let page = client.get(overridden.url("/")).send().await.expect("page");
-    assert_eq!(page.text().await.expect("page text"), "<p>draft</p>");
+    let page = page_file(&client, overridden.url("/"), "text/html").await;
+    assert_eq!(page, b"<p>draft</p>");
+    let module = page_file(
+        &client,
+        overridden.url("/static/js/main.js"),
+        "text/javascript",
+    )
+    .await;
+    assert_eq!(module, b"// draft");
+    // The built-in files are not served in the draft's stead, and no path leaves its folder
+    // (the URL keeps an encoded `/`; the server decodes it).
+    no_page_file(&client, overridden.url("/static/page.css")).await;
+    no_page_file(&client, overridden.url("/static/..%2Fsecret")).await;
+    no_page_file(&client, overridden.url("/static/js%2F..%2F..%2Fsecret")).await;
+    let absolute = elsewhere.path().join("secret");
+    let absolute = absolute.to_str().expect("UTF-8 path").replace('/', "%2F");
+    no_page_file(&client, overridden.url(&format!("/static/{absolute}"))).await;
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

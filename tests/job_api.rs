@@ -8,7 +8,9 @@ mod common;
 use serde_json::{Value, json};
 
 use common::process::ServerProcess;
-use common::{TempDir, get_job, get_json, is_final, long_scene, small_scene, submit, wait_for_job};
+use common::{
+    TempDir, busy_scene, get_job, get_json, is_final, long_scene, small_scene, submit, wait_for_job,
+};
 
 /// PUT a table; the status and the JSON body.
 async fn put_table(
@@ -155,7 +157,7 @@ async fn queued_jobs_show_their_place_in_the_queue() {
     let client = reqwest::Client::new();
     // One worker: the long job runs, the next three wait in the order they came.
     let server = ServerProcess::start(dir.path());
-    let busy = submit(&client, &server.base, &long_scene(300_000)).await;
+    let busy = submit(&client, &server.base, &busy_scene()).await;
     let busy = busy["id"].as_str().expect("id").to_owned();
     wait_for_job(&client, &server.base, &busy, |job| {
         job["status"] == "running"

@@ -10,7 +10,7 @@ mod common;
 use serde_json::{Value, json};
 
 use common::process::ServerProcess;
-use common::{TempDir, get_json, is_final, long_scene, small_scene, submit, wait_for_job};
+use common::{TempDir, busy_scene, get_json, is_final, small_scene, submit, wait_for_job};
 
 /// Pixels of the test map.
 const NX: usize = 32;
@@ -288,7 +288,7 @@ async fn a_measured_scene_runs_on_its_stored_surface_which_survives_a_restart() 
     }
 
     // The one worker is busy, so the measured job waits, and its surface cannot go.
-    let busy = submit(&client, &base, &long_scene(300_000)).await;
+    let busy = submit(&client, &base, &busy_scene()).await;
     let busy_id = busy["id"].as_str().expect("id");
     let job = submit(&client, &base, &measured_scene(&id, 3)).await;
     let job_id = job["id"].as_str().expect("id").to_owned();

@@ -198,7 +198,11 @@ fn the_default_anode_is_the_real_contact_and_its_wake() {
         let wake_mm2 = real_mm2 * (1.0 + speed_mm_s * 0.148 / chord_mm);
         // A handful of roundings in each formula.
         let area = record.anodic_area_mm2.expect("corrosion on");
-        assert!(relative_error(area, wake_mm2) < 1e-12, "cycle {}", record.cycle);
+        assert!(
+            relative_error(area, wake_mm2) < 1e-12,
+            "cycle {}",
+            record.cycle
+        );
     }
 }
 

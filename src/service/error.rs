@@ -1,13 +1,23 @@
 //! The one error type of the HTTP API. Every error leaves the server as JSON
 //! `{"error": "...", "fields": [{"path": "...", "message": "..."}]}`; `fields` is empty except
-//! for an invalid scene (422), where it lists every bad field with its allowed range.
+//! for a refused body (422), where it names every field at fault.
+//!
+//! Handlers return `Result<_, ApiError>` and use `?`: each error of the service has a `From`
+//! that gives its answer. The errors of the request's plumbing (a body, a path, a query, a
+//! scene, a blocking task) have theirs here; each resource's own errors have theirs in the
+//! resource's `routes.rs`, beside the handlers that meet them, so this file knows no resource.
+
+use std::convert::Infallible;
+use std::io;
 
 use axum::Json;
-use axum::extract::rejection::{BytesRejection, PathRejection};
+use axum::extract::rejection::{BytesRejection, PathRejection, QueryRejection};
 use axum::http::{HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use serde::Serialize;
+use tokio::task::JoinError;
 
+use super::files::is_disk_full;
 use crate::scene::{FieldError, SceneErrors};
 
 /// An HTTP error answer: status, message, located fields and an optional Retry-After.
@@ -36,7 +46,7 @@ impl ApiError {
         }
     }
 
-    /// 400: the request is malformed (not JSON, not a job id, ...).
+    /// 400: the request is malformed (not JSON, not an id, ...).
     pub fn bad_request(message: impl Into<String>) -> Self {
         Self::new(StatusCode::BAD_REQUEST, message)
     }
@@ -49,14 +59,9 @@ impl ApiError {
         )
     }
 
-    /// 404: no such job, or no such route.
+    /// 404: no such job, study, ..., or no such route.
     pub fn not_found(message: impl Into<String>) -> Self {
         Self::new(StatusCode::NOT_FOUND, message)
-    }
-
-    /// 404: no job has this id.
-    pub fn unknown_job(id: uuid::Uuid) -> Self {
-        Self::not_found(format!("no job {id}"))
     }
 
     /// 405: the path exists but not with this method.
@@ -75,44 +80,14 @@ impl ApiError {
         )
     }
 
-    /// 409: the job exists but is not in a state that has what was asked for.
+    /// 409: the resource exists but is not in a state that has what was asked for.
     pub fn conflict(message: impl Into<String>) -> Self {
         Self::new(StatusCode::CONFLICT, message)
-    }
-
-    /// 415: the body is not declared as JSON.
-    pub fn unsupported_media_type() -> Self {
-        Self::new(
-            StatusCode::UNSUPPORTED_MEDIA_TYPE,
-            "the scene must be sent with `Content-Type: application/json`",
-        )
-    }
-
-    /// 415: a measurement table that is declared neither CSV nor JSON.
-    pub fn unsupported_table_type() -> Self {
-        Self::new(
-            StatusCode::UNSUPPORTED_MEDIA_TYPE,
-            "a measurement table must be sent with `Content-Type: text/csv` or `application/json`",
-        )
-    }
-
-    /// 415: a height map that is declared neither binary nor text.
-    pub fn unsupported_map_type() -> Self {
-        Self::new(
-            StatusCode::UNSUPPORTED_MEDIA_TYPE,
-            "a height map must be sent with `Content-Type: application/octet-stream` or \
-             `text/plain`",
-        )
     }
 
     /// 413: the request's body, or what it describes, is beyond a limit the message names.
     pub fn too_large(message: impl Into<String>) -> Self {
         Self::new(StatusCode::PAYLOAD_TOO_LARGE, message)
-    }
-
-    /// The answer's status.
-    pub fn status(&self) -> StatusCode {
-        self.status
     }
 
     /// 414: the request's target is longer than `limit_bytes`.
@@ -123,16 +98,9 @@ impl ApiError {
         )
     }
 
-    /// 422: the scene is well-formed JSON but has invalid fields, all of them listed.
-    pub fn invalid_scene(errors: SceneErrors) -> Self {
-        let message = match errors.0.len() {
-            1 => "invalid scene: 1 problem".to_owned(),
-            n => format!("invalid scene: {n} problems"),
-        };
-        Self {
-            fields: errors.0,
-            ..Self::new(StatusCode::UNPROCESSABLE_ENTITY, message)
-        }
+    /// 415: the body is not declared as what the route reads; `message` says what it must be.
+    pub fn unsupported_media_type(message: impl Into<String>) -> Self {
+        Self::new(StatusCode::UNSUPPORTED_MEDIA_TYPE, message)
     }
 
     /// 422: a well-formed request whose content is refused, with the fields at fault.
@@ -143,34 +111,11 @@ impl ApiError {
         }
     }
 
-    /// 429 with its own message: a study needs more places than the queue has free now.
-    pub fn no_room(message: impl Into<String>, retry_after_s: u64) -> Self {
+    /// 429: no room now (a full queue, every fit slot busy); retry after `retry_after_s`.
+    pub fn too_many_requests(message: impl Into<String>, retry_after_s: u64) -> Self {
         Self {
             retry_after_s: Some(retry_after_s),
             ..Self::new(StatusCode::TOO_MANY_REQUESTS, message)
-        }
-    }
-
-    /// 422: a measurement table of `kind` that cannot be used; `column` names the column at
-    /// fault (empty for the whole table).
-    pub fn invalid_table(kind: &str, column: String, message: &str) -> Self {
-        Self {
-            fields: vec![FieldError::new(column, message)],
-            ..Self::new(
-                StatusCode::UNPROCESSABLE_ENTITY,
-                format!("invalid {kind} table: {message}"),
-            )
-        }
-    }
-
-    /// 429: the queue is full; try again after `retry_after_s` seconds.
-    pub fn queue_full(capacity: usize, retry_after_s: u64) -> Self {
-        Self {
-            retry_after_s: Some(retry_after_s),
-            ..Self::new(
-                StatusCode::TOO_MANY_REQUESTS,
-                format!("the job queue is full ({capacity} jobs waiting); retry later"),
-            )
         }
     }
 
@@ -180,26 +125,37 @@ impl ApiError {
         Self::new(status, status.canonical_reason().unwrap_or("error"))
     }
 
-    /// 507: the server's disk is full; nothing of the request was kept.
-    pub fn insufficient_storage(message: impl Into<String>) -> Self {
-        Self::new(StatusCode::INSUFFICIENT_STORAGE, message)
+    /// A file operation of the server that failed: 507 when the disk (or the quota) is full,
+    /// with `kept` saying what became of the request; otherwise 500 while `doing`.
+    pub fn storage(error: &io::Error, kept: &str, doing: &str) -> Self {
+        if is_disk_full(error) {
+            Self::disk_full(kept)
+        } else {
+            Self::internal(doing, error)
+        }
     }
 
-    /// 507 for a request that needed the disk: `what` says what became of the request.
-    pub fn disk_full(what: &str) -> Self {
-        Self::insufficient_storage(format!(
-            "the server's disk is full: {what}; retry once space is freed"
-        ))
+    /// 507: the server's disk is full; `kept` says what became of the request.
+    pub fn disk_full(kept: &str) -> Self {
+        Self::new(
+            StatusCode::INSUFFICIENT_STORAGE,
+            format!("the server's disk is full: {kept}; retry once space is freed"),
+        )
     }
 
-    /// 500: a fault of the server (its storage), never of the request. The cause goes to the
-    /// log; the client learns only that the server failed.
-    pub fn internal(context: &str, cause: &dyn std::fmt::Display) -> Self {
-        tracing::error!("{context}: {cause}");
+    /// 500: a fault of the server (its storage, a thread), never of the request. The cause
+    /// goes to the log; the client learns only what the server was doing.
+    pub fn internal(doing: &str, cause: &dyn std::fmt::Display) -> Self {
+        tracing::error!("{doing}: {cause}");
         Self::new(
             StatusCode::INTERNAL_SERVER_ERROR,
-            format!("internal error: {context}"),
+            format!("internal error: {doing}"),
         )
+    }
+
+    /// The answer's status.
+    pub fn status(&self) -> StatusCode {
+        self.status
     }
 }
 
@@ -216,6 +172,17 @@ impl IntoResponse for ApiError {
                 .insert(header::RETRY_AFTER, HeaderValue::from(seconds));
         }
         response
+    }
+}
+
+/// 422 naming every invalid field of a scene, each with its allowed range.
+impl From<SceneErrors> for ApiError {
+    fn from(errors: SceneErrors) -> Self {
+        let message = match errors.0.len() {
+            1 => "invalid scene: 1 problem".to_owned(),
+            n => format!("invalid scene: {n} problems"),
+        };
+        Self::unprocessable(message, errors.0)
     }
 }
 
@@ -237,5 +204,27 @@ impl From<BytesRejection> for ApiError {
 impl From<PathRejection> for ApiError {
     fn from(rejection: PathRejection) -> Self {
         Self::bad_request(rejection.body_text())
+    }
+}
+
+/// A query string that does not have the route's shape.
+impl From<QueryRejection> for ApiError {
+    fn from(rejection: QueryRejection) -> Self {
+        Self::bad_request(rejection.body_text())
+    }
+}
+
+/// Blocking work that panicked (or was cancelled at shutdown): the server's fault. The
+/// request's log span names the route, so the log line says which.
+impl From<JoinError> for ApiError {
+    fn from(error: JoinError) -> Self {
+        Self::internal("the request's work stopped", &error)
+    }
+}
+
+/// For blocking work that cannot fail.
+impl From<Infallible> for ApiError {
+    fn from(never: Infallible) -> Self {
+        match never {}
     }
 }

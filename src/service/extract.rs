@@ -1,44 +1,41 @@
-//! What handlers take from a request: the ids (and measurement kind) of the path, the
-//! body within the body timeout, and what the body is declared to be.
+//! What handlers take from a request besides the state: the ids of the path, each parsed
+//! before a handler sees it, and the body, read within the body timeout and the size limit
+//! ([`Body`]) and, on a JSON route, parsed with no key given twice ([`JsonBody`]). Each is an
+//! axum extractor whose rejection is an [`ApiError`], so a handler that runs has its inputs.
 
 use std::time::Duration;
 
 use axum::body::Bytes;
-use axum::extract::rejection::BytesRejection;
-use axum::extract::{FromRequest, FromRequestParts, Path, Request};
+use axum::extract::{FromRef, FromRequest, FromRequestParts, Path, Request};
 use axum::http::request::Parts;
 use axum::http::{HeaderMap, header};
+use serde_json::Value;
 use uuid::Uuid;
 
-use super::AppState;
 use super::error::ApiError;
-use super::measurements::{Format, MeasurementKind};
+use crate::json::{self, JsonError};
 
-/// How much of a malformed job id is echoed in an error: a UUID and a little more.
+/// How much of a malformed id is echoed in an error: a UUID and a little more.
 const ECHOED_ID_CHARS: usize = 40;
 
-/// Declares a path extractor for one kind of id: a newtype over the UUID, parsed by
-/// [`parse_id`] before any handler sees it, so every kind refuses a malformed id alike.
+/// Declares a path extractor for one kind of id: a newtype over the UUID, so a handler
+/// cannot take one kind for another, parsed by [`parse_id`] so every kind refuses a
+/// malformed id alike.
 macro_rules! path_id {
     ($(#[$doc:meta])* $name:ident, $what:literal) => {
         $(#[$doc])*
-        pub(super) struct $name(pub(super) uuid::Uuid);
+        pub(crate) struct $name(pub(crate) Uuid);
 
-        impl<S: Send + Sync> axum::extract::FromRequestParts<S> for $name {
-            type Rejection = $crate::service::error::ApiError;
+        impl<S: Send + Sync> FromRequestParts<S> for $name {
+            type Rejection = ApiError;
 
-            async fn from_request_parts(
-                parts: &mut axum::http::request::Parts,
-                state: &S,
-            ) -> Result<Self, Self::Rejection> {
-                let axum::extract::Path(raw) =
-                    axum::extract::Path::<String>::from_request_parts(parts, state).await?;
-                $crate::service::extract::parse_id(&raw, $what).map($name)
+            async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
+                let Path(raw) = Path::<String>::from_request_parts(parts, state).await?;
+                parse_id(&raw, $what).map($name)
             }
         }
     };
 }
-pub(super) use path_id;
 
 path_id!(
     /// A job id from the path.
@@ -46,59 +43,68 @@ path_id!(
     "job"
 );
 
-/// A job id and a measurement kind from the path (`.../jobs/{id}/measurements/{kind}`).
-pub(super) struct JobMeasurement(pub(super) Uuid, pub(super) MeasurementKind);
+path_id!(
+    /// A study id from the path.
+    StudyId,
+    "study"
+);
 
-impl<S: Send + Sync> FromRequestParts<S> for JobMeasurement {
-    type Rejection = ApiError;
+path_id!(
+    /// A calibration id from the path.
+    CalibrationId,
+    "calibration"
+);
 
-    async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
-        let Path((id, kind)) = Path::<(String, String)>::from_request_parts(parts, state).await?;
-        let id = job_id(&id)?;
-        let kind = MeasurementKind::from_name(&kind).ok_or_else(|| {
-            let kinds: Vec<&str> = MeasurementKind::ALL.iter().map(|k| k.name()).collect();
-            ApiError::bad_request(format!(
-                "{:?} is not a kind of measurement ({})",
-                cut(&kind),
-                kinds.join(", ")
-            ))
-        })?;
-        Ok(Self(id, kind))
-    }
-}
+path_id!(
+    /// A surface id from the path.
+    SurfaceId,
+    "surface"
+);
 
-fn job_id(raw: &str) -> Result<Uuid, ApiError> {
-    parse_id(raw, "job")
-}
-
-/// The id of a `what` (job, study, calibration) from the path, parsed as a UUID before
-/// anything else looks at it; a 400 echoing at most [`ECHOED_ID_CHARS`] of it otherwise.
-pub(super) fn parse_id(raw: &str, what: &str) -> Result<Uuid, ApiError> {
+/// The id of a `what` (job, study, ...) from the path, parsed as a UUID before anything
+/// else looks at it; a 400 echoing at most [`ECHOED_ID_CHARS`] of it otherwise.
+pub(crate) fn parse_id(raw: &str, what: &str) -> Result<Uuid, ApiError> {
     Uuid::try_parse(raw)
         .map_err(|_| ApiError::bad_request(format!("{:?} is not a {what} id (a UUID)", cut(raw))))
 }
 
 /// The first [`ECHOED_ID_CHARS`] characters of `raw`, with an ellipsis if there were more.
-pub(super) fn cut(raw: &str) -> String {
+pub(crate) fn cut(raw: &str) -> String {
     match raw.char_indices().nth(ECHOED_ID_CHARS) {
         Some((end, _)) => format!("{}...", &raw[..end]),
         None => raw.to_owned(),
     }
 }
 
-/// The whole body, within the body timeout: a client sending a byte now and then holds no
-/// handler for longer.
-pub(super) async fn read_body(app: &AppState, request: Request) -> Result<Bytes, ApiError> {
-    let limit = Duration::from_secs(app.body_timeout_s);
-    let body: Result<Bytes, BytesRejection> =
-        tokio::time::timeout(limit, Bytes::from_request(request, app))
-            .await
-            .map_err(|_| ApiError::body_timeout(app.body_timeout_s))?;
-    Ok(body?)
+/// Seconds a request's body may take to arrive (`--body-timeout-s`), the part of the state
+/// every body extractor reads.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct BodyTimeout(pub(crate) u64);
+
+/// A request's whole body, arrived within the [`BodyTimeout`] (a client sending a byte now
+/// and then holds no handler for longer) and under the size limit of the route
+/// (`DefaultBodyLimit`: the router's, or the route's own where it takes more).
+pub(crate) struct Body(pub(crate) Bytes);
+
+impl<S> FromRequest<S> for Body
+where
+    S: Send + Sync,
+    BodyTimeout: FromRef<S>,
+{
+    type Rejection = ApiError;
+
+    async fn from_request(request: Request, state: &S) -> Result<Self, ApiError> {
+        let BodyTimeout(limit_s) = BodyTimeout::from_ref(state);
+        let read = Bytes::from_request(request, state);
+        match tokio::time::timeout(Duration::from_secs(limit_s), read).await {
+            Ok(bytes) => Ok(Self(bytes?)),
+            Err(_) => Err(ApiError::body_timeout(limit_s)),
+        }
+    }
 }
 
 /// The media type's essence (no parameters), lower case.
-fn essence(headers: &HeaderMap) -> Option<String> {
+pub(crate) fn essence(headers: &HeaderMap) -> Option<String> {
     headers
         .get(header::CONTENT_TYPE)
         .and_then(|value| value.to_str().ok())
@@ -107,21 +113,53 @@ fn essence(headers: &HeaderMap) -> Option<String> {
 }
 
 /// `application/json`, any parameters, or a `+json` type.
-pub(super) fn is_json(headers: &HeaderMap) -> bool {
+pub(crate) fn is_json(headers: &HeaderMap) -> bool {
     essence(headers)
         .is_some_and(|essence| essence == "application/json" || essence.ends_with("+json"))
 }
 
-/// A height map's body: `application/octet-stream` or `text/plain`.
-pub(super) fn is_map_body(headers: &HeaderMap) -> bool {
-    essence(headers)
-        .is_some_and(|essence| essence == "application/octet-stream" || essence == "text/plain")
+/// What a JSON route reads from its body, and the words of its refusals.
+pub(crate) trait JsonRequest: Sized {
+    /// What the body is, for the 415 answer: "the {NAME} must be sent with ...".
+    const NAME: &'static str;
+
+    /// The request from its document, which has no key twice, and the document's text.
+    fn from_json(document: Value, text: &str) -> Result<Self, ApiError>;
+
+    /// The 422 for a key given twice, at its dotted `path`, in this body's words.
+    fn duplicate_key(path: String, message: String) -> ApiError;
 }
 
-/// A measurement table's format: JSON as [`is_json`] has it, or `text/csv`.
-pub(super) fn table_format(headers: &HeaderMap) -> Option<Format> {
-    if is_json(headers) {
-        return Some(Format::Json);
+/// The body of a JSON route: declared as JSON (415 otherwise), read as [`Body`] is, parsed by
+/// [`crate::json`] so a key given twice is refused (400 for text that is not JSON), then made
+/// into a `T`.
+pub(crate) struct JsonBody<T>(pub(crate) T);
+
+impl<S, T> FromRequest<S> for JsonBody<T>
+where
+    S: Send + Sync,
+    BodyTimeout: FromRef<S>,
+    T: JsonRequest,
+{
+    type Rejection = ApiError;
+
+    async fn from_request(request: Request, state: &S) -> Result<Self, ApiError> {
+        if !is_json(request.headers()) {
+            return Err(ApiError::unsupported_media_type(format!(
+                "the {} must be sent with `Content-Type: application/json`",
+                T::NAME
+            )));
+        }
+        let Body(bytes) = Body::from_request(request, state).await?;
+        let document = json::from_slice(&bytes).map_err(|e| match e {
+            JsonError::Syntax(_) => ApiError::bad_request(format!("malformed JSON: {e}")),
+            JsonError::DuplicateKey { ref path, .. } => {
+                T::duplicate_key(path.clone(), e.to_string())
+            }
+        })?;
+        // Text that parses as JSON is UTF-8 (serde_json checks every string, and JSON's other
+        // characters are ASCII), so nothing is replaced here.
+        let text = String::from_utf8_lossy(&bytes);
+        T::from_json(document, &text).map(Self)
     }
-    (essence(headers)? == "text/csv").then_some(Format::Csv)
 }

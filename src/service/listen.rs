@@ -1,4 +1,4 @@
-//! The connection loop: HTTP/1.1 by hyper, with the limits of [`Limits`]. axum::serve has no
+//! The connection loop and its limits ([`Limits`]): HTTP/1.1 by hyper. axum::serve has no
 //! header-read timeout, no cap on connections and waits without bound for open requests at
 //! shutdown, so a few hundred clients sending a request a byte at a time would hold the
 //! server's file handles, and a half-sent request would hold its shutdown.
@@ -14,6 +14,7 @@
 //!   `shutdown_grace_s` to finish; then the connections still open are dropped.
 
 use std::io;
+use std::num::NonZeroUsize;
 use std::pin::Pin;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -30,7 +31,74 @@ use tokio::sync::{OwnedSemaphorePermit, Semaphore, watch};
 use tokio::task::JoinSet;
 use tokio::time::Instant;
 
-use super::Limits;
+/// Timeouts and the cap on connections of `tribosim serve`; `docs/operations.md` explains
+/// each. The defaults suit a lab's machine on its own network.
+#[derive(Debug, Clone, clap::Args)]
+pub struct Limits {
+    /// Seconds a client has to send a request's headers, from connecting or from the end of
+    /// its previous request; slower clients are disconnected.
+    #[arg(long, default_value_t = Limits::DEFAULT.header_timeout_s, value_parser = seconds())]
+    pub header_timeout_s: u64,
+    /// Seconds a connection may pass with no byte moving either way before it is closed.
+    #[arg(long, default_value_t = Limits::DEFAULT.idle_timeout_s, value_parser = seconds())]
+    pub idle_timeout_s: u64,
+    /// Seconds a client has to send a request's whole body (a scene); then 408.
+    #[arg(long, default_value_t = Limits::DEFAULT.body_timeout_s, value_parser = seconds())]
+    pub body_timeout_s: u64,
+    /// Connections served at once; more wait in the kernel's backlog until one closes.
+    /// Lowered at start to leave file handles for the server's own files if the process's
+    /// limit on open files (`ulimit -n`) is lower.
+    #[arg(long, default_value_t = Limits::DEFAULT.max_connections)]
+    pub max_connections: NonZeroUsize,
+    /// Seconds shutdown waits for requests under way before it closes their connections.
+    #[arg(long, default_value_t = Limits::DEFAULT.shutdown_grace_s, value_parser = seconds())]
+    pub shutdown_grace_s: u64,
+}
+
+impl Limits {
+    /// The defaults. Ten seconds for headers is ample on a lab network and frees a slow
+    /// client's connection quickly; the idle timeout is above the 15 s between an event
+    /// stream's keep-alive comments; 512 connections fit under the 1024 open files most Linux
+    /// systems allow a process by default; 5 s of grace is within the 10 s `docker stop`
+    /// waits before it kills.
+    pub const DEFAULT: Self = Self {
+        header_timeout_s: 10,
+        idle_timeout_s: 60,
+        body_timeout_s: 30,
+        max_connections: match NonZeroUsize::new(512) {
+            Some(n) => n,
+            None => NonZeroUsize::MIN,
+        },
+        shutdown_grace_s: 5,
+    };
+
+    /// File handles kept free for the server itself (its data files, logs, the runtime)
+    /// when the connection cap is lowered to fit the open-files limit.
+    const RESERVED_FILES: u64 = 64;
+
+    /// The cap on connections, lowered if needed so that the connections and
+    /// [`Self::RESERVED_FILES`] fit under `open_files` (the process's limit, when known).
+    pub(super) fn connections_under(&self, open_files: Option<u64>) -> NonZeroUsize {
+        let Some(open_files) = open_files else {
+            return self.max_connections;
+        };
+        let room = open_files.saturating_sub(Self::RESERVED_FILES).max(1);
+        let room = NonZeroUsize::new(usize::try_from(room).unwrap_or(usize::MAX))
+            .unwrap_or(NonZeroUsize::MIN);
+        self.max_connections.min(room)
+    }
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// A whole number of seconds, at least one.
+fn seconds() -> clap::builder::RangedU64ValueParser<u64> {
+    clap::value_parser!(u64).range(1..)
+}
 
 /// Serves `router` on `listener` until `closing` turns true, then shuts down within the
 /// grace period of `limits`.

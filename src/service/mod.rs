@@ -3,10 +3,18 @@
 //!
 //! - [`serve`] is the whole server: it builds its own tokio runtime, so the command line
 //!   stays synchronous. [`serve_on`] runs on a listener the caller bound (tests bind port 0).
-//! - Routes are listed once in [`ROUTES`]; `openapi.yaml` at the crate root describes them
-//!   and is served at `/api/v1/openapi.yaml`.
-//! - Jobs live in `<data-dir>/jobs/<uuid>/` (see `store`); after a restart finished jobs are
-//!   served as before, and queued or interrupted ones run (again, from scratch).
+//! - A folder per resource (`jobs`, `measurements`, `studies`, `calibrations`, `surfaces`),
+//!   each with its state, its storage and its `routes.rs`: the handlers, the resource's list
+//!   of routes, and the API's answer to each of its errors. `router` merges the lists into
+//!   the one table ([`routes`]) that `openapi.yaml` at the crate root describes (it is served
+//!   at `/api/v1/openapi.yaml`, and a test checks the two agree).
+//! - What every route shares, and knows no resource: the error type (`error`), the
+//!   extractors of ids and bodies (`extract`), the one helper for blocking work
+//!   (`blocking`), the route table's types (`route`), the shapes of answer (`reply`), the
+//!   durable-file primitives (`files`). The application's state (`state`) gives each handler
+//!   its part, so no resource imports it.
+//! - Jobs live in `<data-dir>/jobs/<uuid>/`; after a restart finished jobs are served as
+//!   before, and queued or interrupted ones run (again, from scratch).
 //! - Connections are served by `listen` within the [`Limits`] (header, idle and body
 //!   timeouts, a cap on open connections, a bounded shutdown).
 //! - Shutdown (SIGINT, SIGTERM): the listener closes, event streams end, requests under way
@@ -14,59 +22,47 @@
 //!   persisted status, so they run again at the next start. Waiting for them instead could
 //!   take minutes, longer than a container runtime waits before killing the process anyway.
 
-mod calibration_routes;
+mod assets;
+mod blocking;
 mod calibrations;
 mod error;
-mod events;
-mod export;
 mod extract;
-mod job;
-mod job_routes;
+mod files;
+mod jobs;
 mod listen;
 mod measurements;
-mod partial;
-mod queue;
-mod registry;
-mod routes;
-mod servable;
-mod store;
+mod meta;
+mod reply;
+mod route;
+mod router;
+mod state;
 mod studies;
-mod study_record;
-mod study_routes;
-mod surface_routes;
 mod surfaces;
-mod worker;
 
 use std::future::Future;
 use std::io::{self, IsTerminal};
 use std::net::SocketAddr;
 use std::num::NonZeroUsize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Duration;
 
-use axum::Router;
-use axum::extract::DefaultBodyLimit;
 use axum::http::{HeaderName, HeaderValue, Method, header};
 use thiserror::Error;
 use tokio::net::TcpListener;
 use tokio::sync::watch;
-use tower_http::compression::CompressionLayer;
 use tower_http::cors::CorsLayer;
-use tower_http::trace::{DefaultMakeSpan, DefaultOnResponse, TraceLayer};
-use tracing::Level;
 
-pub use routes::{MAX_URI_BYTES, OPENAPI_YAML, ROUTES, Route, Verb};
+pub use listen::Limits;
+pub use meta::OPENAPI_YAML;
+pub use route::{Route, Verb};
+pub use router::{BODY_LIMIT_BYTES, MAX_URI_BYTES, routes};
 
-use calibrations::Calibrations;
-use registry::Jobs;
-use store::Store;
+use extract::BodyTimeout;
+use jobs::{Jobs, Store, Streams};
+use state::AppState;
 use studies::Studies;
 use surfaces::Surfaces;
-
-/// Largest request body accepted: a scene is a few kilobytes, a measured table some tens
-/// (a profilometer trace of a few thousand points).
-pub const BODY_LIMIT_BYTES: usize = 1 << 20;
 
 /// Options of `tribosim serve`.
 #[derive(Debug, Clone, clap::Args)]
@@ -97,82 +93,14 @@ pub struct ServeArgs {
     /// Origin allowed to call the API from a browser (repeatable); CORS is off without one.
     #[arg(long = "cors-origin", value_name = "ORIGIN")]
     pub cors_origins: Vec<String>,
-    /// Serve the web page from DIR/index.html instead of the copy built into the binary
-    /// (for working on the page without rebuilding).
+    /// Serve the web page's files (DIR/index.html, and the rest under /static/) from DIR
+    /// instead of the copies built into the binary (for working on the page without
+    /// rebuilding).
     #[arg(long, value_name = "DIR")]
     pub static_dir: Option<PathBuf>,
     /// Timeouts and the cap on connections.
     #[command(flatten)]
     pub limits: Limits,
-}
-
-/// Timeouts and the cap on connections of `tribosim serve`; `docs/operations.md` explains
-/// each. The defaults suit a lab's machine on its own network.
-#[derive(Debug, Clone, clap::Args)]
-pub struct Limits {
-    /// Seconds a client has to send a request's headers, from connecting or from the end of
-    /// its previous request; slower clients are disconnected.
-    #[arg(long, default_value_t = Limits::DEFAULT.header_timeout_s, value_parser = seconds())]
-    pub header_timeout_s: u64,
-    /// Seconds a connection may pass with no byte moving either way before it is closed.
-    #[arg(long, default_value_t = Limits::DEFAULT.idle_timeout_s, value_parser = seconds())]
-    pub idle_timeout_s: u64,
-    /// Seconds a client has to send a request's whole body (a scene); then 408.
-    #[arg(long, default_value_t = Limits::DEFAULT.body_timeout_s, value_parser = seconds())]
-    pub body_timeout_s: u64,
-    /// Connections served at once; more wait in the kernel's backlog until one closes.
-    /// Lowered at start to leave file handles for the server's own files if the process's
-    /// limit on open files (`ulimit -n`) is lower.
-    #[arg(long, default_value_t = Limits::DEFAULT.max_connections)]
-    pub max_connections: NonZeroUsize,
-    /// Seconds shutdown waits for requests under way before it closes their connections.
-    #[arg(long, default_value_t = Limits::DEFAULT.shutdown_grace_s, value_parser = seconds())]
-    pub shutdown_grace_s: u64,
-}
-
-impl Limits {
-    /// The defaults. Ten seconds for headers is ample on a lab network and frees a slow
-    /// client's connection quickly; the idle timeout is above the 15 s between an event
-    /// stream's keep-alive comments; 512 connections fit under the 1024 open files most Linux
-    /// systems allow a process by default; 5 s of grace is within the 10 s `docker stop`
-    /// waits before it kills.
-    pub const DEFAULT: Self = Self {
-        header_timeout_s: 10,
-        idle_timeout_s: 60,
-        body_timeout_s: 30,
-        max_connections: match NonZeroUsize::new(512) {
-            Some(n) => n,
-            None => NonZeroUsize::MIN,
-        },
-        shutdown_grace_s: 5,
-    };
-
-    /// File handles kept free for the server itself (its data files, logs, the runtime)
-    /// when the connection cap is lowered to fit the open-files limit.
-    const RESERVED_FILES: u64 = 64;
-
-    /// The cap on connections, lowered if needed so that the connections and
-    /// [`Self::RESERVED_FILES`] fit under `open_files` (the process's limit, when known).
-    fn connections_under(&self, open_files: Option<u64>) -> NonZeroUsize {
-        let Some(open_files) = open_files else {
-            return self.max_connections;
-        };
-        let room = open_files.saturating_sub(Self::RESERVED_FILES).max(1);
-        let room = NonZeroUsize::new(usize::try_from(room).unwrap_or(usize::MAX))
-            .unwrap_or(NonZeroUsize::MIN);
-        self.max_connections.min(room)
-    }
-}
-
-impl Default for Limits {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
-
-/// A whole number of seconds, at least one.
-fn seconds() -> clap::builder::RangedU64ValueParser<u64> {
-    clap::value_parser!(u64).range(1..)
 }
 
 fn default_max_study_members() -> NonZeroUsize {
@@ -231,23 +159,6 @@ pub enum ServeError {
     Io(#[from] io::Error),
 }
 
-/// What every handler shares.
-#[derive(Clone)]
-struct AppState {
-    jobs: Arc<Jobs>,
-    studies: Arc<Studies>,
-    calibrations: Arc<Calibrations>,
-    token: Option<Arc<str>>,
-    /// Where the page is read from; the built-in copy when `None`.
-    static_dir: Option<Arc<Path>>,
-    /// Seconds a request's body may take to arrive.
-    body_timeout_s: u64,
-    /// Time between an event stream's keep-alive comments, under the idle timeout.
-    keep_alive: Duration,
-    /// Turns true when the server shuts down, ending event streams.
-    shutdown: watch::Receiver<bool>,
-}
-
 /// Runs the service until SIGINT or SIGTERM: logs to stderr (filter with `RUST_LOG`, default
 /// `info`), builds a tokio runtime, listens on `args.addr`.
 pub fn serve(args: ServeArgs) -> Result<(), ServeError> {
@@ -280,13 +191,13 @@ pub async fn serve_on(
     let data_dir = args.data_dir.clone();
     let capacity = args.queue_capacity.get();
     let (max_members, workers) = (args.max_study_members.get(), args.workers.get());
-    let (jobs, studies) = tokio::task::spawn_blocking(move || {
+    let (jobs, studies, surfaces) = tokio::task::spawn_blocking(move || {
         let store = Store::open(&data_dir)?;
         let quarantine = store.quarantine_dir().to_owned();
         let surfaces = Arc::new(Surfaces::open(&data_dir, &quarantine)?);
-        let jobs = Jobs::open(store, capacity, surfaces)?;
+        let jobs = Jobs::open(store, capacity, Arc::clone(&surfaces))?;
         let studies = Studies::open(&data_dir, &quarantine, max_members, workers)?;
-        Ok::<_, io::Error>((jobs, Arc::new(studies)))
+        Ok::<_, io::Error>((jobs, Arc::new(studies), surfaces))
     })
     .await
     .map_err(io::Error::other)?
@@ -310,11 +221,14 @@ pub async fn serve_on(
         jobs: Arc::clone(&jobs),
         studies,
         calibrations: Arc::default(),
+        surfaces,
         token: token.map(Arc::from),
         static_dir: args.static_dir.as_deref().map(Arc::from),
-        body_timeout_s: limits.body_timeout_s,
-        keep_alive: keep_alive_interval(limits.idle_timeout_s),
-        shutdown: stopped.clone(),
+        body_timeout: BodyTimeout(limits.body_timeout_s),
+        streams: Streams {
+            keep_alive: keep_alive_interval(limits.idle_timeout_s),
+            shutdown: stopped.clone(),
+        },
     };
     tracing::info!(
         %addr,
@@ -328,7 +242,7 @@ pub async fn serve_on(
         tracing::info!("shutting down");
         stop.send_replace(true);
     });
-    listen::run(listener, router(app, cors), &limits, stopped).await;
+    listen::run(listener, router::router(app, cors), &limits, stopped).await;
     signal.abort();
     jobs.stop();
     tokio::task::spawn_blocking(move || {
@@ -398,44 +312,6 @@ fn cors_layer(origins: &[String]) -> Result<Option<CorsLayer>, ServeError> {
             ])
             .expose_headers([header::LOCATION, header::RETRY_AFTER]),
     ))
-}
-
-/// The router: every route of [`ROUTES`], the token check on those that need it, JSON
-/// answers for unknown paths and methods, the body limit, one log line per request.
-fn router(app: AppState, cors: Option<CorsLayer>) -> Router {
-    let (mut public, mut protected) = (Router::new(), Router::new());
-    for route in ROUTES {
-        if route.auth {
-            protected = protected.route(route.path, route.method_router());
-        } else {
-            public = public.route(route.path, route.method_router());
-        }
-    }
-    let protected = protected.route_layer(axum::middleware::from_fn_with_state(
-        app.clone(),
-        routes::require_token,
-    ));
-    let router = public
-        .merge(protected)
-        .fallback(routes::no_route)
-        .method_not_allowed_fallback(routes::wrong_method)
-        .layer(DefaultBodyLimit::max(BODY_LIMIT_BYTES))
-        .layer(axum::middleware::from_fn(routes::limit_uri))
-        .layer(axum::middleware::from_fn(routes::json_error_bodies))
-        // Results with pressure maps run to megabytes of JSON (gzip: about a fifth). The
-        // default predicate leaves event streams alone, so progress is not buffered.
-        .layer(CompressionLayer::new())
-        .layer(
-            TraceLayer::new_for_http()
-                .make_span_with(DefaultMakeSpan::new().level(Level::INFO))
-                .on_request(())
-                .on_response(DefaultOnResponse::new().level(Level::INFO)),
-        )
-        .with_state(app);
-    match cors {
-        Some(cors) => router.layer(cors),
-        None => router,
-    }
 }
 
 fn init_tracing() {

@@ -53,8 +53,10 @@ pub fn small_scene(cycles: u64) -> Value {
     })
 }
 
-/// A scene that solves every cycle on a finer grid (about 25 ms per cycle here), for jobs
-/// that must still be running when a test acts.
+/// A scene that solves every cycle on a finer grid, for jobs that must still be running when
+/// a test acts: about 1 ms per cycle here (cycle 2339 after 2.5 s). Its domain is fixed at
+/// 256 um, which the groove outgrows at cycle 2340 (the run then fails: the contact reaches
+/// the domain's edge), so it runs for a few seconds at most; [`busy_scene`] outlasts a test.
 pub fn long_scene(cycles: u64) -> Value {
     json!({
         "preset": "dalmau2018-316l",
@@ -62,6 +64,20 @@ pub fn long_scene(cycles: u64) -> Value {
             "name": format!("long, {cycles} cycles"),
             "numerics": {"grid": 128, "domain_um": 256, "cycle_step": 1},
             "test": {"cycles": cycles}
+        }
+    })
+}
+
+/// A run that outlasts any test, for a worker that must stay busy until the test cancels
+/// it: the preset solved every cycle on a 128 grid in the automatic domain, which grows with
+/// the groove (cycle 27977 of 300000 after 120 s here, still running).
+pub fn busy_scene() -> Value {
+    json!({
+        "preset": "dalmau2018-316l",
+        "overrides": {
+            "name": "busy",
+            "numerics": {"grid": 128, "cycle_step": 1},
+            "test": {"cycles": 300_000}
         }
     })
 }
@@ -202,6 +218,24 @@ pub async fn submit(client: &reqwest::Client, base: &str, scene: &Value) -> Valu
         .expect("submit");
     assert_eq!(response.status(), 202, "submit status");
     response.json().await.expect("job JSON")
+}
+
+/// Asserts a 4xx answer with the JSON error shape; returns the body.
+pub async fn expect_client_error(response: reqwest::Response, status: u16) -> Value {
+    let url = response.url().clone();
+    assert_eq!(response.status(), status, "{url}");
+    let content_type = response.headers()["content-type"]
+        .to_str()
+        .expect("ascii")
+        .to_owned();
+    assert_eq!(content_type, "application/json", "{url}");
+    let body: Value = response.json().await.expect("error JSON");
+    assert!(
+        body["error"].as_str().is_some_and(|e| !e.is_empty()),
+        "{body}"
+    );
+    assert!(body["fields"].is_array(), "{body}");
+    body
 }
 
 /// GET `url`, expect 200, parse the JSON body.

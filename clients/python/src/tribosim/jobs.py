@@ -1,0 +1,214 @@
+"""Jobs: one scene run on the server's worker pool."""
+
+from __future__ import annotations
+
+import builtins
+import copy
+import json
+import os
+import time
+from collections.abc import Iterable, Iterator, Mapping
+from pathlib import Path
+from typing import Any, Union
+
+import httpx
+
+from ._http import Http, dumps
+from ._progress import Progress
+from ._routes import route
+from .errors import RunFailedError, TransportError, WaitTimeoutError
+from .events import CycleEvent, Event, StatusEvent, parse
+from .measurements import Measurements
+from .records import JobInfo
+from .result import Result
+
+#: A scene: its JSON as a mapping, or the path of a JSON file.
+SceneInput = Union[Mapping[str, Any], str, "os.PathLike[str]"]
+
+_SUBMIT = route("POST", "/api/v1/jobs")
+_LIST = route("GET", "/api/v1/jobs")
+_GET = route("GET", "/api/v1/jobs/{id}")
+_DELETE = route("DELETE", "/api/v1/jobs/{id}")
+_EVENTS = route("GET", "/api/v1/jobs/{id}/events")
+_RESULT = route("GET", "/api/v1/jobs/{id}/result")
+_RESULT_CSV = route("GET", "/api/v1/jobs/{id}/result.csv")
+_SCENE = route("GET", "/api/v1/jobs/{id}/scene")
+
+#: Attempts in a row to follow a job's events again after the stream broke (a dropped
+#: connection, a server restarting: it serves its jobs' events again once up), and the
+#: seconds between them.
+MAX_RECONNECTS = 3
+RECONNECT_DELAY_S = 1.0
+
+
+class Jobs:
+    """``client.jobs``: submit scenes, list and find jobs."""
+
+    def __init__(self, http: Http) -> None:
+        self._http = http
+
+    @_SUBMIT.implements
+    def submit(self, scene: SceneInput, name: str | None = None) -> Job:
+        """Queues `scene` (a mapping, or a JSON file's path; ``{}`` is the paper's test,
+        ``{"preset": ..., "overrides": {...}}`` starts from a preset) under `name` (the
+        scene's own name otherwise). An invalid scene raises `ValidationError` naming every
+        bad field; a full queue `RateLimitedError`.
+
+        A file is sent as it is when no `name` is given, so the server refuses a key given
+        twice in it as it would from curl."""
+        body = _scene_body(scene, name)
+        return Job(
+            self._http,
+            JobInfo.from_json(
+                self._http.json(_SUBMIT, content=body, content_type="application/json")
+            ),
+        )
+
+    @_LIST.implements
+    def list(self) -> builtins.list[Job]:
+        """Every job, newest first."""
+        return [Job(self._http, JobInfo.from_json(raw)) for raw in self._http.json(_LIST)]
+
+    @_GET.implements
+    def get(self, job_id: str) -> Job:
+        """The job of `job_id` (`NotFoundError` if there is none)."""
+        return Job(self._http, _fetch(self._http, job_id))
+
+
+def _fetch(http: Http, job_id: str) -> JobInfo:
+    return JobInfo.from_json(http.json(_GET, id=job_id))
+
+
+class Job:
+    """One job. `info` is its record as last seen; `refresh()` asks again."""
+
+    def __init__(self, http: Http, info: JobInfo) -> None:
+        self._http = http
+        self.id = info.id
+        self.info = info
+        self.measurements = Measurements(http, info.id)
+
+    def __repr__(self) -> str:
+        return f"<Job {self.id} {self.info.status} {self.info.name!r}>"
+
+    @_GET.implements
+    def refresh(self) -> JobInfo:
+        """The job's status and progress now."""
+        self.info = _fetch(self._http, self.id)
+        return self.info
+
+    @_EVENTS.implements
+    def events(self, after: int = 0) -> Iterator[Event]:
+        """The job's events as they come: a `CycleEvent` per solved cycle after cycle
+        `after`, then its `StatusEvent`, then the end. If the stream breaks, it is followed
+        again from the last cycle received (``Last-Event-ID``), up to `MAX_RECONNECTS` times
+        in a row."""
+        return self._events(after, None)
+
+    @_EVENTS.implements
+    def wait(
+        self, progress: bool = True, timeout: float | None = None, check: bool = True
+    ) -> JobInfo:
+        """Follows the job's events until it ends, with a progress bar over its cycles, and
+        returns its final record. `check` raises `RunFailedError` for a job that did not
+        succeed; `timeout` (s) raises `WaitTimeoutError`, checked whenever the server sends
+        anything (at least every 15 s), and leaves the job running."""
+        deadline = None if timeout is None else time.monotonic() + timeout
+        bar = Progress(self.info.cycles_total, self.info.name, "cycles", progress)
+        try:
+            bar.to(self.info.cycles_done, self.info.status)
+            for event in self._events(self.info.cycles_done, deadline):
+                if isinstance(event, CycleEvent):
+                    bar.to(event.cycle, "running")
+                else:
+                    self.info = event.job
+                    bar.to(event.job.cycles_done, event.job.status)
+        finally:
+            bar.close()
+        if check and self.info.status != "succeeded":
+            raise RunFailedError(
+                f"job {self.id} {self.info.status}: {self.info.error or 'no result'}", self.info
+            )
+        return self.info
+
+    @_DELETE.implements
+    def cancel(self) -> JobInfo:
+        """Stops the job if it has not ended: a queued one is cancelled at once, a running
+        one within a cycle (`wait()` to see it end). An ended job is left as it is. (The
+        API's DELETE also deletes an ended job: one that ends in the instant between this
+        method's check and its DELETE is deleted.)"""
+        if self.refresh().ended:
+            return self.info
+        answer = self._http.send(_DELETE, id=self.id)
+        if answer.status_code != 204:
+            self.info = JobInfo.from_json(answer.json())
+        return self.info
+
+    @_DELETE.implements
+    def delete(self) -> None:
+        """Deletes the job and its files; one that has not ended is cancelled first and
+        deleted once it has stopped."""
+        answer = self._http.send(_DELETE, id=self.id)
+        if answer.status_code != 204:
+            self.info = JobInfo.from_json(answer.json())
+            self.wait(progress=False, check=False)
+            self._http.send(_DELETE, id=self.id)
+
+    @_RESULT.implements
+    def result(self) -> Result:
+        """The result of an ended job (`ConflictError` before it ends). A failed or cancelled
+        job's result has ``complete`` False and the cycles solved before the stop."""
+        return Result(self._http.json(_RESULT, id=self.id))
+
+    @_RESULT_CSV.implements
+    def result_csv(self) -> str:
+        """The per-cycle table as CSV text, as the page downloads it."""
+        return self._http.send(_RESULT_CSV, id=self.id).text
+
+    @_SCENE.implements
+    def scene(self) -> dict[str, Any]:
+        """The scene as run, every default filled in; submitting it again runs the same test."""
+        scene: dict[str, Any] = self._http.json(_SCENE, id=self.id)
+        return scene
+
+    def _events(self, after: int, deadline: float | None) -> Iterator[Event]:
+        failures = 0
+        while True:
+            headers = {"last-event-id": str(after)} if after else {}
+            cause: Exception | None = None
+            try:
+                with self._http.stream(_EVENTS, headers, id=self.id) as answer:
+                    for event in parse(_until(answer.iter_lines(), deadline)):
+                        failures = 0
+                        yield event
+                        if isinstance(event, StatusEvent):
+                            return
+                        after = event.cycle
+            except (TransportError, httpx.TransportError) as e:
+                cause = e
+            failures += 1
+            if failures > MAX_RECONNECTS:
+                problem = cause or "the stream ended before the job's status"
+                raise TransportError(f"the events of job {self.id}: {problem}") from cause
+            time.sleep(RECONNECT_DELAY_S)
+
+
+def _until(lines: Iterable[str], deadline: float | None) -> Iterator[str]:
+    for line in lines:
+        if deadline is not None and time.monotonic() > deadline:
+            raise WaitTimeoutError("the wait's timeout passed")
+        yield line
+
+
+def _scene_body(scene: SceneInput, name: str | None) -> bytes:
+    if isinstance(scene, (str, os.PathLike)):
+        text = Path(scene).read_bytes()
+        return text if name is None else _named(json.loads(text), name)
+    return dumps(scene) if name is None else _named(scene, name)
+
+
+def _named(scene: Mapping[str, Any], name: str) -> bytes:
+    named: dict[str, Any] = copy.deepcopy(dict(scene))
+    target = named.setdefault("overrides", {}) if "preset" in named else named
+    target["name"] = name
+    return dumps(named)

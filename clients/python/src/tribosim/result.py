@@ -1,0 +1,108 @@
+"""A job's result (docs/result.md) with its tables as DataFrames and its maps as arrays."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from ._tables import as_array, frame
+
+if TYPE_CHECKING:
+    import numpy
+    import pandas
+
+
+@dataclass(frozen=True)
+class Model:
+    """What the run modelled or chose (``plasticity``, ``grid``, ...), and why."""
+
+    name: str
+    active: bool
+    reason: str
+
+
+@dataclass(frozen=True)
+class PressureMap:
+    """The contact pressure at one cycle: `pressure_mpa[iy, ix]` over `y_um` and `x_um`."""
+
+    cycle: int
+    x_um: numpy.ndarray
+    y_um: numpy.ndarray
+    pressure_mpa: numpy.ndarray
+
+
+class Result:
+    """The result JSON of a job. Columns keep the server's names, units in the names
+    (``wear_volume_mm3``, ``time_s``); `raw` is the whole document as it came."""
+
+    def __init__(self, raw: dict[str, Any]) -> None:
+        self.raw = raw
+
+    def __repr__(self) -> str:
+        s = self.summary
+        return (
+            f"<Result complete={self.complete} cycles={s.get('cycles')} "
+            f"wear_volume_mm3={s.get('wear_volume_mm3')}>"
+        )
+
+    @property
+    def complete(self) -> bool:
+        """False for a failed or cancelled job's result: the cycles solved before it stopped."""
+        return bool(self.raw["complete"])
+
+    @property
+    def scene(self) -> dict[str, Any]:
+        """The scene as run, every default filled in."""
+        scene: dict[str, Any] = self.raw["scene"]
+        return scene
+
+    @property
+    def summary(self) -> dict[str, Any]:
+        """The totals: ``cycles``, ``wear_volume_mm3``, ``max_depth_um``, ``archard_k``, ..."""
+        summary: dict[str, Any] = self.raw["summary"]
+        return summary
+
+    @property
+    def models(self) -> list[Model]:
+        return [Model(m["name"], bool(m["active"]), m["reason"]) for m in self.raw["models"]]
+
+    @property
+    def warnings(self) -> list[str]:
+        """What in the scene looks wrong without being invalid (empty when nothing does)."""
+        return list(self.raw.get("warnings", []))
+
+    @property
+    def surface(self) -> dict[str, Any] | None:
+        """The statistics of a rough disc's initial surface; None for a smooth disc."""
+        return self.raw.get("surface")
+
+    @property
+    def cycles(self) -> pandas.DataFrame:
+        """One row per solved cycle (``cycle``, ``time_s``, ``wear_volume_mm3``,
+        ``max_depth_um``, ...; the corrosion columns only with corrosion)."""
+        return frame(self.raw["cycles"])
+
+    @property
+    def profiles(self) -> pandas.DataFrame:
+        """The groove across the track, long form: one row per (``cycle``, ``y_um``) with its
+        ``depth_um`` (positive into the disc). ``profiles.pivot(index="y_um",
+        columns="cycle", values="depth_um")`` gives a column per cycle."""
+        rows = [
+            {"cycle": p["cycle"], "y_um": y, "depth_um": d}
+            for p in self.raw["profiles"]
+            for y, d in zip(p["y_um"], p["depth_um"])
+        ]
+        return frame(rows) if rows else frame({"cycle": [], "y_um": [], "depth_um": []})
+
+    @property
+    def pressure_maps(self) -> list[PressureMap]:
+        """The contact pressure at the first and the last solved cycle."""
+        return [
+            PressureMap(
+                int(m["cycle"]),
+                as_array(m["x_um"]),
+                as_array(m["y_um"]),
+                as_array(m["pressure_mpa"]),
+            )
+            for m in self.raw["pressure_maps"]
+        ]

@@ -1,0 +1,62 @@
+"""The client's own calls: health, presets, the page; and errors that no route has."""
+
+from __future__ import annotations
+
+import math
+import uuid
+
+import pytest
+
+import tribosim
+
+
+def test_health(client: tribosim.Client) -> None:
+    assert client.health() == "ok"
+
+
+def test_presets(client: tribosim.Client) -> None:
+    presets = client.presets()
+    paper = next(p for p in presets if p.name == "dalmau2018-316l")
+    assert paper.scene["test"]["load_n"] == 5.0
+    assert "Dalmau" in paper.description
+
+
+def test_page(client: tribosim.Client) -> None:
+    assert "<html" in client.page().lower()
+
+
+def test_an_id_that_is_not_a_uuid_is_refused_as_a_request(client: tribosim.Client) -> None:
+    with pytest.raises(tribosim.RefusedError) as refused:
+        client.jobs.get("not-a-uuid")
+    assert refused.value.status == 400
+    assert not isinstance(refused.value, tribosim.NotFoundError)
+
+
+def test_unknown_ids_are_not_found(client: tribosim.Client) -> None:
+    unknown = str(uuid.uuid4())
+    for get in (client.jobs.get, client.studies.get, client.calibrations.get, client.surfaces.get):
+        with pytest.raises(tribosim.NotFoundError) as missing:
+            get(unknown)
+        assert missing.value.status == 404
+        assert unknown in missing.value.message
+
+
+def test_nan_is_refused_before_sending(client: tribosim.Client) -> None:
+    with pytest.raises(ValueError):
+        client.jobs.submit({"test": {"load_n": math.nan}})
+
+
+def test_numpy_values_are_sent_as_numbers(client: tribosim.Client) -> None:
+    np = pytest.importorskip("numpy")
+    with pytest.raises(tribosim.ValidationError) as refused:
+        client.jobs.submit({"test": {"load_n": np.float64(-1.0), "cycles": np.int64(0)}})
+    assert [f.path for f in refused.value.fields] == ["test.load_n", "test.cycles"]
+
+
+def test_no_server_is_a_transport_error() -> None:
+    # Port 1 (tcpmux) has no listener on a test machine: the connection is refused.
+    with (
+        tribosim.Client("http://127.0.0.1:1", timeout=5) as client,
+        pytest.raises(tribosim.TransportError),
+    ):
+        client.health()

@@ -1,0 +1,9 @@
+//! Measured points a lab attaches to a job, to draw beside the model: the kinds and their
+//! tables, read and checked as the calibration checks its own (`table.rs`), their files in
+//! the job's directory (`store.rs`) and their routes (`routes.rs`).
+
+mod routes;
+mod store;
+mod table;
+
+pub(crate) use routes::endpoints;

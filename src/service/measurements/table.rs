@@ -1,0 +1,352 @@
+//! Measured points a lab attaches to a job, to draw beside the model: a wear volume against
+//! time or cycles, a groove profile across the track, a potential against time. Each is a
+//! small table (CSV or JSON, units in the column names) read by the calibration's table
+//! parser and checked as the calibration checks its own tables: every cell a finite number,
+//! times and positions strictly increasing, volumes not negative.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+use thiserror::Error;
+
+use crate::calibration::{
+    CalibrationError, Table, TableError, require_at_least, require_increasing,
+};
+use crate::json::{self, JsonError};
+
+/// A checked table: column name to values, every column of one length.
+pub type Columns = BTreeMap<String, Vec<f64>>;
+
+/// What was measured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MeasurementKind {
+    /// The wear track volume against time or cycles (Table 3's quantity).
+    WearVolume,
+    /// The groove's depth across the track (Fig. 12's quantity).
+    Profile,
+    /// The open-circuit potential against time (Fig. 6's quantity).
+    Potential,
+}
+
+/// Whether a column must be present.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Presence {
+    /// Always.
+    Required,
+    /// When given, checked like the others.
+    Optional,
+    /// One of the kind's abscissas (`time_s` or `cycles`) must be present.
+    Abscissa,
+}
+
+/// One column a kind accepts and what its values must satisfy.
+struct Column {
+    name: &'static str,
+    presence: Presence,
+    /// Strictly increasing row by row (a time, a cycle count, a position along a scan).
+    increasing: bool,
+    /// The smallest allowed value.
+    minimum: Option<f64>,
+}
+
+const fn column(
+    name: &'static str,
+    presence: Presence,
+    increasing: bool,
+    minimum: Option<f64>,
+) -> Column {
+    Column {
+        name,
+        presence,
+        increasing,
+        minimum,
+    }
+}
+
+const WEAR_VOLUME: &[Column] = &[
+    column("time_s", Presence::Abscissa, true, Some(0.0)),
+    column("cycles", Presence::Abscissa, true, Some(0.0)),
+    column("volume_mm3", Presence::Required, false, Some(0.0)),
+    column("spread_mm3", Presence::Optional, false, Some(0.0)),
+];
+
+const PROFILE: &[Column] = &[
+    column("y_mm", Presence::Required, true, None),
+    // Negative depths are material piled up beside the groove.
+    column("depth_um", Presence::Required, false, None),
+];
+
+const POTENTIAL: &[Column] = &[
+    column("time_s", Presence::Required, true, Some(0.0)),
+    column("potential_v", Presence::Required, false, None),
+];
+
+impl MeasurementKind {
+    /// Every kind, in the order of the API's answer.
+    pub const ALL: [Self; 3] = [Self::WearVolume, Self::Profile, Self::Potential];
+
+    /// The kind as the API spells it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::WearVolume => "wear_volume",
+            Self::Profile => "profile",
+            Self::Potential => "potential",
+        }
+    }
+
+    /// The kind called `name`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|kind| kind.name() == name)
+    }
+
+    /// The file that holds it in the job's directory.
+    pub fn file(self) -> &'static str {
+        match self {
+            Self::WearVolume => "measured_wear_volume.json",
+            Self::Profile => "measured_profile.json",
+            Self::Potential => "measured_potential.json",
+        }
+    }
+
+    fn columns(self) -> &'static [Column] {
+        match self {
+            Self::WearVolume => WEAR_VOLUME,
+            Self::Profile => PROFILE,
+            Self::Potential => POTENTIAL,
+        }
+    }
+}
+
+/// A job's measurements, as `GET /api/v1/jobs/{id}/measurements` answers: each kind's
+/// table, or null.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Measurements {
+    /// The wear volume table.
+    pub wear_volume: Option<Columns>,
+    /// The profile table.
+    pub profile: Option<Columns>,
+    /// The potential table.
+    pub potential: Option<Columns>,
+}
+
+impl Measurements {
+    /// The table of `kind`.
+    pub fn slot(&mut self, kind: MeasurementKind) -> &mut Option<Columns> {
+        match kind {
+            MeasurementKind::WearVolume => &mut self.wear_volume,
+            MeasurementKind::Profile => &mut self.profile,
+            MeasurementKind::Potential => &mut self.potential,
+        }
+    }
+}
+
+/// How the body of a PUT is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// `text/csv`: a header row, then one row per point.
+    Csv,
+    /// `application/json`: an array of row objects, or an object of column arrays.
+    Json,
+}
+
+/// Why a measurement table was refused; [`MeasurementError::column`] names the column.
+#[derive(Debug, Error)]
+pub enum MeasurementError {
+    /// The CSV is not UTF-8 text.
+    #[error("the table is not UTF-8 text")]
+    NotText,
+    /// The JSON is malformed (a key given twice included).
+    #[error("malformed JSON: {0}")]
+    Json(#[from] JsonError),
+    /// The table cannot be read, or a cell is not a finite number.
+    #[error(transparent)]
+    Table(#[from] TableError),
+    /// A column this kind needs is absent.
+    #[error(
+        "no column {}; the table has {}",
+        quoted(wanted, " or "),
+        quoted(found, ", ")
+    )]
+    MissingColumn {
+        /// The column, or the alternatives, wanted.
+        wanted: Vec<String>,
+        /// The columns present.
+        found: Vec<String>,
+    },
+    /// A column this kind does not know (a misspelt unit, say).
+    #[error(
+        "unknown column `{column}`; a {kind} table has {}",
+        quoted(allowed, ", ")
+    )]
+    UnknownColumn {
+        /// The column.
+        column: String,
+        /// The kind.
+        kind: &'static str,
+        /// The columns it may have.
+        allowed: Vec<String>,
+    },
+    /// A value the calibration would refuse too: a time not increasing, a negative volume.
+    #[error(transparent)]
+    Value(CalibrationError),
+}
+
+fn quoted(names: &[String], separator: &str) -> String {
+    names
+        .iter()
+        .map(|name| format!("`{name}`"))
+        .collect::<Vec<_>>()
+        .join(separator)
+}
+
+impl MeasurementError {
+    /// The column at fault (alternatives joined by " or "); empty for the whole table.
+    pub fn column(&self) -> String {
+        match self {
+            Self::Table(TableError::NotANumber { column, .. }) => column.clone(),
+            Self::MissingColumn { wanted, .. } => wanted.join(" or "),
+            Self::UnknownColumn { column, .. } => column.clone(),
+            Self::Value(
+                CalibrationError::NotIncreasing { column, .. }
+                | CalibrationError::BelowMinimum { column, .. },
+            ) => (*column).to_owned(),
+            _ => String::new(),
+        }
+    }
+}
+
+/// A table refused, with the kind it was sent as.
+#[derive(Debug)]
+pub struct InvalidTable {
+    /// The kind the table was sent as.
+    pub kind: MeasurementKind,
+    /// Why it was refused.
+    pub error: MeasurementError,
+}
+
+/// Reads and checks a table of `kind` from a request body.
+pub fn parse(kind: MeasurementKind, format: Format, body: &[u8]) -> Result<Columns, InvalidTable> {
+    read(kind, format, body).map_err(|error| InvalidTable { kind, error })
+}
+
+fn read(kind: MeasurementKind, format: Format, body: &[u8]) -> Result<Columns, MeasurementError> {
+    let table = match format {
+        Format::Csv => {
+            Table::from_csv(std::str::from_utf8(body).map_err(|_| MeasurementError::NotText)?)?
+        }
+        Format::Json => Table::from_json(&json::from_slice(body)?)?,
+    };
+    check(kind, &table)
+}
+
+/// The table's columns of `kind`, each checked.
+fn check(kind: MeasurementKind, table: &Table) -> Result<Columns, MeasurementError> {
+    let spec = kind.columns();
+    if let Some(unknown) = table
+        .names()
+        .iter()
+        .find(|name| !spec.iter().any(|c| c.name == name.as_str()))
+    {
+        return Err(MeasurementError::UnknownColumn {
+            column: unknown.clone(),
+            kind: kind.name(),
+            allowed: spec.iter().map(|c| c.name.to_owned()).collect(),
+        });
+    }
+    let missing = |wanted: Vec<String>| MeasurementError::MissingColumn {
+        wanted,
+        found: table.names().to_vec(),
+    };
+    let abscissas: Vec<String> = spec
+        .iter()
+        .filter(|c| c.presence == Presence::Abscissa)
+        .map(|c| c.name.to_owned())
+        .collect();
+    if !abscissas.is_empty() && abscissas.iter().all(|name| table.optional(name).is_none()) {
+        return Err(missing(abscissas));
+    }
+    let mut columns = Columns::new();
+    for c in spec {
+        let Some(values) = table.optional(c.name) else {
+            if c.presence == Presence::Required {
+                return Err(missing(vec![c.name.to_owned()]));
+            }
+            continue;
+        };
+        if c.increasing {
+            require_increasing(c.name, values).map_err(MeasurementError::Value)?;
+        }
+        if let Some(minimum) = c.minimum {
+            require_at_least(c.name, values, minimum).map_err(MeasurementError::Value)?;
+        }
+        columns.insert(c.name.to_owned(), values.to_vec());
+    }
+    Ok(columns)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn refused(kind: MeasurementKind, csv: &str) -> MeasurementError {
+        let refused = parse(kind, Format::Csv, csv.as_bytes()).expect_err("refused");
+        assert_eq!(refused.kind, kind);
+        refused.error
+    }
+
+    #[test]
+    fn csv_and_json_give_the_same_columns() {
+        let csv = "time_s,volume_mm3,spread_mm3\n600,0.004,0.001\n3600,0.0118,0.002\n";
+        let json = r#"[{"time_s": 600, "volume_mm3": 0.004, "spread_mm3": 0.001},
+                       {"time_s": 3600, "volume_mm3": 0.0118, "spread_mm3": 0.002}]"#;
+        let kind = MeasurementKind::WearVolume;
+        let from_csv = parse(kind, Format::Csv, csv.as_bytes()).expect("valid CSV");
+        let from_json = parse(kind, Format::Json, json.as_bytes()).expect("valid JSON");
+        assert_eq!(from_csv, from_json);
+        assert_eq!(from_csv["time_s"], [600.0, 3600.0]);
+        // The stored shape reads back as a table of its own kind.
+        let again = serde_json::to_vec(&from_csv).expect("serialises");
+        assert_eq!(parse(kind, Format::Json, &again).expect("valid"), from_csv);
+    }
+
+    #[test]
+    fn each_refusal_names_its_column() {
+        use MeasurementKind::{Potential, Profile, WearVolume};
+        let cases = [
+            (WearVolume, "volume_mm3\n0.1\n", "time_s or cycles"),
+            (
+                WearVolume,
+                "cycles,volume_mm3\n10,0.1\n20,-0.1\n",
+                "volume_mm3",
+            ),
+            (WearVolume, "cycles,volume_mm3\n10,0.1\n10,0.2\n", "cycles"),
+            (
+                WearVolume,
+                "cycles,volume_mm3,volume_mm^3\n1,0,0\n",
+                "volume_mm^3",
+            ),
+            (Profile, "y_mm,depth_um\n0,1\n0.1,NaN\n", "depth_um"),
+            (Profile, "y_mm\n0\n", "depth_um"),
+            (Potential, "time_s,potential_v\n2,-0.2\n1,-0.3\n", "time_s"),
+        ];
+        for (kind, csv, column) in cases {
+            let error = refused(kind, csv);
+            assert_eq!(error.column(), column, "{csv}: {error}");
+            let first = column.split(' ').next().unwrap_or(column);
+            assert!(error.to_string().contains(first), "{error}");
+        }
+        let error = refused(Potential, "time_s,potential_v\n2,-0.2\n1,-0.3\n");
+        assert!(error.to_string().contains("row 2"), "{error}");
+    }
+
+    #[test]
+    fn kinds_are_named_as_the_api_spells_them() {
+        for kind in MeasurementKind::ALL {
+            let json = serde_json::to_value(kind).expect("serialises");
+            assert_eq!(json, serde_json::json!(kind.name()));
+            assert_eq!(MeasurementKind::from_name(kind.name()), Some(kind));
+        }
+        assert_eq!(MeasurementKind::from_name("Profile"), None);
+    }
+}

@@ -1,0 +1,150 @@
+//! An upload's checks: the query's options (format, pixel size, name) and the height map of
+//! its bytes, read by the same readers as `tribosim run --surface` (`crate::surface::read`),
+//! each refusal naming what is at fault; then the map stored.
+
+use std::io;
+
+use serde::Deserialize;
+
+use super::store::{SurfaceRecord, Surfaces};
+use crate::service::extract::cut;
+use crate::surface::{Format, HeightMap, Statistics, SurfaceError, read, read_as};
+
+/// The longest name kept with a surface, in characters.
+const MAX_NAME_CHARS: usize = 200;
+
+/// The query of an upload: each a string, so a bad value gets this API's own message.
+#[derive(Deserialize)]
+pub(super) struct UploadQuery {
+    format: Option<String>,
+    pixel_um: Option<String>,
+    name: Option<String>,
+}
+
+/// The format, pixel size and name an upload's query gives, checked.
+pub(super) struct UploadOptions {
+    format: Option<Format>,
+    pixel_m: Option<f64>,
+    name: String,
+}
+
+/// Why an upload was refused or not kept.
+#[derive(Debug)]
+pub enum UploadError {
+    /// A query value or the map is not usable; `path` names it (`format`, `pixel_um`,
+    /// `name`, or `body` for the map).
+    Invalid {
+        /// What is at fault.
+        path: &'static str,
+        /// Why.
+        message: String,
+    },
+    /// The map has more pixels than a run can use.
+    TooLarge(String),
+    /// The map could not be stored.
+    Storage(io::Error),
+}
+
+fn invalid(path: &'static str, message: String) -> UploadError {
+    UploadError::Invalid { path, message }
+}
+
+impl UploadQuery {
+    /// The options the query gives, each checked.
+    pub(super) fn options(self) -> Result<UploadOptions, UploadError> {
+        let format = match self.format.as_deref() {
+            None => None,
+            Some("gsf") => Some(Format::Gsf),
+            Some("matrix") => Some(Format::Matrix),
+            Some("xyz") => Some(Format::Xyz),
+            Some(other) => {
+                return Err(invalid(
+                    "format",
+                    format!("{:?} is not a format (gsf, matrix, xyz)", cut(other)),
+                ));
+            }
+        };
+        let pixel_m = match self.pixel_um.as_deref() {
+            None => None,
+            Some(text) => match text.trim().parse::<f64>() {
+                Ok(um) if um > 0.0 && um.is_finite() => Some(um * 1e-6),
+                _ => {
+                    return Err(invalid(
+                        "pixel_um",
+                        format!("{:?} is not a pixel size (a number > 0, um)", cut(text)),
+                    ));
+                }
+            },
+        };
+        let name = self.name.unwrap_or_default();
+        if name.chars().count() > MAX_NAME_CHARS {
+            return Err(invalid(
+                "name",
+                format!("the name is longer than {MAX_NAME_CHARS} characters"),
+            ));
+        }
+        Ok(UploadOptions {
+            format,
+            pixel_m,
+            name,
+        })
+    }
+}
+
+/// Reads the map of an upload's bytes and stores it. Blocking (parsing, files).
+pub(super) fn store(
+    surfaces: &Surfaces,
+    options: UploadOptions,
+    bytes: &[u8],
+) -> Result<SurfaceRecord, UploadError> {
+    let (map, format, statistics) = parse(bytes, options.format, options.pixel_m)?;
+    surfaces
+        .create(options.name, format, &map, statistics)
+        .map_err(UploadError::Storage)
+}
+
+/// The map of an upload's bytes (in the format given, or as the content tells) and its
+/// statistics, which must be finite numbers: JSON has none for the others, and a map too
+/// small or too flat to have them gives a run nothing to report.
+fn parse(
+    bytes: &[u8],
+    format: Option<Format>,
+    pixel_m: Option<f64>,
+) -> Result<(HeightMap, Format, Statistics), UploadError> {
+    let (map, format) = read_map(bytes, format, pixel_m)?;
+    let statistics = Statistics::of_measured(&map);
+    let numbers = [
+        ("rms_height_um", statistics.rms_height_um),
+        ("rms_slope", statistics.rms_slope),
+        ("psd_slope", statistics.psd_slope),
+    ];
+    if let Some((name, value)) = numbers.iter().find(|(_, value)| !value.is_finite()) {
+        return Err(invalid(
+            "body",
+            format!(
+                "the map's {name} is {value}, not a finite number: its heights must vary, \
+                 and it needs more than 8 pixels per side (its spectrum is fitted from half \
+                 its side down to four pixels)"
+            ),
+        ));
+    }
+    Ok((map, format, statistics))
+}
+
+fn read_map(
+    bytes: &[u8],
+    format: Option<Format>,
+    pixel_m: Option<f64>,
+) -> Result<(HeightMap, Format), UploadError> {
+    let parsed = match format {
+        Some(format) => read_as(bytes, format, pixel_m).map(|map| (map, format)),
+        None => read(bytes, pixel_m),
+    };
+    parsed.map_err(|e| match e {
+        SurfaceError::TooLarge { .. } => UploadError::TooLarge(e.to_string()),
+        SurfaceError::Invalid(_) if pixel_m.is_none() && format == Some(Format::Matrix) => {
+            invalid("pixel_um", e.to_string())
+        }
+        other => invalid("body", other.to_string()),
+    })
+}

@@ -1,0 +1,70 @@
+// The page's entry point: wires the modules together and starts them. Everything talks to
+// the API described in openapi.yaml; nothing is built or fetched from elsewhere.
+//
+// The modules, each importing only modules listed above it, so that no two import each
+// other (in brackets, the page's own modules each one imports):
+//   ids          the element ids, for the modules and the e2e test
+//   dom, words, svg, sse, topic   helpers: the document, values in words, SVG text,
+//                server-sent events, listeners
+//   uplot        the vendored uPlot's global, as an import
+//   api          the API, with the token (dom, ids)
+//   plots        the uPlot charts by box id, and the SVG figures (uplot, dom)
+//   scenes       the presets, and the scenes jobs were submitted with (api, words)
+//   export       each figure as SVG and PNG (plots, svg)
+//   pressure     the run's pressure maps (plots, svg)
+//   measurements the tables attached to the run shown (api, topic)
+//   jobs         the job list (api, topic)
+//   run-figures  the run's line figures (plots, measurements, scenes)
+//   run          the run panel (jobs, measurements, pressure, run-figures, scenes, sse, topic)
+//   form         the new-run form (run, scenes)
+//   compare      the comparison of runs (jobs, plots)
+//   studies      the studies (form, jobs, compare, plots)
+//   calibration  the fits (form, run, plots)
+//   main         this file
+// A module tells the modules above it what happened through a topic they listen to (jobs:
+// View, a deletion, the list drawn; run: "Edit and run again"; measurements: tables read).
+import * as calibration from "./calibration.js";
+import * as compare from "./compare.js";
+import { $ } from "./dom.js";
+import { addExportButtons } from "./export.js";
+import * as form from "./form.js";
+import { TOKEN } from "./ids.js";
+import * as jobs from "./jobs.js";
+import * as measurements from "./measurements.js";
+import { resizeAll } from "./plots.js";
+import * as run from "./run.js";
+import * as studies from "./studies.js";
+
+function useToken(event) {
+  event.preventDefault();
+  sessionStorage.setItem("tribosim-token", $(TOKEN.input).value);
+  $(TOKEN.form).hidden = true;
+  form.loadPresets();
+  jobs.refresh();
+}
+
+// The charts follow the window's width, once it has stopped changing for 150 ms.
+function followResize() {
+  let resizeTimer;
+  window.addEventListener("resize", () => {
+    clearTimeout(resizeTimer);
+    resizeTimer = setTimeout(resizeAll, 150);
+  });
+}
+
+async function start() {
+  form.init();
+  addExportButtons();
+  run.init();
+  measurements.init();
+  compare.init();
+  studies.init();
+  calibration.init();
+  $(TOKEN.form).addEventListener("submit", useToken);
+  followResize();
+  await form.loadPresets();
+  jobs.refresh();
+  studies.refresh();
+}
+
+start();

@@ -1,0 +1,109 @@
+// Every figure the page draws, by the id of its box: the uPlot charts with what each
+// draws (for the SVG and PNG export), and the figures drawn as SVG (the pressure maps).
+import uPlot from "./uplot.js";
+import { $ } from "./dom.js";
+
+/** Line colours, each at least 4.5:1 against white (WCAG asks 3:1 of graphics). */
+export const COLORS = ["#0a58ca", "#c2255c", "#1a7f37", "#b35900", "#6f42c1", "#0b7285", "#b42318", "#495057"];
+export const MEASURED_COLOR = "#b42318";
+export const ATTACHED_COLOR = "#1b1f24";
+
+// Tick steps of 1, 2 and 5 times a power of ten (uPlot's default also has 2.5).
+const ROUND_STEPS = [];
+for (let e = -9; e <= 9; e++) for (const m of [1, 2, 5]) ROUND_STEPS.push(+(m * 10 ** e).toPrecision(1));
+
+const HEIGHT = 260;
+const charts = new Map();
+const specs = new Map();
+const svgFigures = new Map();
+
+/** The uPlot chart drawn in the box `plotId`, if any. */
+export const chart = (plotId) => charts.get(plotId);
+
+/** What the line chart `plotId` last drew: { data, series, xLabel, yLabel }. */
+export const spec = (plotId) => specs.get(plotId);
+
+/** Removes the chart of `plotId`, if any. */
+export function dropChart(plotId) {
+  const existing = charts.get(plotId);
+  if (existing) { existing.destroy(); charts.delete(plotId); }
+}
+
+/** Keeps (or with null, clears) the SVG text of a figure that is not a uPlot chart. */
+export const setSvgFigure = (plotId, svg) => { svgFigures.set(plotId, svg); };
+
+/** A figure's SVG text: undefined for a line chart's box, null while it has none. */
+export const svgFigure = (plotId) => (svgFigures.has(plotId) ? svgFigures.get(plotId) : undefined);
+
+// A value for the legend: four significant figures; words where the cursor's point has none.
+function legendValue(u, v) {
+  if (u.cursor.idx == null) return "";
+  return v == null ? "none at this point" : String(+v.toPrecision(4));
+}
+// uPlot writes "--" in the legend while the cursor is off the chart: nothing is said instead.
+function blankLegend(u) {
+  for (const td of u.root.querySelectorAll(".u-legend .u-value")) if (td.textContent === "--") td.textContent = "";
+}
+
+function chartWidth(plotId) {
+  const box = $(plotId);
+  return Math.max(240, Math.min(box.querySelector(".chart").clientWidth || box.clientWidth - 16, box.clientWidth - 16));
+}
+
+/** Fits every chart to its box's width again (after the window was resized). */
+export function resizeAll() {
+  for (const [id, plot] of charts) plot.setSize({ width: chartWidth(id), height: HEIGHT });
+}
+
+/** A line series: 2 px, across gaps, no points. */
+export const lineSeries = (label, stroke) => ({ label, stroke, width: 2, spanGaps: true, points: { show: false } });
+
+/** A series of measured points only (no line): drawn as dots, exported as dots. */
+export function markerSeries(label, color) {
+  return { label, stroke: color, fill: color, marker: true, width: 0, paths: () => null, points: { show: true, size: 8, fill: color } };
+}
+
+/** Several [x, y] tables on one x column (uPlot's join wants each sorted by x). */
+export function joinTables(tables) {
+  return tables.length > 1 ? uPlot.join(tables) : tables[0];
+}
+
+function chartOptions(plotId, series, xLabel, yLabel, extra) {
+  return {
+    width: chartWidth(plotId),
+    height: HEIGHT,
+    scales: { x: { time: false }, ...(extra.scales || {}) },
+    axes: [
+      { label: xLabel, stroke: "#1b1f24", grid: { stroke: "#eee" }, incrs: ROUND_STEPS, space: 45 },
+      { label: yLabel, stroke: "#1b1f24", grid: { stroke: "#eee" }, size: 60, incrs: ROUND_STEPS, space: 20 },
+    ],
+    series: [{ label: xLabel, value: legendValue }, ...series.map((s) => ({ value: legendValue, ...s }))],
+    legend: { live: true },
+    // Every series reads the cursor's own row, so the legend's values are of one x (one
+    // cycle, one time, one y), never of neighbouring points.
+    cursor: { dataIdx: (_u, _s, idx) => idx },
+    hooks: { ready: [blankLegend], setLegend: [blankLegend] },
+  };
+}
+
+/**
+ * Draws (or updates) a uPlot line chart in the plot box `plotId`; `data` is uPlot's column
+ * table; `points` is recorded on the box as data-points for tests and tools. The chart is
+ * made anew when its series change or `extra.rebuild` asks; `extra.scales` adds scales.
+ */
+export function linePlot(plotId, data, series, xLabel, yLabel, points, extra = {}) {
+  const box = $(plotId);
+  box.dataset.points = String(points);
+  specs.set(plotId, { data, series, xLabel, yLabel });
+  const chartBox = box.querySelector(".chart");
+  chartBox.setAttribute("role", "img");
+  chartBox.setAttribute("aria-label", `${box.querySelector("h3").textContent}: ${series.map((s) => s.label).join("; ")}; ${points} points; ${yLabel} against ${xLabel}. The values are in the summary table and the downloads.`);
+  const existing = charts.get(plotId);
+  const sameSeries = existing && existing.series.length === series.length + 1 && series.every((s, i) => existing.series[i + 1].label === s.label);
+  if (sameSeries && !extra.rebuild) {
+    existing.setData(data);
+    return;
+  }
+  if (existing) existing.destroy();
+  charts.set(plotId, new uPlot(chartOptions(plotId, series, xLabel, yLabel, extra), data, chartBox));
+}

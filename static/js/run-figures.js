@@ -1,0 +1,175 @@
+// The run panel's line figures: volume, depth, potential and WAC from the cycle records
+// (live or final), with the paper's Table 3 and the attached measurements where they
+// belong, and the groove's profiles with the ball once the run has a result.
+import { $ } from "./dom.js";
+import { RUN, RUN_PLOT } from "./ids.js";
+import { attachedPoints } from "./measurements.js";
+import { ATTACHED_COLOR, COLORS, MEASURED_COLOR, chart, dropChart, joinTables, linePlot, lineSeries, markerSeries } from "./plots.js";
+import { presetNamed } from "./scenes.js";
+import { getPath } from "./words.js";
+
+// The paper's Table 3: wear volume (1e-3 mm^3) at rubbing time (s); at 60 rpm cycle = s.
+const TABLE3 = [[10, 0.97], [60, 1.09], [300, 1.18], [1800, 5.33], [3600, 11.72]];
+const TABLE3_PRESET = "dalmau2018-316l";
+// What Table 3 was measured under, as the preset's scene holds it: a run that differs in
+// any of these is another experiment, and the measured points do not belong beside it.
+const TABLE3_CONDITIONS = ["test.load_n", "test.speed_rpm", "test.track_radius_mm", "ball", "disc"];
+
+const CYCLES_LABEL = "cycles (passes of the ball)";
+const WAITING = "Shown after the run ends.";
+
+// Table 3 belongs beside a run whose scene has the conditions it was measured under.
+function table3Applies(scene) {
+  const preset = presetNamed(TABLE3_PRESET);
+  if (!preset || !scene) return false;
+  const same = (path) => JSON.stringify(getPath(scene, path)) === JSON.stringify(getPath(preset.scene, path));
+  return TABLE3_CONDITIONS.every(same);
+}
+
+/**
+ * Enables the Table 3 checkbox only for a run whose scene matches, and says why when it
+ * does not. True when the volume figure is drawn already (and should be drawn again).
+ */
+export function updateTable3Choice(scene) {
+  const applies = table3Applies(scene);
+  const box = $(RUN.showTable3);
+  if (box.disabled === applies) box.checked = applies;
+  box.disabled = !applies;
+  $(RUN.table3Note).textContent = applies ? ""
+    : scene ? "Table 3 is not shown: this run's load, speed, track radius or materials differ from the measured test's."
+      : "Table 3 is shown once the run's scene is known and matches the measured test.";
+  return Boolean(chart(RUN_PLOT.volume));
+}
+
+// Wear volume against cycles, with Table 3 (when ticked) and attached wear volumes.
+function drawVolume(cycles, c, scene) {
+  const tables = [[c, cycles.map((r) => r.wear_volume_mm3 * 1e3)]];
+  const volSeries = [lineSeries("simulated", COLORS[0])];
+  // Only the measured points within the run's length, so the axis ends with the run.
+  const runCycles = getPath(scene, "test.cycles") || (c.length ? c[c.length - 1] : 0);
+  const measured = $(RUN.showTable3).checked ? TABLE3.filter((p) => p[0] <= runCycles) : [];
+  if (measured.length) {
+    tables.push([measured.map((p) => p[0]), measured.map((p) => p[1])]);
+    volSeries.push(markerSeries("Table 3, measured", MEASURED_COLOR));
+  }
+  // Attached wear volumes: at their cycles, or at their times turned into cycles at the run's speed.
+  const rpm = getPath(scene, "test.speed_rpm") || 60;
+  const attachedVol = attachedPoints("wear_volume",
+    (tb, i) => (tb.cycles ? tb.cycles[i] : tb.time_s ? (tb.time_s[i] * rpm) / 60 : NaN), (tb, i) => tb.volume_mm3[i] * 1e3);
+  if (attachedVol.length) {
+    tables.push([attachedVol.map((p) => p[0]), attachedVol.map((p) => p[1])]);
+    volSeries.push(markerSeries("attached measurement", ATTACHED_COLOR));
+  }
+  $(RUN_PLOT.volume).dataset.measured = String(measured.length);
+  $(RUN_PLOT.volume).dataset.attached = String(attachedVol.length);
+  linePlot(RUN_PLOT.volume, joinTables(tables), volSeries, CYCLES_LABEL, "wear volume (10⁻³ mm³)", c.length);
+}
+
+// Potential (with E_corr dashed and attached potentials) and WAC volume against time.
+function drawCorrosion(cycles, scene) {
+  const t = cycles.map((r) => r.time_s);
+  const hasCorrosion = cycles.some((r) => r.potential_v != null);
+  const ecorr = getPath(scene, "corrosion.corrosion_potential_v");
+  for (const [plotId, key, label, unit, scale, color] of [
+    [RUN_PLOT.potential, "potential_v", "potential", "potential (V vs Ag/AgCl)", 1, COLORS[4]],
+    [RUN_PLOT.wac, "wac_volume_mm3", "WAC volume", "WAC volume (10⁻³ mm³)", 1e3, COLORS[3]],
+  ]) {
+    $(plotId).querySelector(".note").textContent = cycles.length && !hasCorrosion ? "This scene has no corrosion model: nothing to plot." : "";
+    const ys = cycles.map((r) => (r[key] == null ? null : r[key] * scale));
+    const series = [lineSeries(label, color)];
+    const cols = [t, ys];
+    if (key === "potential_v" && ecorr != null) {
+      cols.push(t.map(() => ecorr));
+      series.push({ label: "E_corr, free corrosion potential", stroke: "#444", width: 1.5, dash: [6, 4], spanGaps: true, points: { show: false } });
+    }
+    const parts = [cols];
+    if (key === "potential_v") {
+      const attached = attachedPoints("potential", (tb, i) => tb.time_s[i], (tb, i) => tb.potential_v[i]);
+      $(plotId).dataset.attached = String(attached.length);
+      if (attached.length) {
+        parts.push([attached.map((p) => p[0]), attached.map((p) => p[1])]);
+        series.push(markerSeries("attached measurement", ATTACHED_COLOR));
+      }
+    }
+    linePlot(plotId, joinTables(parts), series, "time (s)", unit, hasCorrosion ? ys.filter((v) => v != null).length : 0);
+  }
+}
+
+/** Volume, depth, potential and WAC from the cycle records of a run of this scene. */
+export function drawSeries(cycles, scene) {
+  const c = cycles.map((r) => r.cycle);
+  drawVolume(cycles, c, scene);
+  linePlot(RUN_PLOT.depth, [c, cycles.map((r) => r.max_depth_um)],
+    [{ label: "maximum depth", stroke: COLORS[2], width: 2, points: { show: false } }],
+    CYCLES_LABEL, "maximum wear depth (µm)", c.length);
+  drawCorrosion(cycles, scene);
+}
+
+/** Empties the profile figure until a result comes. */
+export function resetProfiles() {
+  dropChart(RUN_PLOT.profile);
+  $(RUN_PLOT.profile).dataset.points = "0";
+  $(RUN_PLOT.profile).querySelector(".note").textContent = WAITING;
+  $(RUN_PLOT.profile).querySelector(".profile-picks").replaceChildren();
+}
+
+// The checkboxes of the cycles to show: the first, middle and last profile at first.
+function addPicks(picks, profiles, result) {
+  const n = profiles.length;
+  const chosen = new Set([0, Math.floor((n - 1) / 2), n - 1]);
+  profiles.forEach((p, i) => {
+    const label = document.createElement("label");
+    label.innerHTML = `<input type="checkbox" value="${i}"${chosen.has(i) ? " checked" : ""}> cycle ${p.cycle}`;
+    label.querySelector("input").addEventListener("change", () => drawProfiles(result));
+    picks.appendChild(label);
+  });
+}
+
+// The ball's section, radius R, with its lowest point at the profile's deepest point.
+function ballTable(profile, radiusUm) {
+  let k = 0;
+  profile.depth_um.forEach((d, i) => { if (Math.abs(d) > Math.abs(profile.depth_um[k])) k = i; });
+  const bottom = -Math.abs(profile.depth_um[k]);
+  const y0 = profile.y_um[k];
+  return [profile.y_um, profile.y_um.map((y) => {
+    const dy = y - y0;
+    if (Math.abs(dy) >= radiusUm) return null;
+    return bottom + (radiusUm - Math.sqrt(radiusUm * radiusUm - dy * dy));
+  })];
+}
+
+/**
+ * D(y): the groove's depth across the track at chosen cycles (drawn as the surface height
+ * -D, so the groove dips), and the ball's section touching the deepest point of the last
+ * chosen profile.
+ */
+export function drawProfiles(result) {
+  const profiles = result.profiles || [];
+  const box = $(RUN_PLOT.profile);
+  const picks = box.querySelector(".profile-picks");
+  const note = box.querySelector(".note");
+  if (!profiles.length) { note.textContent = "The result has no profiles."; return; }
+  if (!picks.children.length) addPicks(picks, profiles, result);
+  const selected = [...picks.querySelectorAll("input:checked")].map((i) => profiles[Number(i.value)]);
+  const radiusUm = (getPath(result.scene, "ball.radius_mm") || 3) * 1000;
+  note.textContent = `Surface height −D(y); the ball (R = ${radiusUm / 1000} mm) is drawn touching the deepest point of the last chosen profile.`;
+  if (!selected.length) {
+    dropChart(RUN_PLOT.profile);
+    box.dataset.points = "0";
+    return;
+  }
+  const tables = selected.map((p) => [p.y_um, p.depth_um.map((d) => -Math.abs(d))]);
+  tables.push(ballTable(selected[selected.length - 1], radiusUm));
+  const series = selected.map((p, i) => lineSeries(`−D at cycle ${p.cycle}`, COLORS[i % COLORS.length]));
+  series.push({ label: "ball", stroke: "#444", width: 1.5, dash: [6, 4], spanGaps: true, points: { show: false } });
+  const attached = attachedPoints("profile", (tb, i) => tb.y_mm[i] * 1000, (tb, i) => -Math.abs(tb.depth_um[i]));
+  if (attached.length) {
+    tables.push([attached.map((p) => p[0]), attached.map((p) => p[1])]);
+    series.push(markerSeries("attached measurement", ATTACHED_COLOR));
+  }
+  box.dataset.attached = String(attached.length);
+  const maxDepth = Math.max(...selected.map((p) => Math.max(...p.depth_um.map(Math.abs))), ...attached.map((p) => -p[1]), 0.01);
+  linePlot(RUN_PLOT.profile, joinTables(tables), series, "y across the track (µm)", "surface height −D (µm)",
+    selected.reduce((s, p) => s + p.y_um.length, 0),
+    { rebuild: true, scales: { y: { range: [-1.3 * maxDepth, 0.5 * maxDepth] } } });
+}

@@ -1,0 +1,41 @@
+// Measurements attached to the run: a bad table refused, three kinds drawn and stored.
+import assert from "node:assert/strict";
+
+import { MEASURE, RUN_PLOT } from "../../../static/js/ids.js";
+import { sel, step } from "../lib.mjs";
+
+// Waits until the figure `id` says it draws `n` attached points.
+const attachedOn = (page, id, n) =>
+  page.waitForFunction(([plot, count]) => document.getElementById(plot).dataset.attached === count, [id, String(n)]);
+
+export async function measurements(page) {
+  step("measurements attached to the run: a bad table refused with its column named, then three kinds drawn");
+  await page.click(`${sel(MEASURE.box)} summary`);
+  const attach = async (kind, csv, asFile) => {
+    await page.selectOption(sel(MEASURE.kind), kind);
+    if (asFile) await page.setInputFiles(sel(MEASURE.file), { name: `${kind}.csv`, mimeType: "text/csv", buffer: Buffer.from(csv) });
+    else await page.fill(sel(MEASURE.text), csv);
+    await page.click(sel(MEASURE.attach));
+  };
+  await attach("wear_volume", "cycles,volume_mm3\n10,-0.001\n", false);
+  await page.locator(sel(MEASURE.errors), { hasText: "volume_mm3" }).waitFor();
+  console.log(`   refused: ${await page.textContent(sel(MEASURE.errors))}`);
+  await attach("wear_volume", "cycles,volume_mm3\n10,0.00097\n60,0.00109\n300,0.00118\n", true);
+  await attachedOn(page, RUN_PLOT.volume, 3);
+  await attach("profile", "y_mm,depth_um\n-0.1,0.4\n0,3.1\n0.1,0.4\n", false);
+  await attachedOn(page, RUN_PLOT.profile, 3);
+  await attach("potential", "time_s,potential_v\n100,-0.30\n1000,-0.35\n", false);
+  await attachedOn(page, RUN_PLOT.potential, 2);
+  assert.equal(await page.textContent(sel(MEASURE.errors)), "");
+  const figures = [RUN_PLOT.volume, RUN_PLOT.profile, RUN_PLOT.potential];
+  const drawn = await page.evaluate((ids) => ids.map((id) => {
+    const u = e2e.plots.chart(id);
+    const k = u.series.findIndex((s) => s.label === "attached measurement");
+    return [id, k > 0 ? u.data[k].filter((v) => v != null).length : 0];
+  }), figures);
+  console.log(`   attached points drawn: ${JSON.stringify(drawn)}`);
+  assert.deepEqual(drawn, [[RUN_PLOT.volume, 3], [RUN_PLOT.profile, 3], [RUN_PLOT.potential, 2]]);
+  // Stored with the job: the API returns them.
+  const stored = await page.evaluate(async () => (await e2e.api.api(`/api/v1/jobs/${e2e.run.selectedId()}/measurements`)).body);
+  assert.deepEqual(stored.wear_volume.cycles, [10, 60, 300]);
+}
