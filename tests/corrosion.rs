@@ -75,10 +75,12 @@ fn the_default_repassivation_time_is_the_fit_to_the_papers_fig_14() {
         rubbing_start_s: Some(3600.0),
         rubbing_stop_s: Some(7200.0),
     };
-    let trace = fit_ocp(&example("paper_ocp_trace.csv"), &Scene::default(), options)
-        .expect("fits");
+    let trace = fit_ocp(&example("paper_ocp_trace.csv"), &Scene::default(), options).expect("fits");
     let same = trace.repassivation_time_s.expect("fitted");
-    assert!((same.value - tau.value).abs() < 1e-12 * tau.value, "{same:?}");
+    assert!(
+        (same.value - tau.value).abs() < 1e-12 * tau.value,
+        "{same:?}"
+    );
     assert!((trace.scene.test.ocp_before_s - 3600.0).abs() < 1e-12);
     assert_eq!(trace.scene.test.cycles, 3600);
 }
@@ -106,7 +108,10 @@ fn the_papers_test_reads_the_papers_potential_and_dissolves_less_than_was_measur
             .find(|r| r.cycle == *time as u64)
             .expect("Table 3's times are recorded");
         let wac = record.wac_volume_mm3.expect("corrosion on");
-        assert!(wac < measured, "{time} s: WAC {wac} against {measured} mm^3");
+        assert!(
+            wac < measured,
+            "{time} s: WAC {wac} against {measured} mm^3"
+        );
     }
     // Nothing capped, nothing outside the Tafel line's domain, no WAC above the total.
     assert!(result.warnings.is_empty(), "{:?}", result.warnings);
@@ -141,8 +146,10 @@ fn a_faster_disc_and_a_heavier_load_read_lower() {
 
 #[test]
 fn the_whole_trace_holds_e_corr_drops_and_recovers() {
-    let result = run(r#"{"test": {"cycles": 20, "ocp_before_s": 3600, "ocp_after_s": 1200},
-        "numerics": {"grid": 48}}"#);
+    let result = run(
+        r#"{"test": {"cycles": 20, "ocp_before_s": 3600, "ocp_after_s": 1200},
+        "numerics": {"grid": 48}}"#,
+    );
     let trace = &result.ocp_trace;
     let first = trace[0];
     assert_eq!((first.time_s, first.phase), (0.0, OcpPhase::Before));
@@ -161,7 +168,11 @@ fn the_whole_trace_holds_e_corr_drops_and_recovers() {
         .filter(|s| s.phase == OcpPhase::After)
         .collect();
     // The potential rises monotonically back to E_corr, which the record ends at.
-    assert!(after.windows(2).all(|w| w[1].potential_v >= w[0].potential_v));
+    assert!(
+        after
+            .windows(2)
+            .all(|w| w[1].potential_v >= w[0].potential_v)
+    );
     let last = after.last().expect("after points");
     assert_eq!((last.time_s, last.potential_v), (4820.0, -0.10));
     assert!(after[0].potential_v < -0.2, "{after:?}");
@@ -194,8 +205,11 @@ fn a_clamped_potential_and_an_oversized_anode_are_said_not_hidden() {
         "corrosion": {"anodic_area": "real_contact"}}"#);
     assert!(capped.cycles.iter().all(|r| r.potential_v == Some(-0.10)));
     assert!(
-        capped.warnings.iter().any(|w| w.contains("capped at E_corr")
-            && w.contains("at 5 solved cycle(s), the first at cycle 1")),
+        capped
+            .warnings
+            .iter()
+            .any(|w| w.contains("capped at E_corr")
+                && w.contains("at 5 solved cycle(s), the first at cycle 1")),
         "{:?}",
         capped.warnings
     );
@@ -214,5 +228,8 @@ fn a_clamped_potential_and_an_oversized_anode_are_said_not_hidden() {
         warnings.contains("exceeds the total volume measured after 3600 s"),
         "{warnings}"
     );
-    assert!(warnings.contains("outside the domain the Tafel line"), "{warnings}");
+    assert!(
+        warnings.contains("outside the domain the Tafel line"),
+        "{warnings}"
+    );
 }

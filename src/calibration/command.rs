@@ -59,7 +59,7 @@ pub enum CommandError {
 }
 
 /// Fits `table` (CSV or JSON) with `scene` (the paper's preset if `None`) and writes the
-/// fit as JSON to `output`, or standard output.
+/// fit as JSON to `output`, or standard output; its warnings go to standard error too.
 pub fn calibrate_files(
     kind: FitKind,
     table: &Path,
@@ -114,9 +114,11 @@ pub fn calibrate_files(
             .into_scene(),
         None => default_scene(),
     };
-    let json = serde_json::to_string_pretty(
-        &calibrate(kind, &parsed, &scene, options).map_err(fit_error)?,
-    )?;
+    let fit = calibrate(kind, &parsed, &scene, options).map_err(fit_error)?;
+    for warning in fit.warnings() {
+        eprintln!("warning: {warning}");
+    }
+    let json = serde_json::to_string_pretty(&fit)?;
     match output {
         Some(path) => std::fs::write(path, json + "\n").map_err(|source| CommandError::Write {
             path: path.to_owned(),

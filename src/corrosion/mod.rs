@@ -1,7 +1,7 @@
 //! Wear-accelerated corrosion (paper Section 5.1): galvanic coupling between the depassivated
 //! anode and the passive cathode (eq. 18), Faraday's law for the dissolved volume, the
 //! depassivated area of a sliding contact ([`depassivation`]) and the reference electrodes
-//! potentials are measured against ([`reference`]).
+//! potentials are measured against ([`mod@reference`]).
 //!
 //! Everything here is in SI units (V, A/m^2, m^2, s, kg/mol, kg/m^3, m^3). The one exception is
 //! inside the Tafel logarithm: the paper fitted a_c with current densities in A/cm^2, so the
