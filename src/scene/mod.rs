@@ -21,6 +21,7 @@ mod preset;
 mod record;
 mod reference;
 mod sections;
+mod suggest;
 mod surface;
 mod validate;
 
