@@ -66,15 +66,27 @@ mod tests {
         assert_eq!(field_path("test.load_mn"), Some("test.load_n"));
         assert_eq!(field_path("tset"), Some("test"));
         assert_eq!(field_path("test.hardness_mpa"), Some("disc.hardness_mpa"));
-        assert_eq!(field_path("disc.surface.rms_heigth_um"), Some("disc.surface.rms_height_um"));
+        assert_eq!(
+            field_path("disc.surface.rms_heigth_um"),
+            Some("disc.surface.rms_height_um")
+        );
         assert_eq!(field_path("colour"), None);
     }
 
     #[test]
     fn a_preset_name_near_a_known_one_is_found() {
-        assert_eq!(nearest("dalmau2018", ["dalmau2018-316l"]), Some("dalmau2018-316l"));
+        assert_eq!(
+            nearest("dalmau2018", ["dalmau2018-316l"]),
+            Some("dalmau2018-316l")
+        );
         assert_eq!(nearest("paper", ["dalmau2018-316l"]), None);
-        assert_eq!(nearest("dalmau2018-316", ["dalmau2018-316l"]), Some("dalmau2018-316l"));
-        assert_eq!(nearest("dalmau2019-316l", ["dalmau2018-316l"]), Some("dalmau2018-316l"));
+        assert_eq!(
+            nearest("dalmau2018-316", ["dalmau2018-316l"]),
+            Some("dalmau2018-316l")
+        );
+        assert_eq!(
+            nearest("dalmau2019-316l", ["dalmau2018-316l"]),
+            Some("dalmau2018-316l")
+        );
     }
 }

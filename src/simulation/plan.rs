@@ -8,9 +8,7 @@ use serde_json::Value;
 use super::estimate::{RunEstimate, estimate};
 use super::feasibility::{Derived, limits};
 use super::plausibility::judge;
-use super::sizing::{
-    LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m,
-};
+use super::sizing::{LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m};
 use crate::contact::{ElasticPair, Hertz};
 use crate::hardness::HardnessLaw;
 use crate::scene::{self, FieldError, FieldWarning, Scene, SceneErrors, Switch};

@@ -183,9 +183,8 @@ fn peak_pressure(verdict: &mut Verdict, scene: &Scene, hertz: &Hertz) {
 /// [`REFUSE_HARDNESS_MPA`].
 fn hardness(verdict: &mut Verdict, scene: &Scene) {
     let table = scene.disc.hardness_table.iter().flatten().enumerate();
-    let points = std::iter::once(("disc.hardness_mpa".to_owned(), scene.disc.hardness_mpa)).chain(
-        table.map(|(i, &(_, mpa))| (format!("disc.hardness_table[{i}][1]"), mpa)),
-    );
+    let points = std::iter::once(("disc.hardness_mpa".to_owned(), scene.disc.hardness_mpa))
+        .chain(table.map(|(i, &(_, mpa))| (format!("disc.hardness_table[{i}][1]"), mpa)));
     for (path, mpa) in points {
         if mpa >= WARN_HARDNESS_MPA {
             continue;
@@ -286,12 +285,18 @@ mod tests {
 
     fn refused_at(scene: &Scene, path: &str) -> String {
         let found = refusals(scene);
-        at(found.iter().map(|e| (e.path.as_str(), e.message.as_str())), path)
+        at(
+            found.iter().map(|e| (e.path.as_str(), e.message.as_str())),
+            path,
+        )
     }
 
     fn warned_at(scene: &Scene, path: &str) -> String {
         let found = warnings(scene);
-        at(found.iter().map(|w| (w.path.as_str(), w.message.as_str())), path)
+        at(
+            found.iter().map(|w| (w.path.as_str(), w.message.as_str())),
+            path,
+        )
     }
 
     #[test]
@@ -310,7 +315,10 @@ mod tests {
         scene.test.load_n = 5000.0;
         let message = refused_at(&scene, "test.load_n");
         assert!(message.contains("1347 um, 45% of the ball's"), "{message}");
-        assert!(message.contains("was the load in mN? 5000 mN = 5 N"), "{message}");
+        assert!(
+            message.contains("was the load in mN? 5000 mN = 5 N"),
+            "{message}"
+        );
     }
 
     #[test]
@@ -335,7 +343,10 @@ mod tests {
         scene.disc.youngs_modulus_gpa = 205_000.0;
         let message = refused_at(&scene, "ball.youngs_modulus_gpa");
         assert!(message.contains("above diamond's hardness"), "{message}");
-        assert!(message.contains("was it in MPa? 300000 MPa = 300 GPa"), "{message}");
+        assert!(
+            message.contains("was it in MPa? 300000 MPa = 300 GPa"),
+            "{message}"
+        );
     }
 
     #[test]
@@ -346,7 +357,10 @@ mod tests {
         scene.ball.radius_mm = 0.1;
         scene.wear.plasticity = Switch::Off;
         let message = warned_at(&scene, "test.load_n");
-        assert!(message.contains("11.8") && message.contains("hardest metals"), "{message}");
+        assert!(
+            message.contains("11.8") && message.contains("hardest metals"),
+            "{message}"
+        );
     }
 
     #[test]
@@ -354,12 +368,18 @@ mod tests {
         let mut scene = Scene::default();
         scene.disc.hardness_mpa = 2.473;
         let message = refused_at(&scene, "disc.hardness_mpa");
-        assert!(message.contains("was it in GPa? 2.473 GPa = 2473 MPa"), "{message}");
+        assert!(
+            message.contains("was it in GPa? 2.473 GPa = 2473 MPa"),
+            "{message}"
+        );
         // A lead-like disc: warned, and not taken for a slip (50 GPa is no metal's).
         scene.disc.hardness_table = None;
         scene.disc.hardness_mpa = 50.0;
         let message = warned_at(&scene, "disc.hardness_mpa");
-        assert!(message.contains("softer than annealed pure aluminium"), "{message}");
+        assert!(
+            message.contains("softer than annealed pure aluminium"),
+            "{message}"
+        );
         assert!(message.contains("check that it is in MPa"), "{message}");
         // A table point is judged too, at its own path.
         scene.disc.hardness_mpa = 2473.0;
@@ -367,7 +387,10 @@ mod tests {
         scene.disc.hardness_fit_includes_bulk = false;
         scene.test.cycles = 60;
         let message = refused_at(&scene, "disc.hardness_table[1][1]");
-        assert!(message.contains("was it in GPa? 2.5 GPa = 2500 MPa"), "{message}");
+        assert!(
+            message.contains("was it in GPa? 2.5 GPa = 2500 MPa"),
+            "{message}"
+        );
         assert_eq!(refused_at(&scene, "disc.hardness_mpa"), "");
     }
 
@@ -376,8 +399,14 @@ mod tests {
         let mut scene = Scene::default();
         scene.test.cycles = 1_000_000;
         let message = warned_at(&scene, "test.cycles");
-        assert!(message.contains("1000000 cycles will take about"), "{message}");
-        assert!(message.contains(" min") || message.contains(" h"), "{message}");
+        assert!(
+            message.contains("1000000 cycles will take about"),
+            "{message}"
+        );
+        assert!(
+            message.contains(" min") || message.contains(" h"),
+            "{message}"
+        );
         assert!(message.contains(" MB"), "{message}");
         // Ten times the paper's test is no warning (59 s measured).
         scene.test.cycles = 36_000;
@@ -393,7 +422,11 @@ mod tests {
         let map = HeightMap::new(8, 8, 1e-6, 1e-6, heights.clone()).expect("a valid map");
         let error = check_map("disc.gsf", &map).expect_err("refused");
         assert_eq!(error.path, "disc.surface.id");
-        assert!(error.message.contains("in um rather than m"), "{}", error.message);
+        assert!(
+            error.message.contains("in um rather than m"),
+            "{}",
+            error.message
+        );
         assert!(error.message.contains("1.000e5 um") || error.message.contains("100000 um"));
         let scaled: Vec<f64> = heights.iter().map(|h| h * 1e-6).collect();
         let map = HeightMap::new(8, 8, 1e-6, 1e-6, scaled).expect("a valid map");

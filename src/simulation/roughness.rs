@@ -68,7 +68,8 @@ pub fn build(
         SurfaceKind::Synthetic => synthetic(spec, grid),
         SurfaceKind::Measured => {
             let id = spec.id.clone().unwrap_or_default();
-            let map = supplied.ok_or_else(|| SimulationError::SurfaceNotSupplied { id: id.clone() })?;
+            let map =
+                supplied.ok_or_else(|| SimulationError::SurfaceNotSupplied { id: id.clone() })?;
             check_map(&id, map).map_err(|e| SimulationError::Scene(SceneErrors(vec![e])))?;
             Ok(measured(spec, map, grid))
         }

@@ -1,7 +1,7 @@
 //! The descriptors of `disc.surface`, the disc's initial roughness (see [`super::FIELDS`]).
 
-use crate::scene::{MAX_RMS_HEIGHT_UM, MAX_RMS_SLOPE};
 use crate::scene::field::{Field, Range};
+use crate::scene::{MAX_RMS_HEIGHT_UM, MAX_RMS_SLOPE};
 
 /// `disc.surface`.
 pub(in crate::scene) const SURFACE: Field = Field {
