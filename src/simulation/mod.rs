@@ -33,7 +33,7 @@ pub use estimate::{RunEstimate, describe_duration, describe_size};
 pub use first::{FirstContact, first_contact};
 pub use hardening::FAR_OFF_FRACTION;
 pub use plan::{Plan, parse_scene, parse_scene_str};
-pub use plausibility::check_map;
+pub use plausibility::{RULES_BEGIN, RULES_END, check_map, rules_table};
 pub use result::{
     CycleRecord, Model, ModelChoice, PressureMap, Profile, SimulationResult, Summary, SurfaceReport,
 };

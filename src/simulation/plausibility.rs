@@ -255,6 +255,75 @@ pub fn check_map(id: &str, map: &HeightMap) -> Result<(), FieldError> {
     ))
 }
 
+/// Where `docs/scene.md`'s plausibility table begins (the marker line).
+pub const RULES_BEGIN: &str =
+    "<!-- The plausibility table below is generated from src/simulation/plausibility.rs. -->";
+/// Where it ends (the marker line).
+pub const RULES_END: &str = "<!-- End of the plausibility table. -->";
+
+/// The plausibility rules as `docs/scene.md`'s table, from the thresholds above, between
+/// [`RULES_BEGIN`] and [`RULES_END`] (both included).
+pub fn rules_table() -> String {
+    let rows = [
+        [
+            "contact radius (Hertz's, or the flat punch at the lowest cap) / ball radius"
+                .to_owned(),
+            "`test.load_n`".to_owned(),
+            format!("> {WARN_CONTACT_FRACTION}"),
+            format!("> {REFUSE_CONTACT_FRACTION}"),
+            "Hertz's a << R; above 0.3 the elastic strain passes 19% (a load in mN typed as N)"
+                .to_owned(),
+        ],
+        [
+            "the unworn contact's elastic peak pressure (Hertz's p0)".to_owned(),
+            "`test.load_n`, or a modulus stiffer than diamond".to_owned(),
+            format!("> {} GPa", WARN_PEAK_PRESSURE_PA * 1e-9),
+            format!("> {} GPa", REFUSE_PEAK_PRESSURE_PA * 1e-9),
+            "the hardest metals (hardened steels, about 10 GPa); diamond (70-100 GPa), which no \
+             solid passes (a modulus in MPa typed as GPa)"
+                .to_owned(),
+        ],
+        [
+            "each hardness given".to_owned(),
+            "`disc.hardness_mpa`, `disc.hardness_table[i][1]`".to_owned(),
+            format!("< {WARN_HARDNESS_MPA} MPa"),
+            format!("< {REFUSE_HARDNESS_MPA} MPa"),
+            "softer than annealed pure aluminium (200 MPa); than indium (9 MPa), the softest \
+             metal (a hardness in GPa typed as MPa)"
+                .to_owned(),
+        ],
+        [
+            "the rms height of a measured map".to_owned(),
+            "`disc.surface.id`".to_owned(),
+            String::new(),
+            format!("> {MAX_RMS_HEIGHT_UM} um"),
+            "the synthetic surface's own bound (heights in um read as m)".to_owned(),
+        ],
+        [
+            "the run's estimated wall time or result size".to_owned(),
+            "`test.cycles`".to_owned(),
+            format!(
+                "> {} or > {}",
+                describe_duration(WARN_WALL_S),
+                describe_size(WARN_RESULT_BYTES)
+            ),
+            String::new(),
+            "a hundred times the paper's test (5.9 s, 1.0 MB); estimated from two runs of it"
+                .to_owned(),
+        ],
+    ];
+    let mut out = format!(
+        "{RULES_BEGIN}\n\n| what | field | warned | refused | why |\n|---|---|---|---|---|\n"
+    );
+    for row in rows {
+        out.push_str(&format!("| {} |\n", row.join(" | ")));
+    }
+    out.push('\n');
+    out.push_str(RULES_END);
+    out.push('\n');
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
