@@ -40,17 +40,21 @@ pub(super) struct Derived<'a> {
 
 /// The limits of the contact `scene` describes that it breaks, for a scene whose fields each
 /// passed their own checks (a message here would otherwise really be about one of those
-/// fields): the coupling, then the capacity at the lowest cap, and only when both hold the
-/// resolution.
+/// fields): the coupling and the capacity at the lowest cap. The resolution
+/// ([`resolution`]) is judged only once these and plausibility hold, since a contact they
+/// refuse is sized wrongly too.
 pub(super) fn limits(scene: &Scene, derived: &Derived) -> Vec<FieldError> {
     let mut errors = Vec::new();
     check_coupling(&mut errors, scene, derived.pair);
     if derived.capped {
         check_capacity(&mut errors, scene, derived.lowest);
     }
-    if !errors.is_empty() {
-        return errors;
-    }
+    errors
+}
+
+/// Whether the grid resolves the unworn contact; see [`check_resolution`].
+pub(super) fn resolution(scene: &Scene, derived: &Derived) -> Vec<FieldError> {
+    let mut errors = Vec::new();
     let hertz_m = derived.hertz.contact_radius_m();
     check_resolution(&mut errors, scene, hertz_m, derived.sizing_m);
     errors

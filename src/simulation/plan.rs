@@ -6,7 +6,7 @@
 use serde_json::Value;
 
 use super::estimate::{RunEstimate, estimate};
-use super::feasibility::{Derived, limits};
+use super::feasibility::{Derived, limits, resolution};
 use super::plausibility::judge;
 use super::sizing::{LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m};
 use crate::contact::{ElasticPair, Hertz};
@@ -133,15 +133,23 @@ fn derive(scene: Scene) -> Result<Plan, Vec<FieldError>> {
         capped,
         sizing_m: sizing_radius_m,
     };
-    let errors = limits(&scene, &derived);
-    if !errors.is_empty() {
-        return Err(errors);
-    }
     let cells = plan_grid(&scene.numerics, sizing_radius_m, None).cells;
     let estimate = estimate(&scene, cells);
     let verdict = judge(&scene, &derived, &estimate);
-    if !verdict.refusals.is_empty() {
-        return Err(verdict.refusals);
+    // A field the limits refuse keeps their message (its bound is exact); plausibility
+    // names the slip of the others.
+    let mut errors = limits(&scene, &derived);
+    let refused = |path: &str, errors: &[FieldError]| errors.iter().any(|e| e.path == path);
+    for refusal in verdict.refusals {
+        if !refused(&refusal.path, &errors) {
+            errors.push(refusal);
+        }
+    }
+    if errors.is_empty() {
+        errors = resolution(&scene, &derived);
+    }
+    if !errors.is_empty() {
+        return Err(errors);
     }
     let wear = scene.wear.law(&scene.test, &hardness);
     Ok(Plan {

@@ -73,9 +73,12 @@ impl Verdict {
 /// is what its run is expected to cost.
 pub(super) fn judge(scene: &Scene, derived: &Derived, estimate: &RunEstimate) -> Verdict {
     let mut verdict = Verdict::default();
-    contact_size(&mut verdict, scene, derived);
-    peak_pressure(&mut verdict, scene, derived.hertz);
     hardness(&mut verdict, scene);
+    // A hardness slip sets the contact too (the flat punch F / (pi Y)): named once, there.
+    if verdict.refusals.is_empty() {
+        contact_size(&mut verdict, scene, derived);
+    }
+    peak_pressure(&mut verdict, scene, derived.hertz);
     cost(&mut verdict, scene, estimate);
     verdict
 }
@@ -343,13 +346,14 @@ mod tests {
             .unwrap_or_else(|e| panic!("refused: {e}"))
     }
 
-    /// The message at `path` among `items` (paths and messages), or "" for none.
+    /// The messages at `path` among `items` (paths and messages), one a line; "" for none.
     fn at<'a>(items: impl IntoIterator<Item = (&'a str, &'a str)>, path: &str) -> String {
         items
             .into_iter()
-            .find(|(p, _)| *p == path)
-            .map(|(_, m)| m.to_owned())
-            .unwrap_or_default()
+            .filter(|(p, _)| *p == path)
+            .map(|(_, m)| m)
+            .collect::<Vec<_>>()
+            .join("\n")
     }
 
     fn refused_at(scene: &Scene, path: &str) -> String {
@@ -420,14 +424,14 @@ mod tests {
 
     #[test]
     fn a_peak_pressure_beyond_the_hardest_metals_is_warned() {
-        // A 0.1 mm ball without the cap: p0 ~ R^(-2/3), 30^(2/3) = 9.65 times the paper's
-        // 1.22 GPa = 11.8 GPa.
+        // A 0.1 mm ball without the cap: p0 ~ R^(-2/3), 30^(2/3) = 9.655 times the paper's
+        // 1.2214 GPa = 11.79 GPa.
         let mut scene = Scene::default();
         scene.ball.radius_mm = 0.1;
         scene.wear.plasticity = Switch::Off;
         let message = warned_at(&scene, "test.load_n");
         assert!(
-            message.contains("11.8") && message.contains("hardest metals"),
+            message.contains("11.79 GPa") && message.contains("hardest metals"),
             "{message}"
         );
     }
@@ -456,6 +460,10 @@ mod tests {
         scene.disc.hardness_fit_includes_bulk = false;
         scene.test.cycles = 60;
         let message = refused_at(&scene, "disc.hardness_table[1][1]");
+        assert!(!message.is_empty(), "{:?}", refusals(&scene));
+        // The punch of 5 N at 2.5 / 2.8 MPa is 1.3 mm wide: the hardness's slip, not the
+        // load's, and not the grid's resolution of it.
+        assert_eq!(refusals(&scene).len(), 1, "{:?}", refusals(&scene));
         assert!(
             message.contains("was it in GPa? 2.5 GPa = 2500 MPa"),
             "{message}"
