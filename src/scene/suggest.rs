@@ -35,17 +35,22 @@ pub fn nearest<'a>(typed: &str, candidates: impl IntoIterator<Item = &'a str>) -
         .map(|(_, candidate)| candidate)
 }
 
-/// The scene field meant by the unknown dotted path `typed`: the nearest path, or else a
-/// field of the same (or a near) name in another section (`test.hardness_mpa` finds
-/// `disc.hardness_mpa`).
+/// The scene field meant by the unknown dotted path `typed`: the field of the same object
+/// whose name is nearest, or else a field of the same (or a near) name in another object
+/// (`test.hardness_mpa` finds `disc.hardness_mpa`). Names are compared without their
+/// object's path, so a long shared prefix does not make unrelated names look near.
 pub fn field_path(typed: &str) -> Option<&'static str> {
-    let paths = FIELDS.iter().map(|f| f.path);
-    nearest(typed, paths.clone()).or_else(|| {
-        let key = typed.rsplit('.').next().unwrap_or(typed);
-        let by_key = paths.filter_map(|p| p.rsplit('.').next().map(|k| (k, p)));
-        let names: Vec<(&str, &str)> = by_key.collect();
-        let found = nearest(key, names.iter().map(|(k, _)| *k))?;
-        names.iter().find(|(k, _)| *k == found).map(|(_, p)| *p)
+    let (parent, key) = typed.rsplit_once('.').unwrap_or(("", typed));
+    let split = |path: &'static str| path.rsplit_once('.').unwrap_or(("", path));
+    let siblings: Vec<(&str, &str)> = FIELDS
+        .iter()
+        .map(|f| (split(f.path).1, f.path))
+        .filter(|(_, path)| split(path).0 == parent)
+        .collect();
+    let elsewhere: Vec<(&str, &str)> = FIELDS.iter().map(|f| (split(f.path).1, f.path)).collect();
+    [siblings, elsewhere].into_iter().find_map(|names| {
+        let found = nearest(key, names.iter().map(|(name, _)| *name))?;
+        names.iter().find(|(name, _)| *name == found).map(|(_, path)| *path)
     })
 }
 
@@ -71,6 +76,8 @@ mod tests {
             Some("disc.surface.rms_height_um")
         );
         assert_eq!(field_path("colour"), None);
+        // A long shared path does not make an unrelated name near.
+        assert_eq!(field_path("wear.archard_calibration.__probe__"), None);
     }
 
     #[test]
