@@ -209,10 +209,11 @@ fn a_pipe_gets_the_json_and_a_terminal_a_new_file() {
         .filter_map(|entry| entry.ok()?.file_name().into_string().ok())
         .filter(|name| name.starts_with("result-quick-one-"))
         .collect();
+    // `-` sorts before `.`: the second run's `...-2.json` comes first.
     written.sort();
     assert_eq!(written.len(), 2, "{written:?}");
-    assert!(written[1].ends_with("-2.json"), "{written:?}");
-    let text = std::fs::read_to_string(dir.path().join(&written[0])).expect("read");
+    assert!(written[0].ends_with("-2.json"), "{written:?}");
+    let text = std::fs::read_to_string(dir.path().join(&written[1])).expect("read");
     let result: Value = serde_json::from_str(&text).expect("the result");
     assert_eq!(result["summary"]["cycles"], 2);
 }

@@ -50,7 +50,10 @@ pub fn field_path(typed: &str) -> Option<&'static str> {
     let elsewhere: Vec<(&str, &str)> = FIELDS.iter().map(|f| (split(f.path).1, f.path)).collect();
     [siblings, elsewhere].into_iter().find_map(|names| {
         let found = nearest(key, names.iter().map(|(name, _)| *name))?;
-        names.iter().find(|(name, _)| *name == found).map(|(_, path)| *path)
+        names
+            .iter()
+            .find(|(name, _)| *name == found)
+            .map(|(_, path)| *path)
     })
 }
 
