@@ -189,7 +189,7 @@ fn study(
     }
     let study = study.unwrap_or_default();
     let Some(dir) = slurm.slurm else {
-        let output = study_output(&study, args.output);
+        let output = study_output(&study, args.output.as_deref());
         return tribosim::study::command::study(&StudyArgs {
             study,
             output,
@@ -217,7 +217,7 @@ fn study(
 
 /// Where a local study's summary goes: `output`, standard output when it is a pipe, or a
 /// new file named after the study file when it is a terminal (said on standard error).
-fn study_output(study: &Path, output: Option<PathBuf>) -> Option<PathBuf> {
+fn study_output(study: &Path, output: Option<&Path>) -> Option<PathBuf> {
     let label = study.file_stem().map(|s| s.to_string_lossy().into_owned());
     let name = FileName {
         kind: "study",
@@ -225,7 +225,7 @@ fn study_output(study: &Path, output: Option<PathBuf>) -> Option<PathBuf> {
         date: today(),
     };
     let terminal = std::io::stdout().is_terminal();
-    match destination(output.as_deref(), terminal, Path::new("."), &name) {
+    match destination(output, terminal, Path::new("."), &name) {
         Destination::Asked(path) => Some(path),
         Destination::Chosen(path) => {
             eprintln!(
