@@ -29,12 +29,16 @@ const REFUSE_CONTACT_FRACTION: f64 = 0.3;
 /// beyond any metal disc however the cap spreads it. The paper's is 1.22 GPa.
 const WARN_PEAK_PRESSURE_PA: f64 = 10e9;
 /// Diamond, the hardest solid, has HV 70-100 GPa: no pair of solids bears an elastic peak
-/// pressure above it. A modulus in MPa typed as GPa raises p0 a hundredfold (p0 ~
-/// E*^(2/3)), to 122 GPa from the paper's 1.22.
+/// pressure above it. A ball's radius in m typed as mm raises p0 a hundredfold (p0 ~
+/// R^(-2/3)), to 122 GPa from the paper's 1.22.
 const REFUSE_PEAK_PRESSURE_PA: f64 = 100e9;
 /// Diamond's Young's modulus, 1050-1210 GPa, the stiffest solid's: a modulus above it was
-/// typed in MPa.
+/// typed in MPa (205 GPa as 205000), and is refused.
 const DIAMOND_MODULUS_GPA: f64 = 1210.0;
+/// The smallest ball a tribometer holds: micro-tribometers use 0.5-1 mm balls, colloidal
+/// probes reach 10 um. A smaller radius was typed in m (3 mm as 0.003), and a contact it
+/// cannot hold names it rather than the load.
+const SMALLEST_BALL_MM: f64 = 0.01;
 /// Annealed pure aluminium, about the softest structural metal, has HV 20-25 (200-250 MPa)
 /// and annealed copper HV 40-50; only lead and tin (HV about 5, 50 MPa) and indium (HB
 /// about 1, 9 MPa) are softer. Below this a disc is of lead or tin, or its hardness in GPa
@@ -73,12 +77,17 @@ impl Verdict {
 /// is what its run is expected to cost.
 pub(super) fn judge(scene: &Scene, derived: &Derived, estimate: &RunEstimate) -> Verdict {
     let mut verdict = Verdict::default();
+    moduli(&mut verdict, scene);
+    // A modulus slip sets the peak pressure: named once, there.
+    if verdict.refusals.is_empty() {
+        peak_pressure(&mut verdict, scene, derived.hertz);
+    }
+    let before = verdict.refusals.len();
     hardness(&mut verdict, scene);
     // A hardness slip sets the contact too (the flat punch F / (pi Y)): named once, there.
-    if verdict.refusals.is_empty() {
+    if verdict.refusals.len() == before {
         contact_size(&mut verdict, scene, derived);
     }
-    peak_pressure(&mut verdict, scene, derived.hertz);
     cost(&mut verdict, scene, estimate);
     verdict
 }
@@ -114,6 +123,10 @@ fn contact_size(verdict: &mut Verdict, scene: &Scene, derived: &Derived) {
         ..*derived.hertz
     };
     let slipped_m = sizing_radius_m(&milli, derived.lowest.yield_pa, derived.capped);
+    if let Some((path, hint)) = radius_slip(scene) {
+        verdict.refuse(path, format!("{found}: {hint}"));
+        return;
+    }
     let hint = if slipped_m / ball_m <= WARN_CONTACT_FRACTION {
         format!(
             "was the load in mN? {} mN = {} N gives a contact radius of {} um",
@@ -141,27 +154,10 @@ fn peak_pressure(verdict: &mut Verdict, scene: &Scene, hertz: &Hertz) {
     if p0 <= WARN_PEAK_PRESSURE_PA {
         return;
     }
-    let moduli = [
-        ("ball.youngs_modulus_gpa", scene.ball.youngs_modulus_gpa),
-        ("disc.youngs_modulus_gpa", scene.disc.youngs_modulus_gpa),
-    ];
-    let stiffer = moduli.iter().find(|(_, gpa)| *gpa > DIAMOND_MODULUS_GPA);
-    let (path, hint) = match stiffer {
-        Some((path, gpa)) => (
-            *path,
-            format!(
-                "{} GPa is stiffer than diamond ({DIAMOND_MODULUS_GPA} GPa): was it in MPa? {} \
-                 MPa = {} GPa",
-                num(*gpa),
-                num(*gpa),
-                sig(gpa * 1e-3)
-            ),
-        ),
-        None => (
-            "test.load_n",
-            "check the load (N), the ball's radius (mm) and the moduli (GPa)".to_owned(),
-        ),
-    };
+    let (path, hint) = radius_slip(scene).unwrap_or((
+        "test.load_n",
+        "check the load (N), the ball's radius (mm) and the moduli (GPa)".to_owned(),
+    ));
     let found = format!(
         "the unworn contact's elastic peak pressure is {} GPa (Hertz's p0)",
         sig(p0 * 1e-9)
@@ -179,6 +175,44 @@ fn peak_pressure(verdict: &mut Verdict, scene: &Scene, hertz: &Hertz) {
                  {hint}"
             ),
         );
+    }
+}
+
+/// The ball's radius typed in m, if it is below [`SMALLEST_BALL_MM`]: its path and the
+/// slip in words.
+fn radius_slip(scene: &Scene) -> Option<(&'static str, String)> {
+    let mm = scene.ball.radius_mm;
+    (mm < SMALLEST_BALL_MM).then(|| {
+        let hint = format!(
+            "a ball of {} mm is smaller than any tribometer's (10 um and up): was the radius in \
+             m? {} m = {} mm",
+            num(mm),
+            num(mm),
+            sig(mm * 1e3)
+        );
+        ("ball.radius_mm", hint)
+    })
+}
+
+/// Each modulus against diamond's; see [`DIAMOND_MODULUS_GPA`].
+fn moduli(verdict: &mut Verdict, scene: &Scene) {
+    let moduli = [
+        ("ball.youngs_modulus_gpa", scene.ball.youngs_modulus_gpa),
+        ("disc.youngs_modulus_gpa", scene.disc.youngs_modulus_gpa),
+    ];
+    for (path, gpa) in moduli {
+        if gpa > DIAMOND_MODULUS_GPA {
+            verdict.refuse(
+                path,
+                format!(
+                    "{} GPa is stiffer than diamond ({DIAMOND_MODULUS_GPA} GPa), the stiffest \
+                     solid: was it in MPa? {} MPa = {} GPa",
+                    num(gpa),
+                    num(gpa),
+                    sig(gpa * 1e-3)
+                ),
+            );
+        }
     }
 }
 
@@ -271,7 +305,7 @@ pub fn rules_table() -> String {
         [
             "contact radius (Hertz's, or the flat punch at the lowest cap) / ball radius"
                 .to_owned(),
-            "`test.load_n`".to_owned(),
+            "`test.load_n`, or `ball.radius_mm` below 0.01 mm".to_owned(),
             format!("> {WARN_CONTACT_FRACTION}"),
             format!("> {REFUSE_CONTACT_FRACTION}"),
             "Hertz's a << R; above 0.3 the elastic strain passes 19% (a load in mN typed as N)"
@@ -279,12 +313,19 @@ pub fn rules_table() -> String {
         ],
         [
             "the unworn contact's elastic peak pressure (Hertz's p0)".to_owned(),
-            "`test.load_n`, or a modulus stiffer than diamond".to_owned(),
+            "`test.load_n`, or `ball.radius_mm` below 0.01 mm".to_owned(),
             format!("> {} GPa", WARN_PEAK_PRESSURE_PA * 1e-9),
             format!("> {} GPa", REFUSE_PEAK_PRESSURE_PA * 1e-9),
             "the hardest metals (hardened steels, about 10 GPa); diamond (70-100 GPa), which no \
-             solid passes (a modulus in MPa typed as GPa)"
+             solid passes (a radius in m typed as mm)"
                 .to_owned(),
+        ],
+        [
+            "each Young's modulus".to_owned(),
+            "`ball.youngs_modulus_gpa`, `disc.youngs_modulus_gpa`".to_owned(),
+            String::new(),
+            format!("> {DIAMOND_MODULUS_GPA} GPa"),
+            "stiffer than diamond (a modulus in MPa typed as GPa)".to_owned(),
         ],
         [
             "each hardness given".to_owned(),
@@ -408,16 +449,33 @@ mod tests {
     }
 
     #[test]
-    fn a_peak_pressure_beyond_diamond_names_the_modulus_typed_in_mpa() {
-        // Both moduli a thousandfold raise E* a thousandfold and p0 a hundredfold (p0 ~
-        // E*^(2/3)): 122 GPa from the paper's 1.22.
+    fn a_modulus_or_a_radius_typed_in_another_unit_is_refused_with_the_slip_named() {
+        // One modulus in MPa: E* stays near the ball's, p0 near the paper's; refused anyway.
         let mut scene = Scene::default();
-        scene.ball.youngs_modulus_gpa = 300_000.0;
         scene.disc.youngs_modulus_gpa = 205_000.0;
-        let message = refused_at(&scene, "ball.youngs_modulus_gpa");
+        let message = refused_at(&scene, "disc.youngs_modulus_gpa");
+        assert!(message.contains("stiffer than diamond"), "{message}");
+        assert!(
+            message.contains("was it in MPa? 205000 MPa = 205 GPa"),
+            "{message}"
+        );
+        // Both: p0 would be 122 GPa, named once, at the moduli.
+        scene.ball.youngs_modulus_gpa = 300_000.0;
+        let found = refusals(&scene);
+        let paths: Vec<&str> = found.iter().map(|e| e.path.as_str()).collect();
+        assert_eq!(
+            paths,
+            ["ball.youngs_modulus_gpa", "disc.youngs_modulus_gpa"]
+        );
+        // A 3 mm ball typed in m, without the cap (which refuses it as wider than the ball):
+        // p0 = 1.2214 GPa x 1000^(2/3) = 122 GPa, beyond diamond's hardness.
+        let mut scene = Scene::default();
+        scene.ball.radius_mm = 0.003;
+        scene.wear.plasticity = Switch::Off;
+        let message = refused_at(&scene, "ball.radius_mm");
         assert!(message.contains("above diamond's hardness"), "{message}");
         assert!(
-            message.contains("was it in MPa? 300000 MPa = 300 GPa"),
+            message.contains("was the radius in m? 0.003 m = 3 mm"),
             "{message}"
         );
     }
