@@ -59,14 +59,14 @@ pub enum CommandError {
 }
 
 /// Fits `table` (CSV or JSON) with `scene` (the paper's preset if `None`) and writes the
-/// fit as JSON to `output`, or standard output.
+/// fit as JSON to `output`, or standard output; gives the fit's JSON, for a summary.
 pub fn calibrate_files(
     kind: FitKind,
     table: &Path,
     scene: Option<&Path>,
     output: Option<&Path>,
     options: CommandOptions,
-) -> Result<(), CommandError> {
+) -> Result<serde_json::Value, CommandError> {
     if options.regime_change.is_some() && kind != FitKind::Archard {
         return Err(CommandError::NotForThisFit {
             option: "--regime-change",
@@ -88,10 +88,9 @@ pub fn calibrate_files(
             .into_scene(),
         None => default_scene(),
     };
-    let json = serde_json::to_string_pretty(
-        &calibrate(kind, &parsed, &scene, options).map_err(fit_error)?,
-    )?;
-    match output {
+    let fit = serde_json::to_value(calibrate(kind, &parsed, &scene, options).map_err(fit_error)?)?;
+    let json = serde_json::to_string_pretty(&fit)?;
+    let written = match output {
         Some(path) => std::fs::write(path, json + "\n").map_err(|source| CommandError::Write {
             path: path.to_owned(),
             source,
@@ -100,7 +99,8 @@ pub fn calibrate_files(
             path: PathBuf::from("-"),
             source,
         }),
-    }
+    };
+    written.map(|()| fit)
 }
 
 fn read(path: &Path) -> Result<String, CommandError> {

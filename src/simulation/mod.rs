@@ -4,11 +4,13 @@
 //! service) drives it through a callback and a cancel flag.
 
 mod electrochemistry;
+mod estimate;
 mod feasibility;
 mod first;
 mod growth;
 mod hardening;
 mod plan;
+mod plausibility;
 mod result;
 mod roughness;
 mod run;
@@ -27,9 +29,11 @@ use crate::surface::SurfaceError;
 /// The default cycle-step bound, owned by the scene; here beside [`MAX_STEP`] for the
 /// callers that study the stepping (the benchmarks).
 pub use crate::scene::STEP_CHANGE_BOUND;
+pub use estimate::{RunEstimate, describe_duration, describe_size};
 pub use first::{FirstContact, first_contact};
 pub use hardening::FAR_OFF_FRACTION;
 pub use plan::{Plan, parse_scene, parse_scene_str};
+pub use plausibility::{RULES_BEGIN, RULES_END, check_map, rules_table};
 pub use result::{
     CycleRecord, Model, ModelChoice, PressureMap, Profile, SimulationResult, Summary, SurfaceReport,
 };
