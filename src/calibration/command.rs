@@ -59,14 +59,15 @@ pub enum CommandError {
 }
 
 /// Fits `table` (CSV or JSON) with `scene` (the paper's preset if `None`) and writes the
-/// fit as JSON to `output`, or standard output; its warnings go to standard error too.
+/// fit as JSON to `output`, or standard output; gives the fit's JSON, for a summary (which
+/// shows the fit's warnings).
 pub fn calibrate_files(
     kind: FitKind,
     table: &Path,
     scene: Option<&Path>,
     output: Option<&Path>,
     options: CommandOptions,
-) -> Result<(), CommandError> {
+) -> Result<serde_json::Value, CommandError> {
     let misplaced = [
         (
             "--regime-change",
@@ -114,12 +115,9 @@ pub fn calibrate_files(
             .into_scene(),
         None => default_scene(),
     };
-    let fit = calibrate(kind, &parsed, &scene, options).map_err(fit_error)?;
-    for warning in fit.warnings() {
-        eprintln!("warning: {warning}");
-    }
+    let fit = serde_json::to_value(calibrate(kind, &parsed, &scene, options).map_err(fit_error)?)?;
     let json = serde_json::to_string_pretty(&fit)?;
-    match output {
+    let written = match output {
         Some(path) => std::fs::write(path, json + "\n").map_err(|source| CommandError::Write {
             path: path.to_owned(),
             source,
@@ -128,7 +126,8 @@ pub fn calibrate_files(
             path: PathBuf::from("-"),
             source,
         }),
-    }
+    };
+    written.map(|()| fit)
 }
 
 fn read(path: &Path) -> Result<String, CommandError> {

@@ -82,17 +82,6 @@ pub enum Fit {
     Regimes(Box<RegimeFit>),
 }
 
-impl Fit {
-    /// What the fit assumed that its table may contradict (the Tafel and OCP fits say).
-    pub fn warnings(&self) -> &[String] {
-        match self {
-            Self::Tafel(fit) => &fit.warnings,
-            Self::Ocp(fit) => &fit.warnings,
-            Self::Hardness(_) | Self::Archard(_) | Self::Regimes(_) => &[],
-        }
-    }
-}
-
 /// Fits `table` with `scene`. The Archard fit runs whole simulations (seconds to minutes),
 /// the OCP fit one; the others are immediate.
 pub fn calibrate(

@@ -22,6 +22,7 @@ mod preset;
 mod record;
 mod reference;
 mod sections;
+mod suggest;
 mod surface;
 mod validate;
 
@@ -37,7 +38,7 @@ pub use auto_or::{CycleStep, DomainSize, FixedStrideError, GridSize, SolverThrea
 pub use corrosion::{
     AnodicArea, Corrosion, PAPER_CORROSION_POTENTIAL_V, PAPER_REPASSIVATION_TIME_S,
 };
-pub use error::{FieldError, SceneErrors};
+pub use error::{FieldError, FieldWarning, SceneErrors};
 pub use field::{Field, Range};
 pub use fields::{FIELDS, field};
 pub use parse::{parse_scene, parse_scene_str, parse_scene_str_with, parse_scene_with};
@@ -48,7 +49,7 @@ pub use sections::{
     ArchardCalibration, Ball, DEFAULT_TOLERANCE, Disc, Numerics, PAPER_ARCHARD_CALIBRATION,
     PAPER_CYCLES, PAPER_HARDNESS_TABLE, STEP_CHANGE_BOUND, Switch, TestConditions, Wear,
 };
-pub use surface::{DEFAULT_HURST, MAX_RMS_SLOPE, SurfaceKind, SurfaceSpec};
+pub use surface::{DEFAULT_HURST, MAX_RMS_HEIGHT_UM, MAX_RMS_SLOPE, SurfaceKind, SurfaceSpec};
 
 /// One ball-on-disc test, as the user describes it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

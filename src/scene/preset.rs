@@ -68,9 +68,11 @@ pub(super) fn resolve(json: &Value) -> Result<(Value, &'static str), SceneErrors
         Value::String(name) => {
             let found = known.iter().find(|p| p.name == name);
             if found.is_none() {
+                let meant = super::suggest::nearest(name, known.iter().map(|p| p.name))
+                    .map_or_else(String::new, |p| format!("; did you mean `{p}`?"));
                 errors.push(FieldError::new(
                     "preset",
-                    format!("unknown preset `{name}`; known presets: {}", names()),
+                    format!("unknown preset `{name}`; known presets: {}{meant}", names()),
                 ));
             }
             found

@@ -5,7 +5,7 @@
 
 use crate::corrosion::CorrosionModel;
 use crate::hardness::HardnessLaw;
-use crate::scene::Scene;
+use crate::scene::{FieldWarning, Scene};
 
 use super::result::CycleRecord;
 
@@ -14,8 +14,8 @@ use super::result::CycleRecord;
 /// corrosion model's reason. `None` when k is given, the point was measured in another
 /// test, or the run has no corrosion.
 pub(super) struct Balance {
-    /// The corrosion exceeds the measured total.
-    pub(super) warning: Option<String>,
+    /// The corrosion exceeds the measured total: a warning about the anodic area.
+    pub(super) warning: Option<FieldWarning>,
     /// The share of the measured total the run dissolves.
     pub(super) reason: String,
 }
@@ -56,13 +56,14 @@ pub(super) fn balance(
     let measured = point.wear_volume_mm3;
     let share = wac_at / measured;
     let warning = (wac_at > measured).then(|| {
-        format!(
+        let message = format!(
             "the wear-accelerated corrosion alone, {wac_at:.4e} mm^3 after {at} s, exceeds \
              the total volume measured after {} s ({measured} mm^3, \
              `wear.archard_calibration`), which includes the corrosion: the anodic area \
              dissolves {share:.1} times what was measured",
             point.time_s
-        )
+        );
+        FieldWarning::new("corrosion.anodic_area", message)
     });
     let reason = format!(
         "Archard's k comes from the measured total {measured} mm^3 after {} s, which \

@@ -7,7 +7,7 @@
 use crate::corrosion::{
     AreaInputs, ContactGeometry, CorrosionError, CorrosionModel, real_contact_area_m2,
 };
-use crate::scene::{AnodicArea, Corrosion, Scene};
+use crate::scene::{AnodicArea, Corrosion, FieldWarning, Scene};
 use crate::wear::Groove;
 
 /// The electrochemical cell of a run and the charge passed so far.
@@ -209,7 +209,7 @@ impl<'a> Cell<'a> {
         );
         for warning in self.warnings() {
             reason.push_str("; ");
-            reason.push_str(&warning);
+            reason.push_str(&warning.message);
         }
         reason
     }
@@ -241,32 +241,39 @@ impl<'a> Cell<'a> {
         }
     }
 
-    /// What the run should say about its potentials: the records capped at E_corr and those
-    /// outside the Tafel line's fitted domain.
-    pub(super) fn warnings(&self) -> Vec<String> {
+    /// What the run should say about its potentials, at the anodic area that gave them: the
+    /// records capped at E_corr and those outside the Tafel line's fitted domain.
+    pub(super) fn warnings(&self) -> Vec<FieldWarning> {
+        const AREA: &str = "corrosion.anodic_area";
         let mut warnings = Vec::new();
         if let Some(first) = self.capped.first_cycle {
-            warnings.push(format!(
-                "eq. 18 put the potential above E_corr at {} solved cycle(s), the first at \
+            warnings.push(FieldWarning::new(
+                AREA,
+                format!(
+                    "eq. 18 put the potential above E_corr at {} solved cycle(s), the first at \
                  cycle {first}: the coupled current density i_a A_a / A_c was below the Tafel \
                  line's own current at E_corr ({:.3e} A/cm^2), where eq. 18 does not hold, \
                  and the potential was capped at E_corr ({} V)",
-                self.capped.count,
-                self.model.line_corrosion_current_density_a_m2() * 1e-4,
-                self.model.corrosion_potential_v
+                    self.capped.count,
+                    self.model.line_corrosion_current_density_a_m2() * 1e-4,
+                    self.model.corrosion_potential_v
+                ),
             ));
         }
         if let Some(first) = self.outside.first_cycle {
             let e_corr = self.model.corrosion_potential_v;
-            warnings.push(format!(
-                "the potential during rubbing lay outside the domain the Tafel line was \
+            warnings.push(FieldWarning::new(
+                AREA,
+                format!(
+                    "the potential during rubbing lay outside the domain the Tafel line was \
                  fitted on ({:.3} to {:.3} V) at {} solved cycle(s), the first at cycle \
                  {first} ({:.3} to {:.3} V): a_c and b_c are extrapolated there",
-                e_corr + self.settings.tafel_overpotential_min_v,
-                e_corr + self.settings.tafel_overpotential_max_v,
-                self.outside.count,
-                self.outside.lowest_v,
-                self.outside.highest_v
+                    e_corr + self.settings.tafel_overpotential_min_v,
+                    e_corr + self.settings.tafel_overpotential_max_v,
+                    self.outside.count,
+                    self.outside.lowest_v,
+                    self.outside.highest_v
+                ),
             ));
         }
         warnings
@@ -320,7 +327,11 @@ mod tests {
         assert!(reading.potential_v < -1.1, "{}", reading.potential_v);
         let warnings = cell.warnings();
         assert_eq!(warnings.len(), 1, "{warnings:?}");
-        assert!(warnings[0].contains("first at cycle 3"), "{warnings:?}");
+        assert!(
+            warnings[0].message.contains("first at cycle 3"),
+            "{warnings:?}"
+        );
+        assert_eq!(warnings[0].path, "corrosion.anodic_area");
     }
 
     #[test]

@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::contact::{Grid, Window};
 use crate::corrosion::ReferenceElectrode;
-use crate::scene::Scene;
+use crate::scene::{FieldWarning, Scene};
 use crate::surface::Statistics;
 use crate::wear::{Groove, WearLaw, WearSummary};
 
@@ -26,6 +26,11 @@ pub struct SimulationResult {
     /// its fitted law); absent when there is nothing to say.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
+    /// Each of `warnings` with the dotted path in the scene of the field it is about
+    /// (`test.load_n`), so a page can show it beside the field; absent when there is
+    /// nothing to say.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub field_warnings: Vec<FieldWarning>,
     /// One record per solved cycle.
     pub cycles: Vec<CycleRecord>,
     /// Depth profiles across the track at chosen cycles.

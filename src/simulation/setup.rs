@@ -8,7 +8,7 @@ use crate::contact::{
     ContactSolver, CoupledSolver, DcFft, ElasticPair, Grid, Hertz, Kernel, NormalSolver,
     SolverOptions, split_threads,
 };
-use crate::scene::{Scene, SolverThreads, Switch};
+use crate::scene::{FieldWarning, Scene, SolverThreads, Switch};
 use crate::surface::HeightMap;
 use crate::wear::Groove;
 
@@ -60,8 +60,9 @@ pub struct Setup {
     pub options: SolverOptions,
     /// The decisions, for the result's `models`.
     pub models: Vec<ModelChoice>,
-    /// What in the scene looks wrong without being invalid, for the result's `warnings`.
-    pub warnings: Vec<String>,
+    /// What in the scene looks wrong without being invalid, each with its field's path: the
+    /// plan's, then the hardness points far off their law; for the result's `warnings`.
+    pub warnings: Vec<FieldWarning>,
     /// The disc's initial roughness on the first grid; `None` for a smooth disc.
     pub surface: Option<DiscSurface>,
 }
@@ -153,8 +154,9 @@ impl Setup {
             }
             models.push(surface.model.clone());
         }
-        let (hardening, warnings) = work_hardening_report(&scene.disc, plan.hardness());
+        let (hardening, far_off) = work_hardening_report(&scene.disc, plan.hardness());
         models.push(hardening);
+        let warnings = plan.warnings().iter().cloned().chain(far_off).collect();
         Ok(Self {
             plan: plan.clone(),
             grid,
@@ -165,6 +167,11 @@ impl Setup {
             warnings,
             surface,
         })
+    }
+
+    /// The warnings as the result's `warnings` carries them, `path: message`.
+    pub fn warning_lines(&self) -> Vec<String> {
+        self.warnings.iter().map(ToString::to_string).collect()
     }
 
     /// The scene, defaults filled in.
