@@ -18,8 +18,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
 use serde_json::{Value, json};
-use tribosim::scene::Scene;
-use tribosim::simulation::{parse_scene, run};
+use tribosim::simulation::{Plan, parse_scene, run};
 use tribosim::study::{MAX_MEMBERS, Study};
 
 /// Cycles each example runs when it allows: the first, cold solve and two warm ones.
@@ -118,25 +117,25 @@ fn with_cycles(document: &Value, cycles: u64) -> Value {
 }
 
 /// The scene of `document` cut to [`FEW_CYCLES`] where the scene allows it, else as given.
-fn few_cycles(document: &Value, origin: &str) -> Scene {
+fn few_cycles(document: &Value, origin: &str) -> Plan {
     let given = parse_scene(document)
         .unwrap_or_else(|e| panic!("{origin}: the example is refused: {e}\n{document}"));
-    if given.test.cycles <= FEW_CYCLES {
+    if given.scene().test.cycles <= FEW_CYCLES {
         return given;
     }
     parse_scene(&with_cycles(document, FEW_CYCLES)).unwrap_or(given)
 }
 
 /// Runs `scene` to its last cycle.
-fn run_scene(scene: &Scene, origin: &str) {
+fn run_scene(plan: &Plan, origin: &str) {
     let started = std::time::Instant::now();
-    let result = run(scene, &mut |_| {}, &AtomicBool::new(false))
-        .unwrap_or_else(|e| panic!("{origin}: {e}"));
+    let result =
+        run(plan, &mut |_| {}, &AtomicBool::new(false)).unwrap_or_else(|e| panic!("{origin}: {e}"));
     let last = result.cycles.last().map(|c| c.cycle);
-    assert_eq!(last, Some(scene.test.cycles), "{origin}");
+    assert_eq!(last, Some(plan.scene().test.cycles), "{origin}");
     println!(
         "{origin}: {} cycles in {:.1} s",
-        scene.test.cycles,
+        plan.scene().test.cycles,
         started.elapsed().as_secs_f64()
     );
 }
@@ -150,12 +149,15 @@ fn run_example(text: &str, origin: &str) -> usize {
         }
         Example::Study(mut study) => {
             let base = few_cycles(&study["base"], origin);
-            study["base"] = with_cycles(&study["base"], base.test.cycles);
+            study["base"] = with_cycles(&study["base"], base.scene().test.cycles);
             let members = Study::parse(&study.to_string())
                 .and_then(|s| s.members(MAX_MEMBERS))
                 .unwrap_or_else(|e| panic!("{origin}: the study is refused: {e}"));
             for member in &members {
-                run_scene(&member.scene, &format!("{origin}, member {}", member.index));
+                let origin = format!("{origin}, member {}", member.index);
+                let plan = Plan::new(member.scene.clone())
+                    .unwrap_or_else(|e| panic!("{origin}: the member is refused: {e}"));
+                run_scene(&plan, &origin);
             }
             members.len()
         }

@@ -20,7 +20,7 @@ use std::sync::atomic::AtomicBool;
 
 use common::physics::LOAD_CHECK;
 use tribosim::simulation::{
-    Model, PressureMap, Setup, SimulationResult, parse_scene_str, run_setup,
+    Model, PressureMap, RunOptions, Setup, SimulationResult, parse_scene_str, run_setup,
 };
 
 /// Cycles each rough disc runs: the first (a cold solve), then the two warm solves on
@@ -40,11 +40,12 @@ const VOLUME_ROUNDOFF: f64 = 1e-9;
 /// setup it ran with.
 fn run_checked(text: &str) -> (SimulationResult, Setup) {
     let scene = parse_scene_str(text).unwrap_or_else(|e| panic!("{text}: {e}"));
-    let setup = Setup::new(&scene).unwrap_or_else(|e| panic!("{text}: {e}"));
+    let setup =
+        Setup::new(&scene, &RunOptions::default()).unwrap_or_else(|e| panic!("{text}: {e}"));
     let started = std::time::Instant::now();
     let result = run_setup(&setup, &mut |_| {}, &AtomicBool::new(false))
         .unwrap_or_else(|e| panic!("{text}: {e}"));
-    let cycles = setup.scene.test.cycles;
+    let cycles = setup.scene().test.cycles;
     assert_eq!(
         result.cycles.last().map(|c| c.cycle),
         Some(cycles),
@@ -52,14 +53,14 @@ fn run_checked(text: &str) -> (SimulationResult, Setup) {
     );
     for map in &result.pressure_maps {
         let carried = carried_load_n(map);
-        let load = setup.scene.load_n();
+        let load = setup.scene().load_n();
         assert!(
             (carried / load - 1.0).abs() < LOAD_CHECK,
             "{text}: cycle {} carries {carried} N of {load} N",
             map.cycle
         );
     }
-    let yield_factor = setup.scene.disc.yield_factor;
+    let yield_factor = setup.scene().disc.yield_factor;
     for record in &result.cycles {
         let cap_mpa = record.hardness_mpa / yield_factor;
         assert!(
@@ -69,13 +70,11 @@ fn run_checked(text: &str) -> (SimulationResult, Setup) {
             record.max_pressure_mpa
         );
     }
-    let archard_mm3: f64 = (1..=cycles)
-        .map(|n| {
-            setup.archard_k_at(n) * setup.scene.load_n() * setup.scene.track_length_m()
-                / setup.hardness.hardness_pa(n as f64)
-                * 1e9
-        })
-        .sum();
+    let plan = &setup.plan;
+    let archard_mm3 = plan.wear().depth_scale(1..cycles + 1, plan.hardness())
+        * plan.scene().load_n()
+        * plan.scene().track_length_m()
+        * 1e9;
     let worn_mm3 = result.summary.wear_volume_mm3;
     assert!(
         worn_mm3 >= archard_mm3 * (1.0 - VOLUME_ROUNDOFF),
