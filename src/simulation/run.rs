@@ -108,6 +108,8 @@ struct Run<'a, F> {
     maps: Vec<PressureMap>,
     solves: usize,
     iterations: usize,
+    /// Solves that stalled with the free-set preconditioner and fell back to the whole grid.
+    fallback_solves: usize,
     max_step: u64,
     /// Window fractions of the solvers of grids grown out of.
     window_fractions: WindowFractions,
@@ -135,6 +137,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             maps: Vec::new(),
             solves: 0,
             iterations: 0,
+            fallback_solves: 0,
             max_step: 1,
             window_fractions: WindowFractions::default(),
         }
@@ -246,6 +249,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let solution = solved.map_err(|source| SimulationError::Contact { cycle, source })?;
         self.solves += 1;
         self.iterations += solution.iterations;
+        self.fallback_solves += usize::from(solution.preconditioner_fallbacks > 0);
         Ok((solution, separation))
     }
 
@@ -446,16 +450,23 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 numerics.cycle_step_bound * 100.0
             ),
         });
+        let mut window = format!(
+            "each solve on the last contact's bounding box plus {:.0}% (at least {} cells), checked on the cells that could touch: on average {:.0}% of the grid's cells solved, {:.0}% checked",
+            100.0 * MARGIN_FRACTION,
+            MIN_MARGIN,
+            100.0 * self.window_fractions.solved / self.solves as f64,
+            100.0 * self.window_fractions.checked / self.solves as f64
+        );
+        if self.fallback_solves > 0 {
+            window += &format!(
+                "; the free-set preconditioner stalled and fell back to the whole grid in {} of {} solves",
+                self.fallback_solves, self.solves
+            );
+        }
         models.push(ModelChoice {
             name: Model::SolveWindow,
             active: true,
-            reason: format!(
-                "each solve on the last contact's bounding box plus {:.0}% (at least {} cells), checked on the cells that could touch: on average {:.0}% of the grid's cells solved, {:.0}% checked",
-                100.0 * MARGIN_FRACTION,
-                MIN_MARGIN,
-                100.0 * self.window_fractions.solved / self.solves as f64,
-                100.0 * self.window_fractions.checked / self.solves as f64
-            ),
+            reason: window,
         });
         let law = setup.plan.wear().choice();
         models.push(ModelChoice {
