@@ -83,9 +83,19 @@ enum Command {
         /// Hardness: fit the table alone, without the scene's bulk hardness at n = 1.
         #[arg(long)]
         no_bulk: bool,
-        /// Tafel: E_corr in V, instead of the potential of the smallest current.
+        /// Tafel: E_corr in V, against the scene's reference electrode (else the scene's own
+        /// with `--scene`, else where the measured current changes sign).
         #[arg(long, value_name = "V", allow_hyphen_values = true)]
         e_corr: Option<f64>,
+        /// OCP: when the rubbing started, s on the table's clock (the table is then the
+        /// whole trace; without it every row is during the rubbing and `time_s` is the
+        /// rubbing time).
+        #[arg(long, value_name = "S")]
+        rubbing_start: Option<f64>,
+        /// OCP: when the rubbing stopped, s on the table's clock (the table's end if
+        /// absent).
+        #[arg(long, value_name = "S")]
+        rubbing_stop: Option<f64>,
         /// Archard: also fit a k up to this cycle and another after it (`auto`: the cycle
         /// too), and compare with one k; the scene gets the better model.
         #[arg(long, value_name = "CYCLE|auto")]
@@ -282,11 +292,16 @@ fn main() -> ExitCode {
             output,
             no_bulk,
             e_corr,
+            rubbing_start,
+            rubbing_stop,
             regime_change,
         } => {
             let options = CommandOptions {
                 without_bulk: no_bulk,
                 corrosion_potential_v: e_corr,
+                scene_given: scene.is_some(),
+                rubbing_start_s: rubbing_start,
+                rubbing_stop_s: rubbing_stop,
                 regime_change,
             };
             calibrate(fit, &table, scene.as_deref(), output.as_deref(), options)

@@ -280,13 +280,13 @@ fn a_3600_cycle_track_outgrows_the_papers_domain_and_the_auto_domain_grows() {
 #[test]
 fn zero_archard_coefficient_without_yielding_leaves_the_disc_unworn() {
     // Nothing wears, nothing yields: zero volume exactly, the potential stays at E_corr (no
-    // depassivated track), and the unchanging surface lets cycle stepping take its longest
+    // worn track to depassivate, with the wear track as the anode), and the unchanging surface lets cycle stepping take its longest
     // steps (measured: 14 solves for 300 cycles, the steps cut at the record cycles 10, 60
     // and 300).
     let s = scene(
         r#"{"preset": "dalmau2018-316l", "overrides": {
             "wear": {"archard_k": 0, "plasticity": "off"}, "test": {"cycles": 300},
-            "numerics": {"grid": 32}}}"#,
+            "numerics": {"grid": 32}, "corrosion": {"anodic_area": "wear_track"}}}"#,
     );
     let result = simulate(&s).expect("runs");
     assert_finite(&result);
@@ -456,7 +456,8 @@ fn a_wear_track_larger_than_the_exposed_electrode_fails_by_name() {
     // 1 mm^2 exposed against a track of about 18.8 mm x 0.1 mm: no cathode left.
     let s = scene(
         r#"{"preset": "dalmau2018-316l", "overrides": {
-            "corrosion": {"exposed_area_cm2": 0.01}, "numerics": {"grid": 32}}}"#,
+            "corrosion": {"exposed_area_cm2": 0.01, "anodic_area": "wear_track"},
+            "numerics": {"grid": 32}}}"#,
     );
     match simulate(&s) {
         Err(SimulationError::Corrosion {

@@ -379,3 +379,67 @@ async fn a_hardness_calibration_over_http_gives_the_numbers_of_tribosim_calibrat
         );
     }
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_ocp_trace_over_http_fits_the_repassivation_time_as_tribosim_calibrate() {
+    let dir = TempDir::new("calibration-ocp-http");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let table_path = root.join("docs/calibration/paper_ocp_trace.csv");
+    let cli_output = dir.path().join("fit.json");
+    let status = Command::new(env!("CARGO_BIN_EXE_tribosim"))
+        .args(["calibrate", "ocp"])
+        .arg(&table_path)
+        .args(["--rubbing-start", "3600", "--rubbing-stop", "7200", "-o"])
+        .arg(&cli_output)
+        .status()
+        .expect("run tribosim calibrate");
+    assert!(status.success());
+    let cli: Value =
+        serde_json::from_slice(&std::fs::read(&cli_output).expect("read")).expect("JSON");
+
+    let server = server(&dir.path().join("data"), &[]);
+    let client = reqwest::Client::new();
+    let url = server.url("/api/v1/calibrations");
+    let table = std::fs::read_to_string(&table_path).expect("read the table");
+    let options = json!({"rubbing_start_s": 3600, "rubbing_stop_s": 7200});
+    let request = json!({"kind": "ocp", "table": table, "options": options});
+    let (code, started) = post(&client, &url, &request).await;
+    assert_eq!(code, 202, "{started}");
+    let id = started["id"].as_str().expect("id");
+    let fit = wait_for(
+        &client,
+        &server.url(&format!("/api/v1/calibrations/{id}")),
+        |c| c["status"] != "running",
+    )
+    .await;
+    assert_eq!(fit["status"], "succeeded", "{fit}");
+    assert_eq!(fit["result"], cli, "the same fit, to the last digit");
+    assert_eq!(fit["result"]["parameter"], "repassivation_time_s");
+
+    // Refused before any run: a rubbing time on another fit (the option named), a stop
+    // without its start (the table's field).
+    let (code, error) = post(
+        &client,
+        &url,
+        &json!({"kind": "tafel", "table": table, "options": {"rubbing_start_s": 3600}}),
+    )
+    .await;
+    assert_eq!(code, 422, "{error}");
+    assert_eq!(
+        error["fields"][0]["path"], "options.rubbing_start_s",
+        "{error}"
+    );
+    let (code, error) = post(
+        &client,
+        &url,
+        &json!({"kind": "ocp", "table": table, "options": {"rubbing_stop_s": 7200}}),
+    )
+    .await;
+    assert_eq!(code, 422, "{error}");
+    assert!(
+        error["error"]
+            .as_str()
+            .is_some_and(|m| m.contains("rubbing start")),
+        "{error}"
+    );
+}

@@ -59,7 +59,8 @@ pub enum CommandError {
 }
 
 /// Fits `table` (CSV or JSON) with `scene` (the paper's preset if `None`) and writes the
-/// fit as JSON to `output`, or standard output; gives the fit's JSON, for a summary.
+/// fit as JSON to `output`, or standard output; gives the fit's JSON, for a summary (which
+/// shows the fit's warnings).
 pub fn calibrate_files(
     kind: FitKind,
     table: &Path,
@@ -67,11 +68,37 @@ pub fn calibrate_files(
     output: Option<&Path>,
     options: CommandOptions,
 ) -> Result<serde_json::Value, CommandError> {
-    if options.regime_change.is_some() && kind != FitKind::Archard {
-        return Err(CommandError::NotForThisFit {
-            option: "--regime-change",
-            applies_to: "archard",
-        });
+    let misplaced = [
+        (
+            "--regime-change",
+            "archard",
+            options.regime_change.is_some(),
+            FitKind::Archard,
+        ),
+        (
+            "--e-corr",
+            "tafel",
+            options.corrosion_potential_v.is_some(),
+            FitKind::Tafel,
+        ),
+        (
+            "--rubbing-start",
+            "ocp",
+            options.rubbing_start_s.is_some(),
+            FitKind::Ocp,
+        ),
+        (
+            "--rubbing-stop",
+            "ocp",
+            options.rubbing_stop_s.is_some(),
+            FitKind::Ocp,
+        ),
+    ];
+    if let Some(&(option, applies_to, ..)) = misplaced
+        .iter()
+        .find(|&&(_, _, given, fit)| given && fit != kind)
+    {
+        return Err(CommandError::NotForThisFit { option, applies_to });
     }
     let text = read(table)?;
     let fit_error = |source: CalibrationError| CommandError::Fit {

@@ -110,7 +110,14 @@ impl Setup {
             wear_volume_mm3: last.map_or(0.0, |c| c.wear_volume_mm3),
             max_depth_um: last.map_or(0.0, |c| c.max_depth_um),
             wac_volume_mm3: last.and_then(|c| c.wac_volume_mm3),
+            total_volume_mm3: last.and_then(|c| c.total_volume_mm3),
+            charge_c: last.and_then(|c| c.charge_c),
             potential_v: last.and_then(|c| c.potential_v),
+            potential_reference: self
+                .scene()
+                .corrosion
+                .as_ref()
+                .map(|c| c.reference_electrode),
             wear: self.plan.wear().summary(),
             wall_s,
             solves: cycles.len(),

@@ -15,6 +15,7 @@ import { cancel } from "./steps/cancel.mjs";
 import { compare } from "./steps/compare.mjs";
 import { form } from "./steps/form.mjs";
 import { measurements } from "./steps/measurements.mjs";
+import { ocp } from "./steps/ocp.mjs";
 import { rough } from "./steps/rough.mjs";
 import { run } from "./steps/run.mjs";
 import { study } from "./steps/study.mjs";
@@ -40,7 +41,7 @@ try {
   page.on("pageerror", (e) => errors.push(String(e)));
   // What one step finds and a later one uses (the runs' ids, the run's length, ...).
   const found = {};
-  for (const scenario of [form, run, measurements, compare, access, study, calibration, cancel, rough]) {
+  for (const scenario of [form, run, measurements, compare, access, study, calibration, cancel, rough, ocp]) {
     await scenario(page, found);
   }
   assert.deepEqual(errors, [], "errors in the page");

@@ -147,6 +147,7 @@ fn partial(
         cycles,
         profiles: Vec::new(),
         pressure_maps: Vec::new(),
+        ocp_trace: Vec::new(),
         summary,
     })
 }
