@@ -2,21 +2,23 @@
 //! inspect its first contact, list presets, fit parameters to measurements, run a study,
 //! or print the speed-against-error tables.
 
-use std::io::Write;
+mod cli;
+
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::atomic::AtomicBool;
 
 use clap::{Args, Parser, Subcommand};
-use indicatif::{ProgressBar, ProgressStyle};
 
 use tribosim::bench::{self, BenchTarget};
 use tribosim::calibration::{ChangeCycle, CommandOptions, FitKind, calibrate_files};
-use tribosim::scene::{SurfaceSpec, presets};
-use tribosim::simulation::{Plan, RunOptions, first_contact, parse_scene_str, run_with};
+use tribosim::scene::presets;
+use tribosim::simulation::first_contact;
 use tribosim::study::command::StudyArgs;
 use tribosim::study::slurm::{CollectArgs, SlurmOptions, collect, write_dir};
-use tribosim::surface::{HeightMap, read_file as read_surface};
+
+use cli::output::{Destination, FileName, destination, today, write_json};
+use cli::run::{SurfaceFile, read_scene, run_scene};
 
 #[derive(Parser)]
 #[command(
@@ -41,7 +43,8 @@ enum Command {
         /// The scene (JSON; may be {"preset": ..., "overrides": ...}); `-` reads standard
         /// input.
         scene: PathBuf,
-        /// Where to write the result; standard output if absent.
+        /// Where to write the result; if absent, standard output when it is a pipe, or a new
+        /// `result-<name>-<date>.json` here when it is a terminal.
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// A measured height map for the disc: Gwyddion .gsf, three columns x y z in m, or
@@ -73,15 +76,26 @@ enum Command {
         /// The scene to fill in (JSON); the paper's preset if absent.
         #[arg(long)]
         scene: Option<PathBuf>,
-        /// Where to write the fit; standard output if absent.
+        /// Where to write the fit; standard output if absent. A readable summary goes to
+        /// standard error either way.
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// Hardness: fit the table alone, without the scene's bulk hardness at n = 1.
         #[arg(long)]
         no_bulk: bool,
-        /// Tafel: E_corr in V, instead of the potential of the smallest current.
+        /// Tafel: E_corr in V, against the scene's reference electrode (else the scene's own
+        /// with `--scene`, else where the measured current changes sign).
         #[arg(long, value_name = "V", allow_hyphen_values = true)]
         e_corr: Option<f64>,
+        /// OCP: when the rubbing started, s on the table's clock (the table is then the
+        /// whole trace; without it every row is during the rubbing and `time_s` is the
+        /// rubbing time).
+        #[arg(long, value_name = "S")]
+        rubbing_start: Option<f64>,
+        /// OCP: when the rubbing stopped, s on the table's clock (the table's end if
+        /// absent).
+        #[arg(long, value_name = "S")]
+        rubbing_stop: Option<f64>,
         /// Archard: also fit a k up to this cycle and another after it (`auto`: the cycle
         /// too), and compare with one k; the scene gets the better model.
         #[arg(long, value_name = "CYCLE|auto")]
@@ -102,7 +116,8 @@ enum Command {
         /// The most members the study may have.
         #[arg(long, default_value_t = tribosim::study::MAX_MEMBERS)]
         max_members: usize,
-        /// Where to write the summary; standard output if absent.
+        /// Where to write the summary; if absent, standard output when it is a pipe, or a
+        /// new `study-<file>-<date>.json` here when it is a terminal.
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// Also write the summary table as CSV here.
@@ -184,9 +199,14 @@ fn study(
     }
     let study = study.unwrap_or_default();
     let Some(dir) = slurm.slurm else {
-        return tribosim::study::command::study(&StudyArgs { study, ..args })
-            .map(drop)
-            .map_err(|e| e.to_string());
+        let output = study_output(&study, args.output.as_deref());
+        return tribosim::study::command::study(&StudyArgs {
+            study,
+            output,
+            ..args
+        })
+        .map(drop)
+        .map_err(|e| e.to_string());
     };
     let tribosim = match slurm.tribosim {
         Some(path) => std::path::absolute(&path),
@@ -205,96 +225,41 @@ fn study(
     write_dir(&study, &options).map_err(|e| e.to_string())
 }
 
-fn read_scene(path: &Path) -> Result<Plan, String> {
-    let text = if path == Path::new("-") {
-        std::io::read_to_string(std::io::stdin())
-            .map_err(|e| format!("cannot read the scene from standard input: {e}"))?
-    } else {
-        std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?
+/// Where a local study's summary goes: `output`, standard output when it is a pipe, or a
+/// new file named after the study file when it is a terminal (said on standard error).
+fn study_output(study: &Path, output: Option<&Path>) -> Option<PathBuf> {
+    let label = study.file_stem().map(|s| s.to_string_lossy().into_owned());
+    let name = FileName {
+        kind: "study",
+        label: label.as_deref().unwrap_or("study"),
+        date: today(),
     };
-    parse_scene_str(&text).map_err(|errors| {
-        let lines: Vec<String> = errors.0.iter().map(|e| format!("  {e}")).collect();
-        format!("invalid scene {}:\n{}", path.display(), lines.join("\n"))
-    })
-}
-
-fn write_json(value: &impl serde::Serialize, output: Option<&Path>) -> Result<(), String> {
-    let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())?;
-    match output {
-        Some(path) => write_whole(path, &(text + "\n"))
-            .map_err(|e| format!("cannot write {}: {e}", path.display())),
-        None => writeln!(std::io::stdout(), "{text}").map_err(|e| e.to_string()),
-    }
-}
-
-/// Writes `text` to a temporary file beside `path`, then renames it into place: a reader
-/// (`tribosim study collect` while a cluster's tasks still run) sees the whole file or none.
-fn write_whole(path: &Path, text: &str) -> std::io::Result<()> {
-    let mut temporary = path.as_os_str().to_owned();
-    temporary.push(format!(".{}.tmp", std::process::id()));
-    std::fs::write(&temporary, text)?;
-    std::fs::rename(&temporary, path).inspect_err(|_| {
-        let _ = std::fs::remove_file(&temporary);
-    })
-}
-
-/// A measured surface given on the command line.
-struct SurfaceFile<'a> {
-    path: &'a Path,
-    pixel_um: Option<f64>,
-    remove_tilt: bool,
-}
-
-/// The map of `file`, and `plan`'s scene with `disc.surface` naming it, checked again.
-fn with_surface(plan: Plan, file: &SurfaceFile) -> Result<(Plan, HeightMap), String> {
-    let (map, _) = read_surface(file.path, file.pixel_um.map(|um| um * 1e-6))
-        .map_err(|e| format!("surface {}: {e}", file.path.display()))?;
-    let id = file.path.file_name().map_or_else(
-        || file.path.display().to_string(),
-        |n| n.to_string_lossy().into_owned(),
-    );
-    let mut scene = plan.into_scene();
-    scene.disc.surface = Some(SurfaceSpec::measured(&id, file.remove_tilt));
-    Ok((Plan::new(scene).map_err(|e| e.to_string())?, map))
-}
-
-fn run_scene(
-    path: &Path,
-    output: Option<&Path>,
-    surface: Option<&SurfaceFile>,
-) -> Result<(), String> {
-    let plan = read_scene(path)?;
-    let (plan, map) = match surface {
-        Some(file) => {
-            let (plan, map) = with_surface(plan, file)?;
-            (plan, Some(map))
+    let terminal = std::io::stdout().is_terminal();
+    match destination(output, terminal, Path::new("."), &name) {
+        Destination::Asked(path) => Some(path),
+        Destination::Chosen(path) => {
+            eprintln!(
+                "the summary goes to {} (standard output is a terminal: `-o FILE` names the \
+                 file, a pipe gets the JSON)",
+                path.display()
+            );
+            Some(path)
         }
-        None => (plan, None),
-    };
-    // indicatif draws nothing when standard error is not a terminal, so logs stay clean.
-    let bar = ProgressBar::new(plan.scene().test.cycles);
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{elapsed_precise} [{bar:40}] cycle {pos}/{len}, {per_sec}, {eta} left {msg}",
-        )
-        .map_err(|e| e.to_string())?,
-    );
-    let mut on_cycle = |record: &tribosim::simulation::CycleRecord| {
-        bar.set_position(record.cycle);
-        bar.set_message(format!("V = {:.3e} mm3", record.wear_volume_mm3));
-    };
-    let options = RunOptions {
-        surface: map.as_ref(),
-        ..RunOptions::default()
-    };
-    let result = run_with(&plan, &options, &mut on_cycle, &AtomicBool::new(false));
-    bar.finish_and_clear();
-    let result = result.map_err(|e| e.to_string())?;
-    write_json(&result, output)?;
-    for warning in &result.warnings {
-        eprintln!("warning: {warning}");
+        Destination::Stdout => None,
     }
-    eprintln!("{}", result.summary);
+}
+
+/// `tribosim calibrate`: the fit's JSON to `output` (or standard output), its readable
+/// summary to standard error.
+fn calibrate(
+    fit: FitKind,
+    table: &Path,
+    scene: Option<&Path>,
+    output: Option<&Path>,
+    options: CommandOptions,
+) -> Result<(), String> {
+    let fitted = calibrate_files(fit, table, scene, output, options).map_err(|e| e.to_string())?;
+    eprint!("{}", cli::summary::readable(&fitted));
     Ok(())
 }
 
@@ -318,8 +283,8 @@ fn main() -> ExitCode {
         }
         Command::Contact { scene } => read_scene(&scene)
             .and_then(|s| first_contact(&s).map_err(|e| e.to_string()))
-            .and_then(|c| write_json(&c, None)),
-        Command::Presets => write_json(&presets(), None),
+            .and_then(|c| write_json(&c, &Destination::Stdout)),
+        Command::Presets => write_json(&presets(), &Destination::Stdout),
         Command::Calibrate {
             fit,
             table,
@@ -327,15 +292,19 @@ fn main() -> ExitCode {
             output,
             no_bulk,
             e_corr,
+            rubbing_start,
+            rubbing_stop,
             regime_change,
         } => {
             let options = CommandOptions {
                 without_bulk: no_bulk,
                 corrosion_potential_v: e_corr,
+                scene_given: scene.is_some(),
+                rubbing_start_s: rubbing_start,
+                rubbing_stop_s: rubbing_stop,
                 regime_change,
             };
-            calibrate_files(fit, &table, scene.as_deref(), output.as_deref(), options)
-                .map_err(|e| e.to_string())
+            calibrate(fit, &table, scene.as_deref(), output.as_deref(), options)
         }
         Command::Study {
             action,

@@ -79,7 +79,10 @@ fn a_change_of_regime_through_the_command_line() {
         .iter()
         .filter(|r| [10, 40, 70, 100, 140, 200].contains(&r.cycle))
     {
-        csv.push_str(&format!("{},{:e}\n", record.cycle, record.wear_volume_mm3));
+        // What a profilometer measures, and what the fit compares with when the scene has
+        // corrosion: the total, wear plus WAC.
+        let total = record.total_volume_mm3.expect("the preset has corrosion");
+        csv.push_str(&format!("{},{:e}\n", record.cycle, total));
     }
     let table = scratch("regime_table.csv");
     std::fs::write(&table, csv).expect("written");
@@ -125,4 +128,49 @@ fn bad_change_cycles_are_refused_by_the_command_line() {
     let hardness = "docs/calibration/table3_hardness.csv";
     let stderr = refused(&["hardness", hardness, "--regime-change", "300"]);
     assert!(stderr.contains("`calibrate archard` only"), "{stderr}");
+}
+
+#[test]
+fn the_papers_ocp_trace_through_the_command_line() {
+    // docs/calibration/paper_ocp_trace.csv: an hour at E_corr, then the potentials of
+    // A_a = 50 F / H for 3600 s of rubbing (the default run: a few seconds).
+    let out = scratch("ocp_trace_fit.json");
+    let output = calibrate(&[
+        "ocp",
+        "docs/calibration/paper_ocp_trace.csv",
+        "--rubbing-start",
+        "3600",
+        "--rubbing-stop",
+        "7200",
+        "-o",
+        out.to_str().expect("utf-8 path"),
+    ]);
+    assert!(output.status.success(), "{output:?}");
+    let fit: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).expect("written")).expect("JSON");
+    assert_eq!(fit["parameter"], "repassivation_time_s");
+    let tau = fit["repassivation_time_s"]["value"].as_f64().expect("tau");
+    assert!((tau - 0.148).abs() <= 0.5e-3, "{fit}");
+    let phases: Vec<&str> = fit["points"]
+        .as_array()
+        .expect("points")
+        .iter()
+        .map(|p| p["phase"].as_str().expect("a phase"))
+        .collect();
+    assert_eq!(phases[..3], ["before"; 3]);
+    assert_eq!(phases[3..], ["rubbing"; 5]);
+    assert_eq!(fit["scene"]["test"]["ocp_before_s"], 3600.0);
+    // An option of another fit is refused by name.
+    let output = calibrate(&[
+        "tafel",
+        "docs/calibration/paper_ocp.csv",
+        "--rubbing-start",
+        "3600",
+    ]);
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("--rubbing-start applies to `calibrate ocp` only"),
+        "{stderr}"
+    );
 }

@@ -55,6 +55,30 @@ fn scene_tables_are_the_generated_ones() {
     );
 }
 
+#[test]
+fn scene_plausibility_table_is_the_generated_one() {
+    let text = read_doc("scene.md");
+    let begin = text.find(simulation::RULES_BEGIN);
+    let end = text.find(simulation::RULES_END);
+    let (Some(begin), Some(end)) = (begin, end) else {
+        panic!("docs/scene.md lacks the plausibility table's markers");
+    };
+    let end = (end + simulation::RULES_END.len() + 1).min(text.len());
+    let generated = simulation::rules_table();
+    if text[begin..end] == generated {
+        return;
+    }
+    if std::env::var_os("TRIBOSIM_WRITE_DOCS").is_some() {
+        let updated = format!("{}{generated}{}", &text[..begin], &text[end..]);
+        std::fs::write(doc_path("scene.md"), updated).expect("docs/scene.md is writable");
+        return;
+    }
+    panic!(
+        "docs/scene.md's plausibility table differs from src/simulation/plausibility.rs; \
+         regenerate it with\n  {REGENERATE}\n--- generated ---\n{generated}"
+    );
+}
+
 /// The document `{a: {b: {...: leaf}}}` for the path `[a, b, ...]`.
 fn nested(path: &[String], leaf: Value) -> Value {
     path.iter().rev().fold(leaf, |inner, key| {

@@ -93,6 +93,8 @@ async fn a_study_over_http_summarises_as_tribosim_study_does() {
     let (code, study) = post(&client, &server.url("/api/v1/studies"), &two_by_two()).await;
     assert_eq!(code, 201, "{study}");
     assert_eq!(study["members"].as_array().map(Vec::len), Some(4));
+    // Named after its base (the preset's name), not its first member.
+    assert_eq!(study["name"], "316L vs alumina, 5 N, 60 rpm", "{study}");
     let id = study["id"].as_str().expect("id");
     let study = wait_for(
         &client,
@@ -212,28 +214,37 @@ async fn cancelling_a_study_cancels_its_members_and_a_second_delete_removes_it()
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_study_over_the_member_limit_or_the_queue_is_refused_whole() {
     let dir = TempDir::new("study-limit");
+    // The queue's 2 is the limit that applies, not the 3 members allowed a study.
     let server = server(
         dir.path(),
         &["--max-study-members", "3", "--queue-capacity", "2"],
     );
     let client = reqwest::Client::new();
     let url = server.url("/api/v1/studies");
-    let (code, error) = post(&client, &url, &two_by_two()).await;
-    assert_eq!(code, 422, "{error}");
-    let message = error["error"].as_str().expect("message");
-    assert!(
-        message.contains("4 members") && message.contains("limit of 3"),
-        "{message}"
-    );
-    assert!(message.contains("--max-study-members"), "{message}");
-    assert_eq!(error["fields"][0]["path"], "axes", "{error}");
-
     let mut three = two_by_two();
     three["axes"] = json!({"test.load_n": [2, 5, 10]});
     let (code, error) = post(&client, &url, &three).await;
     assert_eq!(code, 422, "{error}");
     let message = error["error"].as_str().expect("message");
+    assert!(
+        message.contains("3 members") && message.contains("limit of 2"),
+        "{message}"
+    );
     assert!(message.contains("--queue-capacity"), "{message}");
+    assert_eq!(error["fields"][0]["path"], "axes", "{error}");
+
+    // A study sent as another type is told it is the study that must be JSON.
+    let response = client
+        .post(&url)
+        .header("content-type", "text/plain")
+        .body(two_by_two().to_string())
+        .send()
+        .await
+        .expect("POST");
+    assert_eq!(response.status().as_u16(), 415);
+    let error: Value = response.json().await.expect("JSON body");
+    let message = error["error"].as_str().expect("message");
+    assert!(message.starts_with("the study must be sent"), "{message}");
 
     let mut unknown = two_by_two();
     unknown["axes"] = json!({"test.lod_n": [2, 5]});
@@ -246,6 +257,22 @@ async fn a_study_over_the_member_limit_or_the_queue_is_refused_whole() {
 
     let jobs = get_json(&client, &server.url("/api/v1/jobs")).await;
     assert_eq!(jobs, json!([]), "a refused study leaves no job behind");
+    drop(server);
+
+    // With room in the queue, the study limit applies and is named.
+    let server = self::server(
+        &dir.path().join("roomy"),
+        &["--max-study-members", "3", "--queue-capacity", "8"],
+    );
+    let url = server.url("/api/v1/studies");
+    let (code, error) = post(&client, &url, &two_by_two()).await;
+    assert_eq!(code, 422, "{error}");
+    let message = error["error"].as_str().expect("message");
+    assert!(
+        message.contains("4 members") && message.contains("limit of 3"),
+        "{message}"
+    );
+    assert!(message.contains("--max-study-members"), "{message}");
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -554,4 +581,68 @@ async fn calibrations_are_bounded_up_front_listed_cancelled_and_deleted() {
         let response = client.get(format!("{url}/{id}")).send().await.expect("GET");
         assert_eq!(response.status(), 404);
     }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_ocp_trace_over_http_fits_the_repassivation_time_as_tribosim_calibrate() {
+    let dir = TempDir::new("calibration-ocp-http");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let table_path = root.join("docs/calibration/paper_ocp_trace.csv");
+    let cli_output = dir.path().join("fit.json");
+    let status = Command::new(env!("CARGO_BIN_EXE_tribosim"))
+        .args(["calibrate", "ocp"])
+        .arg(&table_path)
+        .args(["--rubbing-start", "3600", "--rubbing-stop", "7200", "-o"])
+        .arg(&cli_output)
+        .status()
+        .expect("run tribosim calibrate");
+    assert!(status.success());
+    let cli: Value =
+        serde_json::from_slice(&std::fs::read(&cli_output).expect("read")).expect("JSON");
+
+    let server = server(&dir.path().join("data"), &[]);
+    let client = reqwest::Client::new();
+    let url = server.url("/api/v1/calibrations");
+    let table = std::fs::read_to_string(&table_path).expect("read the table");
+    let options = json!({"rubbing_start_s": 3600, "rubbing_stop_s": 7200});
+    let request = json!({"kind": "ocp", "table": table, "options": options});
+    let (code, started) = post(&client, &url, &request).await;
+    assert_eq!(code, 202, "{started}");
+    let id = started["id"].as_str().expect("id");
+    let fit = wait_for(
+        &client,
+        &server.url(&format!("/api/v1/calibrations/{id}")),
+        |c| c["status"] != "running",
+    )
+    .await;
+    assert_eq!(fit["status"], "succeeded", "{fit}");
+    assert_eq!(fit["result"], cli, "the same fit, to the last digit");
+    assert_eq!(fit["result"]["parameter"], "repassivation_time_s");
+
+    // Refused before any run: a rubbing time on another fit (the option named), a stop
+    // without its start (the table's field).
+    let (code, error) = post(
+        &client,
+        &url,
+        &json!({"kind": "tafel", "table": table, "options": {"rubbing_start_s": 3600}}),
+    )
+    .await;
+    assert_eq!(code, 422, "{error}");
+    assert_eq!(
+        error["fields"][0]["path"], "options.rubbing_start_s",
+        "{error}"
+    );
+    let (code, error) = post(
+        &client,
+        &url,
+        &json!({"kind": "ocp", "table": table, "options": {"rubbing_stop_s": 7200}}),
+    )
+    .await;
+    assert_eq!(code, 422, "{error}");
+    assert!(
+        error["error"]
+            .as_str()
+            .is_some_and(|m| m.contains("rubbing start")),
+        "{error}"
+    );
 }

@@ -300,3 +300,23 @@ fn the_command_writes_the_summary_and_names_the_flag_over_the_limit() {
         "{message}"
     );
 }
+
+#[test]
+fn a_study_is_named_after_its_base_or_its_own_name() {
+    // The tiny base starts from the paper's preset and names nothing: the preset's name.
+    let from_preset = study(r#"{"test.load_n": [2, 5]}"#).expect("a valid study");
+    assert_eq!(from_preset.name(), "316L vs alumina, 5 N, 60 rpm");
+    let named = Study::parse(
+        r#"{"base": {"name": "a base", "test": {"cycles": 2}}, "axes": {"test.load_n": [2, 5]}}"#,
+    )
+    .expect("a valid study");
+    assert_eq!(named.name(), "a base");
+    // Members keep the base's name with their values.
+    let members = named.members(MAX_MEMBERS).expect("members");
+    assert_eq!(members[1].scene.name, "a base [test.load_n = 5]");
+    let own = Study::parse(
+        r#"{"name": "loads", "base": {"name": "a base"}, "axes": {"test.load_n": [2, 5]}}"#,
+    )
+    .expect("a valid study");
+    assert_eq!(own.name(), "loads");
+}

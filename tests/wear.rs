@@ -153,10 +153,12 @@ fn paper_scene_yields_first_then_wears_by_archard() {
 fn corrosion_follows_eq18_and_faraday_in_the_users_units() {
     // Hand formulas in the scene's units (V, A/cm2, cm2, g/mol, g/cm3), independent of the
     // SI conversions inside. Every cycle solved, so the last two records are one cycle
-    // apart and the last one dissolves at its own anodic area throughout.
+    // apart and the last one dissolves at its own anodic area throughout. The wear track
+    // as the anode (Fig. 13), whose widening the potential follows.
     let s = scene(
         r#"{"preset": "dalmau2018-316l", "overrides": {
-            "test": {"cycles": 40}, "numerics": {"grid": 48, "cycle_step": 1}}}"#,
+            "test": {"cycles": 40}, "numerics": {"grid": 48, "cycle_step": 1},
+            "corrosion": {"anodic_area": "wear_track"}}}"#,
     );
     let result = simulate(&s);
     let last = result.cycles.last().expect("records");
@@ -171,6 +173,37 @@ fn corrosion_follows_eq18_and_faraday_in_the_users_units() {
     // The depassivated track widens, so the potential falls during rubbing (paper Fig. 6).
     let first = result.cycles[0].potential_v.expect("on");
     assert!(last.potential_v.expect("on") < first);
+    // The current and the charge the potentiostat would see: i_a A_a, and its integral.
+    let current_ma = 0.01 * area_cm2 * 1e3;
+    assert!(relative_error(last.anodic_current_ma.expect("on"), current_ma) < 1e-12);
+    let charge = last.charge_c.expect("on") - before.charge_c.expect("on");
+    assert!(relative_error(charge, current_ma * 1e-3 * dt) < 1e-12);
+    let total = last.wear_volume_mm3 + last.wac_volume_mm3.expect("on");
+    assert!(relative_error(last.total_volume_mm3.expect("on"), total) < 1e-15);
+}
+
+#[test]
+fn the_default_anode_is_the_real_contact_and_its_wake() {
+    // The default `depassivated_wake` by hand from each record's own numbers: F / H from
+    // `hardness_mpa`, L from `contact_chord_um`, v = 2 pi 2.992 mm x 60 / 60 s, tau 0.148 s.
+    let s = scene(
+        r#"{"preset": "dalmau2018-316l", "overrides": {
+            "test": {"cycles": 40}, "numerics": {"grid": 48}}}"#,
+    );
+    let result = simulate(&s);
+    let speed_mm_s = 2.0 * std::f64::consts::PI * 2.992;
+    for record in &result.cycles {
+        let real_mm2 = 5.0 / record.hardness_mpa;
+        let chord_mm = record.contact_chord_um.expect("corrosion on") * 1e-3;
+        let wake_mm2 = real_mm2 * (1.0 + speed_mm_s * 0.148 / chord_mm);
+        // A handful of roundings in each formula.
+        let area = record.anodic_area_mm2.expect("corrosion on");
+        assert!(
+            relative_error(area, wake_mm2) < 1e-12,
+            "cycle {}",
+            record.cycle
+        );
+    }
 }
 
 #[test]
@@ -401,6 +434,7 @@ fn yielding_cuts_each_row_to_its_lowest_pressed_level_and_removes_what_it_cut() 
         iterations: 0,
         operator_applies: 0,
         residual: 0.0,
+        preconditioner_fallbacks: 0,
     };
     assert!(groove.yield_under(&grid, &solution, &separation, cap));
     // Row 2 is cut to 0.3 um, the pressed level of its most-pressed cell; row 3 to the pit's

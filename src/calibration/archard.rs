@@ -2,7 +2,10 @@
 //! `volume_mm3`, optional `spread_mm3`.
 //!
 //! The model's volume is the yield groove of the first cycles plus Archard wear, so it is not
-//! proportional to k and eq. 14 alone does not fit it. The fit minimises the squared
+//! proportional to k and eq. 14 alone does not fit it. A measured volume is a total (ASTM
+//! G119: the profilometer sees the mechanical loss and the corrosion together): when the
+//! scene has corrosion, the runs' totals (wear plus WAC) are compared with it, so that k is
+//! the mechanical part's ([`VolumeCompared`]). The fit minimises the squared
 //! residuals of whole simulated runs over ln k by golden section on a bracket around eq. 14's
 //! k from the last point; each run goes to the last measured cycle on the calibration grid.
 //! Each run starts cold: the simulation's warm start lives inside one run.
@@ -41,6 +44,18 @@ impl Default for ArchardOptions {
     }
 }
 
+/// Which of the model's volumes the measured ones are compared with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum VolumeCompared {
+    /// The total, wear plus wear-accelerated corrosion: the scene has corrosion, and k is
+    /// fitted on the mechanical part of the measured totals.
+    Total,
+    /// The wear alone: the scene has no corrosion, so the measured volume is taken as
+    /// mechanical.
+    Mechanical,
+}
+
 /// One measured volume against the fitted run.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct VolumeResidual {
@@ -51,8 +66,12 @@ pub struct VolumeResidual {
     /// Its stated spread, mm^3, if the table has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub spread_mm3: Option<f64>,
-    /// The fitted run's volume at this cycle, mm^3.
+    /// The fitted run's volume at this cycle (its total with corrosion), mm^3.
     pub model_volume_mm3: f64,
+    /// The fitted run's wear-accelerated corrosion volume at this cycle, mm^3; absent
+    /// without corrosion.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model_wac_volume_mm3: Option<f64>,
     /// Measured minus model, mm^3.
     pub residual_mm3: f64,
     /// The run at eq. 14's k, mm^3.
@@ -68,6 +87,8 @@ pub struct ArchardFit {
     pub eq14_archard_k: f64,
     /// Whether residuals were weighted by 1 / spread (only when every spread is positive).
     pub weighted: bool,
+    /// Which model volume the measured ones are compared with.
+    pub volume_compared: VolumeCompared,
     /// Each point.
     pub residuals: Vec<VolumeResidual>,
     /// Residual sum of squares of the fitted run (weighted when `weighted`), mm^6 unweighted.
@@ -134,12 +155,31 @@ impl Problem {
     }
 
     /// The model's volumes at the measured cycles for `k` after `change` (throughout without
-    /// one), mm^3.
+    /// one): the totals with corrosion, else the wear, mm^3.
     pub(super) fn volumes_with(
         &mut self,
         k: f64,
         change: Option<ArchardRegimeChange>,
     ) -> Result<Vec<f64>, CalibrationError> {
+        Ok(self.run_with(k, change)?.0)
+    }
+
+    /// Which model volume is compared with the measured ones.
+    pub(super) fn compared(&self) -> VolumeCompared {
+        if self.scene.corrosion.is_some() {
+            VolumeCompared::Total
+        } else {
+            VolumeCompared::Mechanical
+        }
+    }
+
+    /// [`Self::volumes_with`] and the WAC volumes at the measured cycles (`None` without
+    /// corrosion), mm^3.
+    pub(super) fn run_with(
+        &mut self,
+        k: f64,
+        change: Option<ArchardRegimeChange>,
+    ) -> Result<(Vec<f64>, Option<Vec<f64>>), CalibrationError> {
         let mut scene = self.scene.clone();
         scene.wear.archard_k = Some(k);
         scene.wear.archard_calibration = None;
@@ -147,12 +187,19 @@ impl Problem {
         let result = run(&Plan::new(scene)?, &mut |_| {}, &self.cancel)?;
         self.runs += 1;
         let solved: Vec<f64> = result.cycles.iter().map(|r| r.cycle as f64).collect();
-        let volumes: Vec<f64> = result.cycles.iter().map(|r| r.wear_volume_mm3).collect();
-        Ok(self
+        let at = |values: &[f64]| -> Vec<f64> {
+            self.cycles
+                .iter()
+                .map(|&n| interpolate(&solved, values, n))
+                .collect()
+        };
+        let totals: Vec<f64> = result
             .cycles
             .iter()
-            .map(|&n| interpolate(&solved, &volumes, n))
-            .collect())
+            .map(|r| r.total_volume_mm3.unwrap_or(r.wear_volume_mm3))
+            .collect();
+        let wac: Option<Vec<f64>> = result.cycles.iter().map(|r| r.wac_volume_mm3).collect();
+        Ok((at(&totals), wac.as_deref().map(at)))
     }
 
     /// Weighted residuals, measured minus model.
@@ -211,7 +258,7 @@ pub fn fit_archard_until(
     // A step of 1% in k: far above the stepping's 1e-4 noise on the volume, and small
     // enough that the volume is linear in k across it.
     let se = standard_error(k, &best, 0.01, &mut |q| problem.residuals_at(q))?;
-    let fitted = problem.volumes_at(k)?;
+    let (fitted, wac) = problem.run_with(k, None)?;
     let at_eq14 = problem.volumes_at(eq14)?;
     let residuals: Vec<VolumeResidual> = (0..problem.cycles.len())
         .map(|j| VolumeResidual {
@@ -219,6 +266,7 @@ pub fn fit_archard_until(
             volume_mm3: problem.volumes[j],
             spread_mm3: problem.spreads.as_ref().map(|s| s[j]),
             model_volume_mm3: fitted[j],
+            model_wac_volume_mm3: wac.as_ref().map(|w| w[j]),
             residual_mm3: problem.volumes[j] - fitted[j],
             eq14_model_volume_mm3: at_eq14[j],
         })
@@ -233,6 +281,7 @@ pub fn fit_archard_until(
         },
         eq14_archard_k: eq14,
         weighted: problem.weighted,
+        volume_compared: problem.compared(),
         rss: best.iter().map(|r| r * r).sum(),
         rms_residual_mm3: problem.rms(&fitted),
         eq14_rms_residual_mm3: problem.rms(&at_eq14),
@@ -293,9 +342,7 @@ pub(super) fn problem(table: &Table, scene: &Scene) -> Result<Problem, Calibrati
         Some(s) if weighted => s.iter().map(|x| 1.0 / x).collect(),
         _ => vec![1.0; cycles.len()],
     };
-    let (mut run_scene, grid_cells) = calibration_scene(scene, cycles[cycles.len() - 1]);
-    // The corrosion estimate does not change the wear: left out of the runs.
-    run_scene.corrosion = None;
+    let (run_scene, grid_cells) = calibration_scene(scene, cycles[cycles.len() - 1]);
     Ok(Problem {
         cycles,
         volumes,

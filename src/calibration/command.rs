@@ -59,19 +59,46 @@ pub enum CommandError {
 }
 
 /// Fits `table` (CSV or JSON) with `scene` (the paper's preset if `None`) and writes the
-/// fit as JSON to `output`, or standard output.
+/// fit as JSON to `output`, or standard output; gives the fit's JSON, for a summary (which
+/// shows the fit's warnings).
 pub fn calibrate_files(
     kind: FitKind,
     table: &Path,
     scene: Option<&Path>,
     output: Option<&Path>,
     options: CommandOptions,
-) -> Result<(), CommandError> {
-    if options.regime_change.is_some() && kind != FitKind::Archard {
-        return Err(CommandError::NotForThisFit {
-            option: "--regime-change",
-            applies_to: "archard",
-        });
+) -> Result<serde_json::Value, CommandError> {
+    let misplaced = [
+        (
+            "--regime-change",
+            "archard",
+            options.regime_change.is_some(),
+            FitKind::Archard,
+        ),
+        (
+            "--e-corr",
+            "tafel",
+            options.corrosion_potential_v.is_some(),
+            FitKind::Tafel,
+        ),
+        (
+            "--rubbing-start",
+            "ocp",
+            options.rubbing_start_s.is_some(),
+            FitKind::Ocp,
+        ),
+        (
+            "--rubbing-stop",
+            "ocp",
+            options.rubbing_stop_s.is_some(),
+            FitKind::Ocp,
+        ),
+    ];
+    if let Some(&(option, applies_to, ..)) = misplaced
+        .iter()
+        .find(|&&(_, _, given, fit)| given && fit != kind)
+    {
+        return Err(CommandError::NotForThisFit { option, applies_to });
     }
     let text = read(table)?;
     let fit_error = |source: CalibrationError| CommandError::Fit {
@@ -88,10 +115,9 @@ pub fn calibrate_files(
             .into_scene(),
         None => default_scene(),
     };
-    let json = serde_json::to_string_pretty(
-        &calibrate(kind, &parsed, &scene, options).map_err(fit_error)?,
-    )?;
-    match output {
+    let fit = serde_json::to_value(calibrate(kind, &parsed, &scene, options).map_err(fit_error)?)?;
+    let json = serde_json::to_string_pretty(&fit)?;
+    let written = match output {
         Some(path) => std::fs::write(path, json + "\n").map_err(|source| CommandError::Write {
             path: path.to_owned(),
             source,
@@ -100,7 +126,8 @@ pub fn calibrate_files(
             path: PathBuf::from("-"),
             source,
         }),
-    }
+    };
+    written.map(|()| fit)
 }
 
 fn read(path: &Path) -> Result<String, CommandError> {

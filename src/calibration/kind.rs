@@ -9,9 +9,9 @@ use serde::{Deserialize, Serialize};
 
 use super::{
     ArchardFit, ArchardOptions, CalibrationError, ChangeCycle, HardnessFit, HardnessOptions,
-    OcpFit, RegimeFit, RegimeOptions, Table, TafelFit, TafelOptions, archard, calibration_scene,
-    cycles_of, fit_archard_regimes_until, fit_archard_until, fit_hardness, fit_ocp, fit_tafel, ocp,
-    regime,
+    OcpFit, OcpOptions, RegimeFit, RegimeOptions, Table, TafelFit, TafelOptions, archard,
+    calibration_scene, cycles_of, fit_archard_regimes_until, fit_archard_until, fit_hardness,
+    fit_ocp, fit_tafel, ocp, regime,
 };
 use crate::scene::{Scene, dalmau2018_316l};
 use crate::simulation::Plan;
@@ -24,7 +24,7 @@ pub enum FitKind {
     Hardness,
     /// a_c, b_c from `potential_v` and `current_density_a_cm2` (or `_a_m2`).
     Tafel,
-    /// The depassivated area and `anodic_area_factor` from `time_s` and `potential_v`.
+    /// The depassivation model's parameter from `time_s` and `potential_v`.
     Ocp,
     /// Archard's k from `time_s` (or `cycles`), `volume_mm3` and optional `spread_mm3`.
     Archard,
@@ -35,8 +35,15 @@ pub enum FitKind {
 pub struct CommandOptions {
     /// Hardness: leave the scene's bulk value out of the fit.
     pub without_bulk: bool,
-    /// Tafel: E_corr, V, instead of the potential of the smallest current.
+    /// Tafel: E_corr, V.
     pub corrosion_potential_v: Option<f64>,
+    /// Tafel: whether the scene is the lab's own (given by the caller, not the default
+    /// preset), so that its E_corr may stand for a curve that does not show one.
+    pub scene_given: bool,
+    /// OCP: when the rubbing started and stopped on the table's clock, s.
+    pub rubbing_start_s: Option<f64>,
+    /// OCP: when the rubbing stopped, s.
+    pub rubbing_stop_s: Option<f64>,
     /// Archard: also fit a change of regime at this cycle (or the best one), against one k.
     pub regime_change: Option<ChangeCycle>,
 }
@@ -51,7 +58,15 @@ impl CommandOptions {
     fn tafel(self) -> TafelOptions {
         TafelOptions {
             corrosion_potential_v: self.corrosion_potential_v,
+            scene_corrosion_potential: self.scene_given,
             upper_v: None,
+        }
+    }
+
+    fn ocp(self) -> OcpOptions {
+        OcpOptions {
+            rubbing_start_s: self.rubbing_start_s,
+            rubbing_stop_s: self.rubbing_stop_s,
         }
     }
 }
@@ -96,7 +111,7 @@ pub fn calibrate_until(
     Ok(match kind {
         FitKind::Hardness => Fit::Hardness(fit_hardness(table, scene, options.hardness())?),
         FitKind::Tafel => Fit::Tafel(fit_tafel(table, scene, options.tafel())?),
-        FitKind::Ocp => Fit::Ocp(fit_ocp(table, scene)?),
+        FitKind::Ocp => Fit::Ocp(fit_ocp(table, scene, options.ocp())?),
         FitKind::Archard => match options.regime_change {
             None => Fit::Archard(fit_archard_until(
                 table,
@@ -176,7 +191,7 @@ pub fn check(
 ) -> Result<(), CalibrationError> {
     match kind {
         FitKind::Hardness | FitKind::Tafel => calibrate(kind, table, scene, options).map(drop),
-        FitKind::Ocp => ocp::checked(table, scene).map(drop),
+        FitKind::Ocp => ocp::trace(table, scene, options.ocp()).map(drop),
         FitKind::Archard => match options.regime_change {
             None => archard::check(table, scene),
             Some(change) => regime::check(table, scene, change),

@@ -5,8 +5,9 @@
 //!
 //! - [`fit_hardness`]: H = A + B ln n from `cycles`, `hardness_mpa` (Fig. 9);
 //! - [`fit_tafel`]: a_c, b_c from a cathodic polarization curve (Table 2);
-//! - [`fit_ocp`]: the depassivated area from the potential during rubbing (eq. 18, Fig. 14)
-//!   and `corrosion.anodic_area_factor`;
+//! - [`fit_ocp`]: the depassivated area from a measured open-circuit potential (eq. 18,
+//!   Figs. 6 and 14) and the parameter of the scene's anodic area
+//!   (`corrosion.repassivation_time_s` or `anodic_area_factor`);
 //! - [`fit_archard`]: Archard's k from wear volumes over whole simulated runs (Table 3);
 //! - [`fit_archard_regimes`]: the same with a change of regime, two k's, against one.
 //!
@@ -32,7 +33,9 @@ use crate::hardness::HardnessError;
 use crate::scene::{GridSize, Scene, SceneErrors};
 use crate::simulation::SimulationError;
 
-pub use archard::{ArchardFit, ArchardOptions, VolumeResidual, fit_archard, fit_archard_until};
+pub use archard::{
+    ArchardFit, ArchardOptions, VolumeCompared, VolumeResidual, fit_archard, fit_archard_until,
+};
 pub use command::{CommandError, calibrate_files};
 pub use hardness::{HardnessFit, HardnessOptions, HardnessResidual, fit_hardness};
 pub use kind::{
@@ -40,14 +43,17 @@ pub use kind::{
     run_size,
 };
 pub use minimise::Trial;
-pub use ocp::{OcpFit, OcpPoint, fit_ocp};
+pub use ocp::{OcpFit, OcpOptions, OcpParameter, OcpPoint, fit_ocp};
 pub use regime::{
     Candidate, ChangeCycle, ChangeCycleError, Comparison, MIN_POINTS_PER_REGIME, ModelScore,
     RegimeFit, RegimeOptions, RegimePoint, Regimes, TwoRegimeFit, fit_archard_regimes,
     fit_archard_regimes_until,
 };
 pub use table::{Table, TableError};
-pub use tafel::{TafelDomain, TafelFit, TafelOptions, TafelResidual, fit_tafel};
+pub use tafel::{
+    CorrosionPotentialSource, MIN_DOMAIN_SPAN_V, MIN_TAFEL_POINTS, TafelDomain, TafelFit,
+    TafelOptions, TafelResidual, fit_tafel,
+};
 
 /// A fitted value and its standard error, in the units of the field that holds it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -112,6 +118,28 @@ pub enum CalibrationError {
     /// No part of a polarization curve is a straight Tafel line.
     #[error("column `potential_v`: no Tafel domain below E_corr: {0}")]
     NoTafelDomain(String),
+    /// A cathodic-only polarization curve without E_corr: its top is not the corrosion
+    /// potential.
+    #[error(
+        "column `current_density_a_cm2`: the current never changes sign, so the curve does not show E_corr, and its top is not E_corr (the anodic current bends the curve well below it); give E_corr with `--e-corr V` (`options.e_corr_v`) or in a scene's `corrosion.corrosion_potential_v` (`--scene`)"
+    )]
+    CorrosionPotentialUnknown,
+    /// A Tafel domain too narrow to measure a Tafel line on.
+    #[error("column `potential_v`: the Tafel domain is too narrow: {0}")]
+    NarrowTafelDomain(String),
+    /// A rubbing stop given without its start.
+    #[error(
+        "a rubbing stop needs the rubbing start (`--rubbing-start S`, `options.rubbing_start_s`)"
+    )]
+    StopWithoutStart,
+    /// A rubbing stop at or before its start.
+    #[error("the rubbing stop ({stop_s} s) must come after its start ({start_s} s)")]
+    StopBeforeStart {
+        /// The start, s.
+        start_s: f64,
+        /// The stop, s.
+        stop_s: f64,
+    },
     /// A change of regime outside the measured cycles.
     #[error(
         "change of regime at cycle {cycle}: outside the table's cycles; it must be at least the first ({first}) and below the last ({last})"

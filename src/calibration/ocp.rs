@@ -1,204 +1,312 @@
-//! The depassivated area from the potential measured during rubbing (paper Section 5.1,
-//! Fig. 14): eq. 18 inverted for A_a(t), set against the real contact area F / H(t) of the
-//! hardness law and the model's wear-track area, and `corrosion.anodic_area_factor` fitted so
-//! that the model's potential follows the measurement.
+//! The depassivation model's parameter from a measured open-circuit potential (paper Section
+//! 5.1, Figs. 6 and 14): `time_s`, `potential_v`, with the rubbing's start and stop when the
+//! table is the whole trace ([`OcpOptions`]).
 //!
-//! In the model the corrosion does not feed back on the wear, so one run gives the areas for
-//! every factor, and the factor is a 1-D least squares on the potentials of that run.
+//! Eq. 18 is inverted at each potential during the rubbing for the depassivated area A_a(t),
+//! set against the real contact F / H(t) and the model's wear track. The parameter of the
+//! scene's `corrosion.anodic_area` is then fitted by least squares on the potentials during
+//! the rubbing: the repassivation time tau for `depassivated_wake` and `hertz_band`,
+//! `anodic_area_factor` for the others. Rows before the rubbing are compared with E_corr,
+//! rows after it with the model's recovery; neither is fitted (the model's recovery takes a
+//! few tau, a measured one is slower: `docs/corrosion.md`).
 
-use std::sync::atomic::AtomicBool;
+mod model;
+mod phases;
 
 use serde::Serialize;
 
 use super::minimise::{golden_section, standard_error};
-use super::{
-    CalibrationError, Estimate, Table, calibration_scene, interpolate, require_at_least,
-    require_increasing, require_points,
-};
-use crate::corrosion::{CorrosionModel, real_contact_area_m2};
+use super::{CalibrationError, Estimate, Table};
+use crate::corrosion::{AreaInputs, CorrosionModel, recovering_area_m2};
 use crate::scene::{AnodicArea, Corrosion, Scene};
-use crate::simulation::{Plan, run};
+use crate::simulation::OcpPhase;
+
+use model::model_areas;
+pub use phases::OcpOptions;
+pub(super) use phases::trace;
 
 /// The factor's search bracket starts here (a thousandth of the chosen area).
 const LOWEST_FACTOR: f64 = 1e-3;
 
-/// The search stops when the factor is known to this relative precision, far below any
-/// measurement's.
-const FACTOR_TOLERANCE: f64 = 1e-7;
+/// The repassivation time's search bracket starts here, s: a thousandth of the paper's
+/// "milliseconds" (Section 5.1), far below any measurable wake.
+const SHORTEST_TAU_S: f64 = 1e-6;
 
-/// One measured potential and the areas at its time.
+/// The search stops when the parameter is known to this relative precision, far below any
+/// measurement's.
+const PARAMETER_TOLERANCE: f64 = 1e-7;
+
+/// Which parameter the fit adjusts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OcpParameter {
+    /// `corrosion.repassivation_time_s`.
+    RepassivationTimeS,
+    /// `corrosion.anodic_area_factor`.
+    AnodicAreaFactor,
+}
+
+/// One measured potential, its areas and the model's potential.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct OcpPoint {
-    /// Rubbing time, s.
+    /// Time on the table's clock, s.
     pub time_s: f64,
+    /// Which part of the test the row belongs to.
+    pub phase: OcpPhase,
     /// Measured potential, V.
     pub potential_v: f64,
-    /// Depassivated area by eq. 18 inverted, mm^2.
-    pub anodic_area_mm2: f64,
-    /// Real contact area F / H(t), mm^2.
-    pub real_contact_area_mm2: f64,
-    /// The model's wear-track area (worn width times track length), mm^2.
-    pub wear_track_area_mm2: f64,
-    /// The model's potential at the fitted factor, V.
+    /// During the rubbing: the depassivated area by eq. 18 inverted, mm^2.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub anodic_area_mm2: Option<f64>,
+    /// During the rubbing: the real contact area F / H(t), mm^2.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub real_contact_area_mm2: Option<f64>,
+    /// During the rubbing: the model's wear track (worn width times track length), mm^2.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wear_track_area_mm2: Option<f64>,
+    /// The model's potential at the fitted parameter, V.
     pub model_potential_v: f64,
     /// Measured minus model potential, V.
     pub residual_v: f64,
+    /// Whether the row takes part in the fit (the rows during the rubbing).
+    pub fitted: bool,
 }
 
-/// The depassivated area and the fitted factor.
+/// The fitted parameter, the areas and the residuals.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct OcpFit {
-    /// Which model area the factor multiplies (the scene's `corrosion.anodic_area`).
+    /// Which model area the parameter belongs to (the scene's `corrosion.anodic_area`).
     pub anodic_area: AnodicArea,
-    /// The fitted `anodic_area_factor`.
-    pub anodic_area_factor: Estimate,
-    /// Geometric mean over the points of A_a / (F / H) (the paper: about 50).
+    /// Which parameter was fitted.
+    pub parameter: OcpParameter,
+    /// The fitted `repassivation_time_s`, s; absent when the factor was fitted.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub repassivation_time_s: Option<Estimate>,
+    /// Q_p = i_a tau, mC/cm^2, with the same relative standard error; absent when the
+    /// factor was fitted.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub repassivation_charge_mc_cm2: Option<Estimate>,
+    /// The fitted `anodic_area_factor`; absent when tau was fitted.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub anodic_area_factor: Option<Estimate>,
+    /// Geometric mean over the rubbing rows of A_a / (F / H) (the paper: about 50).
     pub anodic_to_real_contact: f64,
-    /// Geometric mean over the points of A_a / wear-track area.
+    /// Geometric mean over the rubbing rows of A_a / wear-track area.
     pub anodic_to_wear_track: f64,
-    /// Each point.
+    /// Each row.
     pub points: Vec<OcpPoint>,
-    /// Root-mean-square potential residual, V.
+    /// Root-mean-square potential residual over the rubbing rows, V.
     pub rms_residual_v: f64,
-    /// Cells per side of the run that gave the model's areas.
+    /// Cells per side of the run that gave the model's areas (the scene's own numerics).
     pub grid_cells: usize,
-    /// The scene with `corrosion.anodic_area_factor` filled in.
+    /// What the fit assumed that the table may contradict.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
+    /// The scene with the parameter filled in and, for a whole trace, its rubbing time and
+    /// open-circuit times.
     pub scene: Scene,
 }
 
-/// Inverts eq. 18 over a potential-during-rubbing table (`time_s`, `potential_v`) and fits
-/// the scene's anodic area factor to it.
-pub fn fit_ocp(table: &Table, scene: &Scene) -> Result<OcpFit, CalibrationError> {
-    let (times, potentials, corrosion) = checked(table, scene)?;
+/// Fits the parameter of the scene's anodic area to a measured potential table.
+pub fn fit_ocp(
+    table: &Table,
+    scene: &Scene,
+    options: OcpOptions,
+) -> Result<OcpFit, CalibrationError> {
+    let trace = trace(table, scene, options)?;
+    let corrosion = trace.corrosion;
     let cell = corrosion.model();
-    let cycles: Vec<f64> = times.iter().map(|&t| scene.cycles_at(t)).collect();
-    let (run_scene, grid_cells) = calibration_scene(scene, cycles[cycles.len() - 1]);
-    let law = scene.hardness_law()?;
-    let real: Vec<f64> = cycles
-        .iter()
-        .map(|&n| real_contact_area_m2(scene.load_n(), law.hardness_pa(n)))
-        .collect();
-    let track = model_areas(&run_scene, AnodicArea::WearTrack, &cycles)?;
-    // F / H is the model's real contact area at any cycle, solved or not: taken exactly
-    // rather than interpolated between solved cycles.
-    let chosen = match corrosion.anodic_area {
-        AnodicArea::WearTrack => track.clone(),
-        AnodicArea::RealContact => real.clone(),
-        AnodicArea::BemContact => model_areas(&run_scene, AnodicArea::BemContact, &cycles)?,
+    let rubbing = trace.rubbing();
+    let times: Vec<f64> = rubbing.iter().map(|&i| trace.rubbing_time_s(i)).collect();
+    let measured: Vec<f64> = rubbing.iter().map(|&i| trace.potentials[i]).collect();
+    let areas = model_areas(scene, &times)?;
+    let parameter = if corrosion.depassivates() {
+        OcpParameter::RepassivationTimeS
+    } else {
+        OcpParameter::AnodicAreaFactor
     };
-    let anodic: Vec<f64> = potentials.iter().map(|&e| cell.anodic_area_m2(e)).collect();
-    let largest = chosen.iter().fold(0.0_f64, |m, &a| m.max(a));
-    // Keep the anode below half the electrode so that a cathode remains (eq. 18).
-    let highest = 0.5 * cell.exposed_area_m2 / largest;
-    let residuals = |factor: f64| potential_residuals(&cell, potentials, &chosen, factor);
-    let (factor, _) = golden_section(
-        "anodic_area_factor",
-        (LOWEST_FACTOR, highest),
-        FACTOR_TOLERANCE,
-        &mut |f| Ok(residuals(f).iter().map(|r| r * r).sum()),
-    )?;
-    let best = residuals(factor);
-    let se = standard_error(factor, &best, 1e-3, &mut |f| Ok(residuals(f)))?;
-    let points: Vec<OcpPoint> = (0..times.len())
-        .map(|j| OcpPoint {
-            time_s: times[j],
-            potential_v: potentials[j],
-            anodic_area_mm2: anodic[j] * 1e6,
-            real_contact_area_mm2: real[j] * 1e6,
-            wear_track_area_mm2: track[j] * 1e6,
-            model_potential_v: potentials[j] - best[j],
-            residual_v: best[j],
-        })
-        .collect();
-    let mut fitted = scene.clone();
-    if let Some(c) = fitted.corrosion.as_mut() {
-        c.anodic_area_factor = factor;
-    }
+    let with = |value: f64| with_parameter(corrosion, parameter, value);
+    let residuals = |value: f64| potential_residuals(&cell, &with(value), &measured, &areas.inputs);
+    let bracket = match parameter {
+        OcpParameter::RepassivationTimeS => (SHORTEST_TAU_S, 0.999 * scene.cycle_period_s()),
+        OcpParameter::AnodicAreaFactor => {
+            let largest = areas
+                .inputs
+                .iter()
+                .map(|inputs| with(1.0).anodic_area_m2(inputs))
+                .fold(0.0_f64, f64::max);
+            // Keep the anode below half the electrode so that a cathode remains (eq. 18).
+            (LOWEST_FACTOR, 0.5 * cell.exposed_area_m2 / largest)
+        }
+    };
+    let name = match parameter {
+        OcpParameter::RepassivationTimeS => "repassivation_time_s",
+        OcpParameter::AnodicAreaFactor => "anodic_area_factor",
+    };
+    let (value, _) = golden_section(name, bracket, PARAMETER_TOLERANCE, &mut |p| {
+        Ok(residuals(p).iter().map(|r| r * r).sum())
+    })?;
+    let best = residuals(value);
+    let se = standard_error(value, &best, 1e-3, &mut |p| Ok(residuals(p)))?;
+    let estimate = Estimate {
+        value,
+        standard_error: se,
+    };
+    let fitted = with(value);
+    let points = points(&trace, &cell, &fitted, &areas.inputs);
+    let anodic: Vec<f64> = measured.iter().map(|&e| cell.anodic_area_m2(e)).collect();
+    let real: Vec<f64> = areas.inputs.iter().map(|a| a.real_contact_m2).collect();
+    let track: Vec<f64> = areas.inputs.iter().map(|a| a.wear_track_m2).collect();
+    let rms = (best.iter().map(|r| r * r).sum::<f64>() / best.len() as f64).sqrt();
+    let q_p = |tau: Estimate| Estimate {
+        value: tau.value * corrosion.anodic_current_density_a_cm2 * 1e3,
+        standard_error: tau.standard_error * corrosion.anodic_current_density_a_cm2 * 1e3,
+    };
+    let tau = (parameter == OcpParameter::RepassivationTimeS).then_some(estimate);
     Ok(OcpFit {
         anodic_area: corrosion.anodic_area,
-        anodic_area_factor: Estimate {
-            value: factor,
-            standard_error: se,
-        },
+        parameter,
+        repassivation_time_s: tau,
+        repassivation_charge_mc_cm2: tau.map(q_p),
+        anodic_area_factor: (parameter == OcpParameter::AnodicAreaFactor).then_some(estimate),
         anodic_to_real_contact: geometric_mean_ratio(&anodic, &real),
         anodic_to_wear_track: geometric_mean_ratio(&anodic, &track),
-        rms_residual_v: (best.iter().map(|r| r * r).sum::<f64>() / best.len() as f64).sqrt(),
+        warnings: warnings(&trace, &points, rms),
+        rms_residual_v: rms,
         points,
-        grid_cells,
-        scene: fitted,
+        grid_cells: areas.grid_cells,
+        scene: fitted_scene(scene, fitted, &trace, options),
     })
 }
 
-/// The table's times and potentials and the scene's cell, refused (column and row named)
-/// unless the fit can use them: the cheap part of [`fit_ocp`], before its run.
-pub(super) fn checked<'a>(
-    table: &'a Table,
-    scene: &'a Scene,
-) -> Result<(&'a [f64], &'a [f64], &'a Corrosion), CalibrationError> {
-    let times = table.column("time_s")?;
-    let potentials = table.column("potential_v")?;
-    require_points("time_s", times, 3)?;
-    require_at_least("time_s", times, 0.0)?;
-    require_increasing("time_s", times)?;
-    let corrosion = scene
-        .corrosion
-        .as_ref()
-        .ok_or(CalibrationError::MissingSection("corrosion"))?;
-    let e_corr = corrosion.model().corrosion_potential_v;
-    if let Some(row) = potentials.iter().position(|&e| e >= e_corr) {
-        return Err(CalibrationError::AboveCorrosionPotential {
-            row: row + 1,
-            value: potentials[row],
-            corrosion_potential_v: e_corr,
-        });
+/// `corrosion` with `parameter` set to `value`.
+fn with_parameter(corrosion: &Corrosion, parameter: OcpParameter, value: f64) -> Corrosion {
+    let mut changed = corrosion.clone();
+    match parameter {
+        OcpParameter::RepassivationTimeS => changed.repassivation_time_s = value,
+        OcpParameter::AnodicAreaFactor => changed.anodic_area_factor = value,
     }
-    scene.hardness_law()?;
-    Ok((times, potentials, corrosion))
+    changed
 }
 
-/// The model's anodic area of kind `kind` (factor 1) at each cycle count, m^2.
-fn model_areas(
-    scene: &Scene,
-    kind: AnodicArea,
-    cycles: &[f64],
-) -> Result<Vec<f64>, CalibrationError> {
-    let mut scene = scene.clone();
-    if let Some(c) = scene.corrosion.as_mut() {
-        c.anodic_area = kind;
-        c.anodic_area_factor = 1.0;
-    }
-    let result = run(&Plan::new(scene)?, &mut |_| {}, &AtomicBool::new(false))?;
-    let solved: Vec<f64> = result.cycles.iter().map(|r| r.cycle as f64).collect();
-    let areas: Vec<f64> = result
-        .cycles
-        .iter()
-        .map(|r| r.anodic_area_mm2.unwrap_or(0.0) * 1e-6)
-        .collect();
-    Ok(cycles
-        .iter()
-        .map(|&n| interpolate(&solved, &areas, n))
-        .collect())
-}
-
-/// Measured minus model potential (eq. 18 at `factor` times the model's area), V.
+/// Measured minus model potential (eq. 18 at the area `corrosion` gives each time's
+/// `inputs`), V.
 fn potential_residuals(
     cell: &CorrosionModel,
+    corrosion: &Corrosion,
     measured: &[f64],
-    areas: &[f64],
-    factor: f64,
+    inputs: &[AreaInputs],
 ) -> Vec<f64> {
     measured
         .iter()
-        .zip(areas)
-        .map(|(&e, &a)| {
-            // The bracket keeps the anode below half the electrode, so eq. 18 is defined;
+        .zip(inputs)
+        .map(|(&e, inputs)| {
+            // The brackets keep the anode below half the electrode, so eq. 18 is defined;
             // E_corr stands in should it ever not be.
             let model = cell
-                .potential_v(factor * a)
+                .potential_v(corrosion.anodic_area_m2(inputs))
                 .unwrap_or(cell.corrosion_potential_v);
             e - model
         })
         .collect()
+}
+
+/// Every row against the model at the fitted `corrosion`: E_corr before the rubbing, eq. 18
+/// during it, the recovery from the last rubbing row's area after it.
+fn points(
+    trace: &phases::Trace,
+    cell: &CorrosionModel,
+    corrosion: &Corrosion,
+    inputs: &[AreaInputs],
+) -> Vec<OcpPoint> {
+    let e_corr = cell.corrosion_potential_v;
+    let rubbing = trace.rubbing();
+    let at_stop = inputs.last().map_or(0.0, |a| corrosion.anodic_area_m2(a));
+    let potential = |area: f64| cell.potential_v(area).unwrap_or(e_corr);
+    let mut during = rubbing.iter().zip(inputs);
+    (0..trace.times.len())
+        .map(|i| {
+            let measured = trace.potentials[i];
+            let phase = trace.phases[i];
+            let (model, areas) = match phase {
+                OcpPhase::Before => (e_corr, None),
+                OcpPhase::Rubbing => {
+                    let (_, inputs) = during.next().expect("one input per rubbing row");
+                    (potential(corrosion.anodic_area_m2(inputs)), Some(inputs))
+                }
+                OcpPhase::After => {
+                    // The model's rubbing ends at the last rubbing row's area: the table's
+                    // stop may fall within a cycle of it.
+                    let since = (trace.times[i] - trace.stop_s).max(0.0);
+                    let area = recovering_area_m2(at_stop, since, corrosion.repassivation_time_s);
+                    (potential(area), None)
+                }
+            };
+            OcpPoint {
+                time_s: trace.times[i],
+                phase,
+                potential_v: measured,
+                anodic_area_mm2: areas.map(|_| cell.anodic_area_m2(measured) * 1e6),
+                real_contact_area_mm2: areas.map(|a| a.real_contact_m2 * 1e6),
+                wear_track_area_mm2: areas.map(|a| a.wear_track_m2 * 1e6),
+                model_potential_v: model,
+                residual_v: measured - model,
+                fitted: phase == OcpPhase::Rubbing,
+            }
+        })
+        .collect()
+}
+
+/// What the rows outside the rubbing say against the model's assumptions.
+fn warnings(trace: &phases::Trace, points: &[OcpPoint], rms_rubbing_v: f64) -> Vec<String> {
+    let mut warnings = Vec::new();
+    let rms = |phase: OcpPhase| {
+        let residuals: Vec<f64> = points
+            .iter()
+            .filter(|p| p.phase == phase)
+            .map(|p| p.residual_v)
+            .collect();
+        let n = residuals.len();
+        (n > 0).then(|| (residuals.iter().map(|r| r * r).sum::<f64>() / n as f64).sqrt())
+    };
+    if let Some(before) = rms(OcpPhase::Before).filter(|&r| r > rms_rubbing_v) {
+        warnings.push(format!(
+            "before the rubbing the potential lies {before:.4} V (rms) from the scene's E_corr \
+             ({} V), more than the rubbing rows from the fit ({rms_rubbing_v:.4} V): eq. 18 \
+             counts from that E_corr; set `corrosion.corrosion_potential_v` to the measured \
+             one",
+            trace.corrosion.corrosion_potential_v
+        ));
+    }
+    if let Some(after) = rms(OcpPhase::After) {
+        warnings.push(format!(
+            "the rows after the stop are not fitted (rms {after:.4} V from the model): the \
+             model repassivates the bare area as exp(-t / tau), back at E_corr within a few \
+             tau, while a measured recovery also has the slow tail of the film thickening \
+             over the whole track, which the model leaves out"
+        ));
+    }
+    warnings
+}
+
+/// `scene` with the fitted cell and, for a whole trace, the rubbing's cycles and the
+/// open-circuit times around it.
+fn fitted_scene(
+    scene: &Scene,
+    corrosion: Corrosion,
+    trace: &phases::Trace,
+    options: OcpOptions,
+) -> Scene {
+    let mut fitted = scene.clone();
+    fitted.corrosion = Some(corrosion);
+    if let Some(start) = options.rubbing_start_s {
+        let last = trace.times[trace.times.len() - 1];
+        fitted.test.ocp_before_s = start;
+        fitted.test.ocp_after_s = (last - trace.stop_s).max(0.0);
+        let cycles = scene.cycles_at(trace.stop_s - start).round().max(1.0);
+        fitted.test.cycles = cycles as u64;
+    }
+    fitted
 }
 
 /// exp(mean ln(a / b)) over the pairs with both areas positive.

@@ -6,10 +6,17 @@
 //! the measured one, so the fit regresses log10 |i| on E - E_corr and converts: b_c = -1/slope,
 //! a_c = -intercept/slope, their errors by first-order propagation of the covariance.
 //!
+//! E_corr is given (`--e-corr`), or where the measured current changes sign (the scan's own
+//! zero-current potential), or the lab's scene's; never guessed from a curve that does not
+//! show it: the top of a cathodic-only scan lies below E_corr by however far the scan
+//! stopped short of it.
+//!
 //! The domain: from the most cathodic point up, the longest stretch on which a parabola in
 //! E does not bend log10 |i| by more than 3 standard errors of its curvature, then cut back
 //! to twice its distance below E_corr ([`BEND_MARGIN`]). Near E_corr the anodic current
 //! bends the curve away from the line, which the test sees where the bend is near the noise.
+//! A domain narrower than [`MIN_DOMAIN_SPAN_V`] or of fewer than [`MIN_TAFEL_POINTS`] points
+//! is refused: it cannot show a Tafel line.
 
 use nalgebra::{Matrix3, Vector3};
 use serde::Serialize;
@@ -24,6 +31,17 @@ const A_CM2_PER_A_M2: f64 = 1e-4;
 /// Fewest points a Tafel domain may have: a parabola's three coefficients and two degrees
 /// of freedom for the scatter its curvature test needs.
 const MIN_DOMAIN_POINTS: usize = 5;
+
+/// Narrowest domain a Tafel line is fitted on, V. A Tafel line is the exponential limit of
+/// the Butler-Volmer kinetics, reached a few RT / F (25.7 mV at 25 C) from E_corr; over less
+/// than 2 RT / F the straight line cannot be told from the curvature of the mixed region.
+pub const MIN_DOMAIN_SPAN_V: f64 = 0.05;
+
+/// Fewest points a fitted domain may have. The standard errors are scaled by the residual
+/// scatter, estimated on n - 2 degrees of freedom, whose relative standard deviation is
+/// about 1 / sqrt(2 (n - 2)): 25% at 10 points, 50% at 4. Below 10 points the reported
+/// errors would themselves be uncertain by more than a quarter.
+pub const MIN_TAFEL_POINTS: usize = 10;
 
 /// Curvature, in its standard errors, above which a stretch is not straight (3: a straight
 /// stretch fails with probability 0.27% under normal noise).
@@ -46,10 +64,26 @@ const ROUND_OFF: f64 = 1e-12;
 /// Settings of the Tafel fit.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct TafelOptions {
-    /// E_corr, V; absent: the potential of the smallest |i| in the table.
+    /// E_corr, V; absent: where the current changes sign, else the scene's when
+    /// `scene_corrosion_potential`.
     pub corrosion_potential_v: Option<f64>,
+    /// Whether the scene's E_corr is the lab's own and may stand for a curve that does not
+    /// show one (false for the default preset, whose E_corr is the paper's).
+    pub scene_corrosion_potential: bool,
     /// The domain's upper end, V; absent: found by the curvature test.
     pub upper_v: Option<f64>,
+}
+
+/// Where E_corr came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CorrosionPotentialSource {
+    /// Given (`--e-corr`, `options.e_corr_v`).
+    Option,
+    /// Where the measured current changes sign.
+    SignChange,
+    /// The scene's `corrosion.corrosion_potential_v`.
+    Scene,
 }
 
 /// The stretch of the curve the line was fitted on.
@@ -79,8 +113,10 @@ pub struct TafelResidual {
 pub struct TafelFit {
     /// E_corr used, V.
     pub corrosion_potential_v: f64,
-    /// Whether E_corr was given rather than taken from the table.
+    /// Whether E_corr was given (the option or the scene) rather than taken from the table.
     pub corrosion_potential_given: bool,
+    /// Where E_corr came from.
+    pub corrosion_potential_source: CorrosionPotentialSource,
     /// a_c, V (for i in A/cm^2).
     pub tafel_a_c_v: Estimate,
     /// b_c, V per decade.
@@ -93,7 +129,9 @@ pub struct TafelFit {
     pub residuals: Vec<TafelResidual>,
     /// Root-mean-square residual, decades.
     pub rms_residual_decades: f64,
-    /// The scene with `corrosion` E_corr, a_c and b_c filled in.
+    /// What the fit assumed: where E_corr came from, how the domain was cut.
+    pub warnings: Vec<String>,
+    /// The scene with `corrosion` E_corr, a_c, b_c and the domain filled in.
     pub scene: Scene,
 }
 
@@ -104,12 +142,7 @@ pub fn fit_tafel(
     options: TafelOptions,
 ) -> Result<TafelFit, CalibrationError> {
     let (potential, current) = curve(table)?;
-    let e_corr = options.corrosion_potential_v.unwrap_or_else(|| {
-        let smallest = (0..current.len())
-            .min_by(|&a, &b| current[a].abs().total_cmp(&current[b].abs()))
-            .unwrap_or(0);
-        potential[smallest]
-    });
+    let (e_corr, source, mut warnings) = corrosion_potential(&potential, &current, scene, options)?;
     // The cathodic branch, most cathodic first.
     let mut branch: Vec<(f64, f64)> = potential
         .iter()
@@ -139,29 +172,121 @@ pub fn fit_tafel(
                 straight
             } else {
                 let top = BEND_MARGIN * etas[straight - 1];
+                warnings.push(format!(
+                    "the curve bends away from a line above {:.4} V; the domain ends at \
+                     {:.4} V, twice as far below E_corr, where the anodic current's bend is \
+                     below the noise",
+                    etas[straight - 1] + e_corr,
+                    top + e_corr
+                ));
                 etas.partition_point(|&eta| eta <= top)
             }
         }
     };
-    if end < MIN_DOMAIN_POINTS {
-        return Err(CalibrationError::NoTafelDomain(format!(
-            "{end} points below the given upper end, a domain needs {MIN_DOMAIN_POINTS}"
-        )));
-    }
+    require_measurable(&etas[..end], e_corr)?;
     let line = Line::fit(&etas[..end], &logs[..end]);
     if line.slope >= 0.0 {
         return Err(CalibrationError::NoTafelDomain(
             "|i| does not grow as the potential falls".to_owned(),
         ));
     }
-    Ok(finish(
-        scene,
-        e_corr,
-        options,
-        &line,
-        &etas[..end],
-        &logs[..end],
-    ))
+    let fit = finish(scene, e_corr, &line, &etas[..end], &logs[..end]);
+    Ok(TafelFit {
+        corrosion_potential_given: source != CorrosionPotentialSource::SignChange,
+        corrosion_potential_source: source,
+        warnings,
+        ..fit
+    })
+}
+
+/// E_corr and where it came from (with the words that say so): the option, where the
+/// current changes sign, or the lab's scene; refused otherwise.
+fn corrosion_potential(
+    potential: &[f64],
+    current: &[f64],
+    scene: &Scene,
+    options: TafelOptions,
+) -> Result<(f64, CorrosionPotentialSource, Vec<String>), CalibrationError> {
+    if let Some(given) = options.corrosion_potential_v {
+        return Ok((given, CorrosionPotentialSource::Option, Vec::new()));
+    }
+    let crossings = sign_changes(potential, current);
+    if !crossings.is_empty() {
+        let mut sorted = crossings;
+        sorted.sort_by(f64::total_cmp);
+        let median = sorted[sorted.len() / 2];
+        let mut words = format!("E_corr = {median:.4} V, where the measured current changes sign");
+        if sorted.len() > 1 {
+            words.push_str(&format!(
+                " (the median of {} sign changes between {:.4} and {:.4} V: the current is \
+                 at the noise there)",
+                sorted.len(),
+                sorted[0],
+                sorted[sorted.len() - 1]
+            ));
+        }
+        return Ok((median, CorrosionPotentialSource::SignChange, vec![words]));
+    }
+    match scene.corrosion.as_ref() {
+        Some(corrosion) if options.scene_corrosion_potential => {
+            let e_corr = corrosion.corrosion_potential_v;
+            Ok((
+                e_corr,
+                CorrosionPotentialSource::Scene,
+                vec![format!(
+                    "E_corr = {e_corr} V from the scene: the curve's current never changes \
+                     sign, so it does not show E_corr itself"
+                )],
+            ))
+        }
+        _ => Err(CalibrationError::CorrosionPotentialUnknown),
+    }
+}
+
+/// The potentials at which the current changes sign, interpolated linearly between the two
+/// points either side (a zero current is a crossing where it lies).
+fn sign_changes(potential: &[f64], current: &[f64]) -> Vec<f64> {
+    let mut points: Vec<(f64, f64)> = potential
+        .iter()
+        .copied()
+        .zip(current.iter().copied())
+        .collect();
+    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut crossings: Vec<f64> = points.iter().filter(|p| p.1 == 0.0).map(|p| p.0).collect();
+    for pair in points.windows(2) {
+        let ((e0, i0), (e1, i1)) = (pair[0], pair[1]);
+        if i0 * i1 < 0.0 {
+            crossings.push(e0 - i0 * (e1 - e0) / (i1 - i0));
+        }
+    }
+    crossings
+}
+
+/// Refuses a domain (`etas`, E - E_corr, increasing) too narrow to show a Tafel line.
+fn require_measurable(etas: &[f64], e_corr: f64) -> Result<(), CalibrationError> {
+    let span = etas
+        .last()
+        .zip(etas.first())
+        .map_or(0.0, |(top, bottom)| top - bottom);
+    if etas.len() < MIN_TAFEL_POINTS {
+        return Err(CalibrationError::NarrowTafelDomain(format!(
+            "{} points, a measurable Tafel line needs at least {MIN_TAFEL_POINTS} (the \
+             standard errors rest on the scatter of n - 2 residuals)",
+            etas.len()
+        )));
+    }
+    if span < MIN_DOMAIN_SPAN_V {
+        return Err(CalibrationError::NarrowTafelDomain(format!(
+            "{:.1} mV ({:.4} to {:.4} V), a Tafel line needs at least {:.0} mV (2 RT / F: \
+             over less, a line cannot be told from the curvature of the mixed region near \
+             E_corr)",
+            span * 1e3,
+            etas[0] + e_corr,
+            etas[etas.len() - 1] + e_corr,
+            MIN_DOMAIN_SPAN_V * 1e3
+        )));
+    }
+    Ok(())
 }
 
 /// Potentials and current densities (A/cm^2) of the table.
@@ -182,15 +307,9 @@ fn curve(table: &Table) -> Result<(Vec<f64>, Vec<f64>), CalibrationError> {
     Ok((potential, current))
 }
 
-/// The line's values, their errors by propagation, the residuals and the scene.
-fn finish(
-    scene: &Scene,
-    e_corr: f64,
-    options: TafelOptions,
-    line: &Line,
-    etas: &[f64],
-    logs: &[f64],
-) -> TafelFit {
+/// The line's values, their errors by propagation, the residuals and the scene (E_corr's
+/// source and the warnings are the caller's).
+fn finish(scene: &Scene, e_corr: f64, line: &Line, etas: &[f64], logs: &[f64]) -> TafelFit {
     let (alpha, beta, cov) = (line.intercept, line.slope, line.covariance);
     let b_c = -1.0 / beta;
     let a_c = -alpha / beta;
@@ -213,9 +332,13 @@ fn finish(
     corrosion.corrosion_potential_v = e_corr;
     corrosion.tafel_a_c_v = a_c;
     corrosion.tafel_b_c_v_per_decade = b_c;
+    corrosion.tafel_overpotential_min_v = etas[0];
+    corrosion.tafel_overpotential_max_v = etas[etas.len() - 1];
     TafelFit {
         corrosion_potential_v: e_corr,
-        corrosion_potential_given: options.corrosion_potential_v.is_some(),
+        corrosion_potential_given: true,
+        corrosion_potential_source: CorrosionPotentialSource::Option,
+        warnings: Vec::new(),
         tafel_a_c_v: Estimate {
             value: a_c,
             standard_error: var_a.sqrt(),

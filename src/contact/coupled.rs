@@ -37,7 +37,8 @@ pub const INNER_FRACTION: f64 = 0.1;
 pub const INNER_FLOOR: f64 = 0.5;
 
 /// Solves the contact with the coupling term by the outer fixed point above. The reported
-/// `iterations` and `operator_applies` add up every inner solve and the coupling applies.
+/// `iterations`, `operator_applies` and `preconditioner_fallbacks` add up every inner solve
+/// (and the coupling applies).
 pub fn solve_coupled(
     normal: &mut dyn Operator,
     coupling: &mut dyn Operator,
@@ -55,7 +56,7 @@ pub fn solve_coupled(
             shift_separation(&mut separation, problem.separation, &coupling_u);
         }
     }
-    let (mut iterations, mut applies) = (0, 0);
+    let (mut iterations, mut applies, mut fallbacks) = (0, 0, 0);
     let mut residual = f64::INFINITY;
     for _ in 0..MAX_OUTER_ITERATIONS {
         let inner = ContactProblem {
@@ -71,6 +72,7 @@ pub fn solve_coupled(
             .map_err(|e| as_outer_failure(e, iterations, options))?;
         iterations += solution.iterations;
         applies += solution.operator_applies + 1;
+        fallbacks += solution.preconditioner_fallbacks;
         coupling.apply(&solution.pressure, &mut coupling_u);
 
         // The residual of this pressure on the full operator.
@@ -89,6 +91,7 @@ pub fn solve_coupled(
             solution.approach_m = delta;
             solution.iterations = iterations;
             solution.operator_applies = applies;
+            solution.preconditioner_fallbacks = fallbacks;
             solution.residual = residual;
             return Ok(solution);
         }

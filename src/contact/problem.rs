@@ -43,7 +43,8 @@ pub enum Preconditioning {
     WholeGrid,
     /// The same, corrected at the edges of the free set (see [`super::solver`]): fewer
     /// iterations for one more apply of the inverse per iteration (a quarter of an
-    /// operator apply on the DC-FFT's grid, a whole one on the periodic grid).
+    /// operator apply on the DC-FFT's grid, a whole one on the periodic grid). A solve that
+    /// stalls with it finishes on [`Self::WholeGrid`].
     #[default]
     FreeSet,
 }
@@ -109,6 +110,10 @@ pub struct ContactSolution {
     pub operator_applies: usize,
     /// The relative residual reached.
     pub residual: f64,
+    /// Solves that stalled with the free-set preconditioner and finished on the whole grid
+    /// ([`Preconditioning::FreeSet`]; see [`super::solver`]): 0 or 1 for one solve, summed
+    /// over the inner solves of a coupled one.
+    pub preconditioner_fallbacks: usize,
 }
 
 impl ContactSolution {

@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// One problem in a scene, located by a dotted path such as `test.load_n` or
 /// `disc.hardness_table[2][0]` (empty for the document as a whole).
@@ -25,6 +25,37 @@ impl FieldError {
 }
 
 impl fmt::Display for FieldError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.path.is_empty() {
+            write!(f, "{}", self.message)
+        } else {
+            write!(f, "{}: {}", self.path, self.message)
+        }
+    }
+}
+
+/// Something in a scene that looks wrong without being invalid (a value far from any
+/// real test, as a unit slip gives), located as a [`FieldError`] is. It displays as the
+/// result's `warnings` carry it, `path: message`.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct FieldWarning {
+    /// The field it is about (empty for the scene as a whole).
+    pub path: String,
+    /// What looks wrong, with the numbers and the likely slip.
+    pub message: String,
+}
+
+impl FieldWarning {
+    /// A warning about the field at `path`.
+    pub fn new(path: impl Into<String>, message: impl Into<String>) -> Self {
+        Self {
+            path: path.into(),
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for FieldWarning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if self.path.is_empty() {
             write!(f, "{}", self.message)

@@ -10,7 +10,8 @@ mod surface;
 
 pub(super) use corrosion::{
     ANODIC_AREA, ANODIC_AREA_FACTOR, ANODIC_CURRENT, CORROSION_POTENTIAL, DENSITY, EXPOSED_AREA,
-    MOLAR_MASS, TAFEL_A, TAFEL_B, VALENCE,
+    MOLAR_MASS, OCP_AFTER, OCP_BEFORE, REFERENCE, REPASSIVATION_TIME, TAFEL_A, TAFEL_B,
+    TAFEL_ETA_MAX, TAFEL_ETA_MIN, VALENCE,
 };
 
 pub(super) use surface::{
@@ -465,6 +466,8 @@ pub const FIELDS: &[Field] = &[
     SPEED,
     FRICTION,
     CYCLES,
+    OCP_BEFORE,
+    OCP_AFTER,
     section("wear", "The wear law.", Range::Object),
     ARCHARD_K,
     CALIBRATION,
@@ -485,11 +488,15 @@ pub const FIELDS: &[Field] = &[
         Range::OptionalObject,
     ),
     CORROSION_POTENTIAL,
+    REFERENCE,
     TAFEL_A,
     TAFEL_B,
+    TAFEL_ETA_MIN,
+    TAFEL_ETA_MAX,
     ANODIC_CURRENT,
     EXPOSED_AREA,
     ANODIC_AREA,
+    REPASSIVATION_TIME,
     ANODIC_AREA_FACTOR,
     MOLAR_MASS,
     VALENCE,

@@ -14,6 +14,7 @@ use serde::de::DeserializeOwned;
 use serde_json::{Map, Value};
 
 use super::fields::{CYCLES, GRID};
+use super::suggest::did_you_mean_field;
 use super::{Ball, Corrosion, Disc, FieldError, Numerics, Scene, TestConditions, Wear};
 
 /// The top-level fields of a scene, in the order of `docs/scene.md`.
@@ -58,8 +59,9 @@ pub(super) fn deserialize_located(document: &Value, errors: &mut Vec<FieldError>
                 errors.push(FieldError::new(
                     key.as_str(),
                     format!(
-                        "unknown field `{key}`, expected one of {}",
-                        expected.join(", ")
+                        "unknown field `{key}`, expected one of {}{}",
+                        expected.join(", "),
+                        did_you_mean_field(key)
                     ),
                 ));
                 None
@@ -161,8 +163,11 @@ fn by_field<T: DeserializeOwned>(
                     Vec::new()
                 };
                 if refined.is_empty() {
-                    let hint = hint(&field_path).unwrap_or_default();
-                    errors.push(FieldError::new(field_path, format!("{e}{hint}")));
+                    let message = e.to_string();
+                    let hint = hint(&field_path)
+                        .or_else(|| unknown_hint(&field_path, key, &message))
+                        .unwrap_or_default();
+                    errors.push(FieldError::new(field_path, format!("{message}{hint}")));
                 } else {
                     errors.extend(refined);
                 }
@@ -198,6 +203,18 @@ fn table_errors(path: &str, value: &Value) -> Vec<FieldError> {
         }
     }
     errors
+}
+
+/// The field meant, for serde's "unknown field `name`" at `path` (the section's field
+/// `key`, or a field of the object under it).
+fn unknown_hint(path: &str, key: &str, message: &str) -> Option<String> {
+    let name = message.strip_prefix("unknown field `")?.split('`').next()?;
+    let typed = if name == key {
+        path.to_owned()
+    } else {
+        format!("{path}.{name}")
+    };
+    Some(did_you_mean_field(&typed)).filter(|hint| !hint.is_empty())
 }
 
 /// The allowed range, for fields whose serde type error would not say it.

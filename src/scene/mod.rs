@@ -11,6 +11,7 @@
 //! parses into the wear law ([`Wear::law`]).
 
 mod auto_or;
+mod corrosion;
 mod error;
 mod field;
 mod fields;
@@ -21,6 +22,7 @@ mod preset;
 mod record;
 mod reference;
 mod sections;
+mod suggest;
 mod surface;
 mod validate;
 
@@ -33,7 +35,10 @@ use crate::wear::WearLaw;
 
 pub use crate::wear::ArchardRegimeChange;
 pub use auto_or::{CycleStep, DomainSize, FixedStrideError, GridSize, SolverThreads};
-pub use error::{FieldError, SceneErrors};
+pub use corrosion::{
+    AnodicArea, Corrosion, PAPER_CORROSION_POTENTIAL_V, PAPER_REPASSIVATION_TIME_S,
+};
+pub use error::{FieldError, FieldWarning, SceneErrors};
 pub use field::{Field, Range};
 pub use fields::{FIELDS, field};
 pub use parse::{parse_scene, parse_scene_str, parse_scene_str_with, parse_scene_with};
@@ -41,11 +46,10 @@ pub use preset::{DALMAU2018_316L, Preset, dalmau2018_316l, presets};
 pub use record::{MAX_RECORD_CYCLES, RecordCycles, TABLE3_TIMES_S};
 pub use reference::{FIELDS_BEGIN, FIELDS_END, field_table};
 pub use sections::{
-    AnodicArea, ArchardCalibration, Ball, Corrosion, DEFAULT_TOLERANCE, Disc, Numerics,
-    PAPER_ARCHARD_CALIBRATION, PAPER_CYCLES, PAPER_HARDNESS_TABLE, STEP_CHANGE_BOUND, Switch,
-    TestConditions, Wear,
+    ArchardCalibration, Ball, DEFAULT_TOLERANCE, Disc, Numerics, PAPER_ARCHARD_CALIBRATION,
+    PAPER_CYCLES, PAPER_HARDNESS_TABLE, STEP_CHANGE_BOUND, Switch, TestConditions, Wear,
 };
-pub use surface::{DEFAULT_HURST, MAX_RMS_SLOPE, SurfaceKind, SurfaceSpec};
+pub use surface::{DEFAULT_HURST, MAX_RMS_HEIGHT_UM, MAX_RMS_SLOPE, SurfaceKind, SurfaceSpec};
 
 /// One ball-on-disc test, as the user describes it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -101,13 +101,16 @@ mod tests {
       },
       "test": {
         "load_n": 5.0, "track_radius_mm": 2.992, "speed_rpm": 60.0,
-        "friction_coefficient": 0.45, "cycles": 300
+        "friction_coefficient": 0.45, "cycles": 300, "ocp_before_s": 0, "ocp_after_s": 0
       },
       "wear": { "archard_k": 1.19e-4, "plasticity": "auto" },
       "corrosion": {
-        "corrosion_potential_v": -0.10, "tafel_a_c_v": -3.31, "tafel_b_c_v_per_decade": 0.56,
+        "corrosion_potential_v": -0.10, "reference_electrode": "ag_agcl_3m_kcl",
+        "tafel_a_c_v": -3.31, "tafel_b_c_v_per_decade": 0.56,
+        "tafel_overpotential_min_v": -1.0, "tafel_overpotential_max_v": -0.05,
         "anodic_current_density_a_cm2": 0.01, "exposed_area_cm2": 2.56,
-        "anodic_area": "wear_track", "anodic_area_factor": 1.0,
+        "anodic_area": "depassivated_wake", "repassivation_time_s": 0.148,
+        "anodic_area_factor": 1.0,
         "molar_mass_g_mol": 55.85, "valence": 2.0, "density_g_cm3": 7.9
       },
       "numerics": { "grid": "auto", "domain_um": "auto", "tolerance": 1e-6,
@@ -207,7 +210,7 @@ mod tests {
         assert_eq!(echo["wear"]["archard_calibration"]["time_s"], json!(3600.0));
         assert_eq!(echo["numerics"]["grid"], json!("auto"));
         assert_eq!(echo["numerics"]["cycle_step"], json!("auto"));
-        assert_eq!(echo["corrosion"]["anodic_area"], json!("wear_track"));
+        assert_eq!(echo["corrosion"]["anodic_area"], json!("depassivated_wake"));
         assert_eq!(echo["test"]["load_n"], json!(10.0));
         assert_eq!(parse_scene(&echo), Ok(scene));
     }
@@ -508,5 +511,31 @@ mod tests {
         );
         let json = serde_json::to_value(&errors).expect("errors serialise");
         assert_eq!(json[0]["path"], json!("test.load_n"));
+    }
+
+    #[test]
+    fn e_corr_keeps_its_meaning_in_another_reference_unless_given() {
+        let e_corr = |json: Value| {
+            parse_scene(&json)
+                .expect("valid")
+                .corrosion
+                .expect("corrosion")
+                .corrosion_potential_v
+        };
+        // The paper's -0.10 V vs Ag/AgCl (3 M KCl, +0.205 V vs SHE) is -0.136 V vs SCE
+        // (+0.241 V vs SHE): two roundings of numbers near 0.2.
+        let sce = e_corr(json!({"corrosion": {"reference_electrode": "sce"}}));
+        assert!((sce - -0.136).abs() < 1e-15, "{sce}");
+        let preset = e_corr(json!({"preset": "dalmau2018-316l",
+            "overrides": {"corrosion": {"reference_electrode": "she"}}}));
+        assert!((preset - 0.105).abs() < 1e-15, "{preset}");
+        let given = e_corr(json!({"corrosion": {"reference_electrode": "sce",
+            "corrosion_potential_v": -0.2}}));
+        assert_eq!(given.to_bits(), (-0.2f64).to_bits());
+        // The scene as run names its E_corr, so it parses back to itself.
+        let scene =
+            parse_scene(&json!({"corrosion": {"reference_electrode": "sce"}})).expect("valid");
+        let echo = serde_json::to_value(&scene).expect("scenes serialise");
+        assert_eq!(parse_scene(&echo), Ok(scene));
     }
 }

@@ -3,7 +3,8 @@
 use serde::Serialize;
 use serde_json::{Map, Value};
 
-use super::{FieldError, Scene, SceneErrors};
+use super::corrosion::follow_reference;
+use super::{Corrosion, FieldError, Scene, SceneErrors};
 
 /// Name of the paper's scene: AISI 316L against alumina, 5 N, 60 rpm, 3600 cycles.
 pub const DALMAU2018_316L: &str = "dalmau2018-316l";
@@ -41,7 +42,9 @@ pub fn dalmau2018_316l() -> Scene {
 /// The second value is the path prefix that locates errors in the user's document.
 pub(super) fn resolve(json: &Value) -> Result<(Value, &'static str), SceneErrors> {
     let Some(object) = json.as_object().filter(|o| o.contains_key("preset")) else {
-        return Ok((json.clone(), ""));
+        let mut document = json.clone();
+        follow_reference(&mut document, json.get("corrosion"), &Corrosion::default());
+        return Ok((document, ""));
     };
     let mut errors: Vec<FieldError> = object
         .keys()
@@ -65,9 +68,11 @@ pub(super) fn resolve(json: &Value) -> Result<(Value, &'static str), SceneErrors
         Value::String(name) => {
             let found = known.iter().find(|p| p.name == name);
             if found.is_none() {
+                let meant = super::suggest::nearest(name, known.iter().map(|p| p.name))
+                    .map_or_else(String::new, |p| format!("; did you mean `{p}`?"));
                 errors.push(FieldError::new(
                     "preset",
-                    format!("unknown preset `{name}`; known presets: {}", names()),
+                    format!("unknown preset `{name}`; known presets: {}{meant}", names()),
                 ));
             }
             found
@@ -101,6 +106,8 @@ pub(super) fn resolve(json: &Value) -> Result<(Value, &'static str), SceneErrors
             })?;
             merge(&mut document, &Value::Object(overrides.clone()));
             keep_one_archard_setting(&mut document, &overrides);
+            let base = preset.scene.corrosion.clone().unwrap_or_default();
+            follow_reference(&mut document, overrides.get("corrosion"), &base);
             Ok((document, "overrides"))
         }
         _ => Err(SceneErrors(errors)),

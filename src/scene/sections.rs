@@ -1,12 +1,12 @@
-//! The sections of a scene (ball, disc, test, wear, corrosion, numerics) with the paper's
-//! values as their defaults, and their conversions to the core's SI types.
+//! The sections of a scene (ball, disc, test, wear, numerics; corrosion in
+//! [`super::corrosion`]) with the paper's values as their defaults, and their conversions to
+//! the core's SI types.
 
 use serde::{Deserialize, Serialize};
 
 use super::auto_or::{CycleStep, DomainSize, GridSize, SolverThreads};
 use super::record::RecordCycles;
 use super::surface::SurfaceSpec;
-use crate::corrosion::CorrosionModel;
 use crate::hardness::{HardnessError, HardnessLaw};
 use crate::wear::{Archard, ArchardK, ArchardRegimeChange, MeasuredPoint, WearLaw};
 
@@ -167,6 +167,10 @@ pub struct TestConditions {
     pub friction_coefficient: f64,
     /// Number of passes of the ball over the track.
     pub cycles: u64,
+    /// Open-circuit time recorded before the rubbing starts, s.
+    pub ocp_before_s: f64,
+    /// Open-circuit time recorded after the rubbing stops, s.
+    pub ocp_after_s: f64,
 }
 
 impl Default for TestConditions {
@@ -177,6 +181,8 @@ impl Default for TestConditions {
             speed_rpm: 60.0,
             friction_coefficient: 0.45,
             cycles: PAPER_CYCLES,
+            ocp_before_s: 0.0,
+            ocp_after_s: 0.0,
         }
     }
 }
@@ -292,78 +298,6 @@ pub struct ArchardCalibration {
     /// Wear track radius of the measured test, mm; absent, the scene's.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub track_radius_mm: Option<f64>,
-}
-
-/// The electrochemical cell (paper Section 5.1); units in the names.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct Corrosion {
-    /// Free corrosion potential E_corr, V against the reference electrode (the paper's:
-    /// Ag/AgCl in 3 M KCl).
-    pub corrosion_potential_v: f64,
-    /// Cathodic Tafel constant a_c, V (fitted with current densities in A/cm^2).
-    pub tafel_a_c_v: f64,
-    /// Cathodic Tafel slope b_c, V per decade.
-    pub tafel_b_c_v_per_decade: f64,
-    /// Anodic current density on depassivated metal, A/cm^2.
-    pub anodic_current_density_a_cm2: f64,
-    /// Electrode area exposed to the electrolyte, cm^2.
-    pub exposed_area_cm2: f64,
-    /// Which area depassivates.
-    pub anodic_area: AnodicArea,
-    /// Multiplier on the chosen anodic area.
-    pub anodic_area_factor: f64,
-    /// Molar mass of the dissolving metal, g/mol.
-    pub molar_mass_g_mol: f64,
-    /// Charge number of the dissolution reaction.
-    pub valence: f64,
-    /// Density of the metal, g/cm^3.
-    pub density_g_cm3: f64,
-}
-
-impl Default for Corrosion {
-    fn default() -> Self {
-        Self {
-            corrosion_potential_v: -0.10,
-            tafel_a_c_v: -3.31,
-            tafel_b_c_v_per_decade: 0.56,
-            anodic_current_density_a_cm2: 0.01,
-            exposed_area_cm2: 2.56,
-            anodic_area: AnodicArea::WearTrack,
-            anodic_area_factor: 1.0,
-            molar_mass_g_mol: 55.85,
-            valence: 2.0,
-            density_g_cm3: 7.9,
-        }
-    }
-}
-
-impl Corrosion {
-    /// The cell in SI units.
-    pub fn model(&self) -> CorrosionModel {
-        CorrosionModel {
-            corrosion_potential_v: self.corrosion_potential_v,
-            tafel_a_c_v: self.tafel_a_c_v,
-            tafel_b_c_v_per_decade: self.tafel_b_c_v_per_decade,
-            anodic_current_density_a_m2: self.anodic_current_density_a_cm2 * 1e4,
-            exposed_area_m2: self.exposed_area_cm2 * 1e-4,
-            molar_mass_kg_mol: self.molar_mass_g_mol * 1e-3,
-            valence: self.valence,
-            density_kg_m3: self.density_g_cm3 * 1e3,
-        }
-    }
-}
-
-/// Which area depassivates and carries the anodic current.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum AnodicArea {
-    /// Track width times track length.
-    WearTrack,
-    /// Real contact area of the asperities, F / H.
-    RealContact,
-    /// The contact area of the boundary-element solution.
-    BemContact,
 }
 
 /// A model switch: decided by the simulation, forced on, or forced off.

@@ -25,6 +25,11 @@ pub const DEFAULT_HURST: f64 = 0.8;
 /// gives on the grid.
 pub const MAX_RMS_SLOPE: f64 = 1.0;
 
+/// The largest rms height a surface may have, um: 0.1 mm is beyond a ball-on-disc contact
+/// (the paper's groove is 3.4 um deep). Bounds a synthetic surface's `rms_height_um` and
+/// the rms of a measured map, where it catches heights in um read as m.
+pub const MAX_RMS_HEIGHT_UM: f64 = 100.0;
+
 /// The disc's initial surface.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

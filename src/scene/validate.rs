@@ -9,9 +9,10 @@ use super::fields::{
     CALIBRATION_HARDNESS, CALIBRATION_LOAD, CALIBRATION_SPEED, CALIBRATION_TIME,
     CALIBRATION_TRACK_RADIUS, CALIBRATION_VOLUME, CORROSION_POTENTIAL, CYCLE_STEP_BOUND, CYCLES,
     DENSITY, DISC_HARDNESS, DISC_MODULUS, DISC_POISSON, DOMAIN, EXPOSED_AREA, FRICTION, GRID, LOAD,
-    MOLAR_MASS, REGIME_CHANGE_CYCLE, REGIME_CHANGE_K_BEFORE, SPEED, SURFACE_HURST,
-    SURFACE_LONG_CUTOFF, SURFACE_RMS_HEIGHT, SURFACE_RMS_SLOPE, SURFACE_SEED, SURFACE_SHORT_CUTOFF,
-    TAFEL_A, TAFEL_B, THREADS, TOLERANCE, TRACK_RADIUS, VALENCE, YIELD_FACTOR,
+    MOLAR_MASS, OCP_AFTER, OCP_BEFORE, REGIME_CHANGE_CYCLE, REGIME_CHANGE_K_BEFORE,
+    REPASSIVATION_TIME, SPEED, SURFACE_HURST, SURFACE_LONG_CUTOFF, SURFACE_RMS_HEIGHT,
+    SURFACE_RMS_SLOPE, SURFACE_SEED, SURFACE_SHORT_CUTOFF, TAFEL_A, TAFEL_B, TAFEL_ETA_MAX,
+    TAFEL_ETA_MIN, THREADS, TOLERANCE, TRACK_RADIUS, VALENCE, YIELD_FACTOR,
 };
 use super::format::num;
 use super::surface::SurfaceKind;
@@ -39,6 +40,8 @@ pub(super) fn check(scene: &Scene) -> Vec<FieldError> {
     c.number(&SPEED, test.speed_rpm);
     c.number(&FRICTION, test.friction_coefficient);
     c.whole(&CYCLES, test.cycles);
+    c.number(&OCP_BEFORE, test.ocp_before_s);
+    c.number(&OCP_AFTER, test.ocp_after_s);
 
     check_hardness_table(&mut c, scene);
     check_surface(&mut c, scene);
@@ -288,8 +291,37 @@ fn check_corrosion(c: &mut Checks, scene: &Scene) {
     c.number(&CORROSION_POTENTIAL, corrosion.corrosion_potential_v);
     c.number(&TAFEL_A, corrosion.tafel_a_c_v);
     c.number(&TAFEL_B, corrosion.tafel_b_c_v_per_decade);
+    c.number(&TAFEL_ETA_MIN, corrosion.tafel_overpotential_min_v);
+    c.number(&TAFEL_ETA_MAX, corrosion.tafel_overpotential_max_v);
+    if corrosion.tafel_overpotential_max_v <= corrosion.tafel_overpotential_min_v {
+        c.fail(
+            TAFEL_ETA_MAX.path,
+            format!(
+                "must be above `corrosion.tafel_overpotential_min_v` ({} V), got {} V",
+                num(corrosion.tafel_overpotential_min_v),
+                num(corrosion.tafel_overpotential_max_v)
+            ),
+        );
+    }
     c.number(&ANODIC_CURRENT, corrosion.anodic_current_density_a_cm2);
     c.number(&EXPOSED_AREA, corrosion.exposed_area_cm2);
+    c.number(&REPASSIVATION_TIME, corrosion.repassivation_time_s);
+    // The wake picture has each stripped spot repassivate before the ball comes round
+    // again; a wake as long as the track leaves the whole track bare (`wear_track`).
+    let wake_m = scene.sliding_speed_m_s() * corrosion.repassivation_time_s;
+    if corrosion.depassivates() && wake_m >= scene.track_length_m() {
+        c.fail(
+            REPASSIVATION_TIME.path,
+            format!(
+                "the wake v tau = {} mm would reach round the {} mm track: tau must be below \
+                 one cycle, {} s; a track that never repassivates is `anodic_area: \
+                 \"wear_track\"`",
+                num(wake_m * 1e3),
+                num(scene.track_length_m() * 1e3),
+                num(scene.cycle_period_s())
+            ),
+        );
+    }
     c.number(&ANODIC_AREA_FACTOR, corrosion.anodic_area_factor);
     c.number(&MOLAR_MASS, corrosion.molar_mass_g_mol);
     c.number(&VALENCE, corrosion.valence);
@@ -405,5 +437,32 @@ mod tests {
                 "numerics.threads",
             ]
         );
+    }
+
+    #[test]
+    fn the_tafel_domain_is_ordered_and_the_wake_shorter_than_the_track() {
+        let mut scene = Scene {
+            corrosion: Some(Corrosion {
+                tafel_overpotential_min_v: -0.2,
+                tafel_overpotential_max_v: -0.3,
+                // 18.8 mm/s for 1 s is the whole 18.8 mm track.
+                repassivation_time_s: 1.0,
+                ..Corrosion::default()
+            }),
+            ..Scene::default()
+        };
+        assert_eq!(
+            paths(&scene),
+            [
+                "corrosion.tafel_overpotential_max_v",
+                "corrosion.repassivation_time_s"
+            ]
+        );
+        // A track that never repassivates is the wear track's model, not an error.
+        if let Some(c) = scene.corrosion.as_mut() {
+            c.anodic_area = super::super::AnodicArea::WearTrack;
+            c.tafel_overpotential_max_v = -0.05;
+        }
+        assert!(check(&scene).is_empty(), "{:?}", check(&scene));
     }
 }

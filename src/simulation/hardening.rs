@@ -2,7 +2,7 @@
 //! they were fitted to with each one's residual, and a warning for a point far off the law.
 
 use crate::hardness::HardnessLaw;
-use crate::scene::Disc;
+use crate::scene::{Disc, FieldWarning};
 
 use super::{Model, ModelChoice};
 
@@ -13,7 +13,10 @@ pub const FAR_OFF_FRACTION: f64 = 0.05;
 
 /// The `work_hardening` model choice for `disc` and its fitted `law`, and a warning per point
 /// more than [`FAR_OFF_FRACTION`] off the law.
-pub(super) fn work_hardening_report(disc: &Disc, law: &HardnessLaw) -> (ModelChoice, Vec<String>) {
+pub(super) fn work_hardening_report(
+    disc: &Disc,
+    law: &HardnessLaw,
+) -> (ModelChoice, Vec<FieldWarning>) {
     let HardnessLaw::Logarithmic { a_pa, b_pa } = *law else {
         let choice = ModelChoice {
             name: Model::WorkHardening,
@@ -30,14 +33,17 @@ pub(super) fn work_hardening_report(disc: &Disc, law: &HardnessLaw) -> (ModelCho
             let fitted = law.hardness_pa(n);
             let residual = h_pa - fitted;
             if (residual / fitted).abs() > FAR_OFF_FRACTION {
-                warnings.push(format!(
-                    "disc.hardness_table: the point at n = {n} ({:.0} MPa) lies {:+.0} MPa \
-                     ({:+.1}%) off the fitted law H = {:.1} + {:.2} ln n MPa",
-                    h_pa / 1e6,
-                    residual / 1e6,
-                    100.0 * residual / fitted,
-                    a_pa / 1e6,
-                    b_pa / 1e6
+                warnings.push(FieldWarning::new(
+                    "disc.hardness_table",
+                    format!(
+                        "the point at n = {n} ({:.0} MPa) lies {:+.0} MPa ({:+.1}%) off the \
+                         fitted law H = {:.1} + {:.2} ln n MPa",
+                        h_pa / 1e6,
+                        residual / 1e6,
+                        100.0 * residual / fitted,
+                        a_pa / 1e6,
+                        b_pa / 1e6
+                    ),
                 ));
             }
             format!("n = {n}: {:+.1}", residual / 1e6)
@@ -88,7 +94,7 @@ mod tests {
         let law = outlier.hardness_law().expect("still fits");
         let (_, warnings) = work_hardening_report(&outlier, &law);
         assert_eq!(warnings.len(), 1, "{warnings:?}");
-        assert!(warnings[0].contains("n = 300"), "{}", warnings[0]);
+        assert!(warnings[0].message.contains("n = 300"), "{}", warnings[0]);
     }
 
     #[test]

@@ -3,12 +3,16 @@
 //! per-cycle loop and its result. Plain synchronous code; a caller (the command line, the
 //! service) drives it through a callback and a cancel flag.
 
+mod balance;
 mod electrochemistry;
+mod estimate;
 mod feasibility;
 mod first;
 mod growth;
 mod hardening;
+mod ocp_trace;
 mod plan;
+mod plausibility;
 mod result;
 mod roughness;
 mod run;
@@ -27,11 +31,14 @@ use crate::surface::SurfaceError;
 /// The default cycle-step bound, owned by the scene; here beside [`MAX_STEP`] for the
 /// callers that study the stepping (the benchmarks).
 pub use crate::scene::STEP_CHANGE_BOUND;
+pub use estimate::{RunEstimate, describe_duration, describe_size};
 pub use first::{FirstContact, first_contact};
 pub use hardening::FAR_OFF_FRACTION;
 pub use plan::{Plan, parse_scene, parse_scene_str};
+pub use plausibility::{RULES_BEGIN, RULES_END, check_map, rules_table};
 pub use result::{
-    CycleRecord, Model, ModelChoice, PressureMap, Profile, SimulationResult, Summary, SurfaceReport,
+    CycleRecord, Model, ModelChoice, OcpPhase, OcpSample, PressureMap, Profile, SimulationResult,
+    Summary, SurfaceReport,
 };
 pub use roughness::{CELLS_PER_SHORT_WAVELENGTH, DiscSurface};
 pub use run::{run, run_setup, run_with};

@@ -5,11 +5,13 @@
 
 use serde_json::Value;
 
-use super::feasibility::{Derived, limits};
-use super::sizing::{LowestYield, elastic_pair, hertz, lowest_yield, sizing_radius_m};
+use super::estimate::{RunEstimate, estimate};
+use super::feasibility::{Derived, limits, resolution};
+use super::plausibility::judge;
+use super::sizing::{LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m};
 use crate::contact::{ElasticPair, Hertz};
 use crate::hardness::HardnessLaw;
-use crate::scene::{self, FieldError, Scene, SceneErrors, Switch};
+use crate::scene::{self, FieldError, FieldWarning, Scene, SceneErrors, Switch};
 use crate::wear::WearLaw;
 
 /// A scene that passed every check (its fields, then the limits of the contact it
@@ -23,6 +25,8 @@ pub struct Plan {
     hertz: Hertz,
     sizing_radius_m: f64,
     wear: WearLaw,
+    estimate: RunEstimate,
+    warnings: Vec<FieldWarning>,
 }
 
 impl Plan {
@@ -62,6 +66,19 @@ impl Plan {
     /// The wear law.
     pub fn wear(&self) -> &WearLaw {
         &self.wear
+    }
+
+    /// What the run is expected to cost (solves, wall time, result size), extrapolated from
+    /// the paper's scene.
+    pub fn estimate(&self) -> &RunEstimate {
+        &self.estimate
+    }
+
+    /// What in the scene looks wrong without being invalid (a contact wide against the
+    /// ball, a soft disc, a long run), each with its field's path in the scene: printed
+    /// before a run starts and carried into the result's `warnings`.
+    pub fn warnings(&self) -> &[FieldWarning] {
+        &self.warnings
     }
 
     /// Where and how low the yield pressure falls during the run.
@@ -116,7 +133,21 @@ fn derive(scene: Scene) -> Result<Plan, Vec<FieldError>> {
         capped,
         sizing_m: sizing_radius_m,
     };
-    let errors = limits(&scene, &derived);
+    let cells = plan_grid(&scene.numerics, sizing_radius_m, None).cells;
+    let estimate = estimate(&scene, cells);
+    let verdict = judge(&scene, &derived, &estimate);
+    // A field the limits refuse keeps their message (its bound is exact); plausibility
+    // names the slip of the others.
+    let mut errors = limits(&scene, &derived);
+    let refused = |path: &str, errors: &[FieldError]| errors.iter().any(|e| e.path == path);
+    for refusal in verdict.refusals {
+        if !refused(&refusal.path, &errors) {
+            errors.push(refusal);
+        }
+    }
+    if errors.is_empty() {
+        errors = resolution(&scene, &derived);
+    }
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -129,5 +160,7 @@ fn derive(scene: Scene) -> Result<Plan, Vec<FieldError>> {
         hertz,
         sizing_radius_m,
         wear,
+        estimate,
+        warnings: verdict.warnings,
     })
 }

@@ -4,7 +4,8 @@
 use serde::{Deserialize, Serialize};
 
 use crate::contact::{Grid, Window};
-use crate::scene::Scene;
+use crate::corrosion::ReferenceElectrode;
+use crate::scene::{FieldWarning, Scene};
 use crate::surface::Statistics;
 use crate::wear::{Groove, WearLaw, WearSummary};
 
@@ -25,14 +26,47 @@ pub struct SimulationResult {
     /// its fitted law); absent when there is nothing to say.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
+    /// Each of `warnings` with the dotted path in the scene of the field it is about
+    /// (`test.load_n`), so a page can show it beside the field; absent when there is
+    /// nothing to say.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub field_warnings: Vec<FieldWarning>,
     /// One record per solved cycle.
     pub cycles: Vec<CycleRecord>,
     /// Depth profiles across the track at chosen cycles.
     pub profiles: Vec<Profile>,
     /// Pressure maps at the first and the last solved cycle.
     pub pressure_maps: Vec<PressureMap>,
+    /// The potential as the lab's potentiostat records it at open circuit: before, during
+    /// and after the rubbing (Fig. 6); empty without corrosion.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub ocp_trace: Vec<OcpSample>,
     /// Totals.
     pub summary: Summary,
+}
+
+/// One point of the open-circuit potential trace.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct OcpSample {
+    /// Time since the recording started (`test.ocp_before_s` before the rubbing), s.
+    pub time_s: f64,
+    /// The potential, V against `summary.potential_reference`.
+    pub potential_v: f64,
+    /// Which part of the test.
+    pub phase: OcpPhase,
+}
+
+/// The parts of an open-circuit potential record, named in the JSON as `before`, `rubbing`
+/// and `after`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OcpPhase {
+    /// At open circuit before the ball moves.
+    Before,
+    /// While the ball slides.
+    Rubbing,
+    /// After the ball stops, while the bare metal repassivates.
+    After,
 }
 
 /// One model switched on or off, with the reason in words and numbers.
@@ -110,16 +144,31 @@ pub struct CycleRecord {
     pub approach_um: f64,
     /// Solver iterations for this cycle.
     pub iterations: usize,
-    /// Potential during rubbing (eq. 18), V against Ag/AgCl (the paper's reference
-    /// electrode); absent without `corrosion`.
+    /// Potential during rubbing (eq. 18), V against the scene's
+    /// `corrosion.reference_electrode` (the paper's Ag/AgCl by default); absent without
+    /// `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub potential_v: Option<f64>,
     /// Anodic (depassivated) area, mm^2; absent without `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub anodic_area_mm2: Option<f64>,
+    /// The solved contact's mean chord along the sliding direction (its area over the width
+    /// its chords sweep), um: the L of the depassivated wake; absent without `corrosion`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_chord_um: Option<f64>,
+    /// The anodic current i_a A_a, mA; absent without `corrosion`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub anodic_current_ma: Option<f64>,
+    /// The anodic charge passed so far, C; absent without `corrosion`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub charge_c: Option<f64>,
     /// Wear-accelerated corrosion volume so far, mm^3; absent without `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wac_volume_mm3: Option<f64>,
+    /// The mechanical and the corrosion volume together, `wear_volume_mm3 +
+    /// wac_volume_mm3`: what a profilometer measures, mm^3; absent without `corrosion`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub total_volume_mm3: Option<f64>,
 }
 
 /// The statistics of a rough disc's surface.
@@ -207,10 +256,20 @@ pub struct Summary {
     /// Final wear-accelerated corrosion volume, mm^3; absent without `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wac_volume_mm3: Option<f64>,
-    /// Potential during rubbing at the last cycle, V against Ag/AgCl; absent without
-    /// `corrosion`.
+    /// Final total volume, mechanical plus corrosion, mm^3; absent without `corrosion`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub total_volume_mm3: Option<f64>,
+    /// The anodic charge passed during the rubbing, C; absent without `corrosion`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub charge_c: Option<f64>,
+    /// Potential during rubbing at the last cycle, V against `potential_reference`; absent
+    /// without `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub potential_v: Option<f64>,
+    /// The reference electrode of every potential of the result; absent without
+    /// `corrosion`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub potential_reference: Option<ReferenceElectrode>,
     /// The wear law's fields (`archard_k`, `archard_regime_change`).
     #[serde(flatten)]
     pub wear: WearSummary,
@@ -235,8 +294,21 @@ impl std::fmt::Display for Summary {
         if let Some(wac) = self.wac_volume_mm3 {
             writeln!(f, "  WAC volume       {wac:.4e} mm^3")?;
         }
+        if let Some(total) = self.total_volume_mm3 {
+            writeln!(f, "  total volume     {total:.4e} mm^3 (wear + WAC)")?;
+        }
+        if let Some(charge) = self.charge_c {
+            writeln!(f, "  anodic charge    {charge:.4e} C")?;
+        }
         if let Some(potential) = self.potential_v {
-            writeln!(f, "  final potential  {potential:.4} V vs Ag/AgCl")?;
+            let reference = self
+                .potential_reference
+                .unwrap_or(ReferenceElectrode::AgAgCl3MKcl);
+            writeln!(
+                f,
+                "  final potential  {potential:.4} V vs {}",
+                reference.label()
+            )?;
         }
         write!(f, "{}", self.wear)
     }
@@ -253,7 +325,10 @@ mod tests {
             wear_volume_mm3: 1.2e-2,
             max_depth_um: 12.5,
             wac_volume_mm3: Some(3.4e-4),
+            total_volume_mm3: Some(1.234e-2),
+            charge_c: Some(2.9e-2),
             potential_v: Some(-0.5432),
+            potential_reference: Some(ReferenceElectrode::AgAgCl3MKcl),
             wear: WearSummary {
                 archard_k: 1.0228e-4,
                 archard_regime_change: None,
@@ -268,11 +343,20 @@ mod tests {
             "{text}"
         );
         assert!(text.contains("wear volume      1.2000e-2 mm^3"), "{text}");
-        assert!(text.contains("-0.5432 V vs Ag/AgCl"), "{text}");
+        assert!(text.contains("-0.5432 V vs Ag/AgCl (3 M KCl)"), "{text}");
+        assert!(text.contains("total volume     1.2340e-2 mm^3"), "{text}");
+        let sce = Summary {
+            potential_reference: Some(ReferenceElectrode::Sce),
+            ..summary
+        };
+        assert!(sce.to_string().contains("V vs SCE"));
         let dry = Summary {
             wac_volume_mm3: None,
+            total_volume_mm3: None,
+            charge_c: None,
             potential_v: None,
-            ..summary
+            potential_reference: None,
+            ..sce
         };
         assert!(!dry.to_string().contains("Ag/AgCl"));
     }

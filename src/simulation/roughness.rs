@@ -24,6 +24,7 @@ use crate::contact::Grid;
 use crate::scene::{FieldError, MAX_RMS_SLOPE, SceneErrors, SurfaceKind, SurfaceSpec};
 use crate::surface::{HeightMap, Roughness, SelfAffine, Statistics, measured_fit_range};
 
+use super::plausibility::check_map;
 use super::{Model, ModelChoice, SimulationError};
 
 /// Cells across the short cut-off wavelength of a synthetic surface. Measured on the
@@ -66,9 +67,10 @@ pub fn build(
     match spec.kind {
         SurfaceKind::Synthetic => synthetic(spec, grid),
         SurfaceKind::Measured => {
-            let map = supplied.ok_or_else(|| SimulationError::SurfaceNotSupplied {
-                id: spec.id.clone().unwrap_or_default(),
-            })?;
+            let id = spec.id.clone().unwrap_or_default();
+            let map =
+                supplied.ok_or_else(|| SimulationError::SurfaceNotSupplied { id: id.clone() })?;
+            check_map(&id, map).map_err(|e| SimulationError::Scene(SceneErrors(vec![e])))?;
             Ok(measured(spec, map, grid))
         }
     }

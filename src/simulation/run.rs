@@ -22,12 +22,15 @@ use crate::contact::{
     ContactError, ContactProblem, ContactSolution, ContactSolver, Grid, MARGIN_FRACTION,
     MIN_MARGIN, Window, WindowFractions, WindowedSolver, cold_start,
 };
+use crate::corrosion::ContactGeometry;
 use crate::scene::DomainSize;
 use crate::surface::count_islands;
 use crate::wear::Groove;
 
+use super::balance::balance;
 use super::electrochemistry::{Cell, Reading, Surface};
 use super::growth::{GROW_AT_EDGE_CELLS, GROW_AT_FRACTION, near_edges, widen};
+use super::ocp_trace::ocp_trace;
 use super::stepping::Stepper;
 use super::warm::WarmStart;
 use super::{
@@ -105,6 +108,8 @@ struct Run<'a, F> {
     maps: Vec<PressureMap>,
     solves: usize,
     iterations: usize,
+    /// Solves that stalled with the free-set preconditioner and fell back to the whole grid.
+    fallback_solves: usize,
     max_step: u64,
     /// Window fractions of the solvers of grids grown out of.
     window_fractions: WindowFractions,
@@ -124,7 +129,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             stepper: Stepper::new(scene.numerics.cycle_step, scene.numerics.cycle_step_bound),
             record_cycles: scene.record_cycles(),
             history: WarmStart::new(setup.plan.pair().reduced_modulus_pa, grid.dx.min(grid.dy)),
-            cell: scene.corrosion.as_ref().map(Cell::new),
+            cell: Cell::of(scene, setup.plan.hertz().contact_radius_m()),
             grows: scene.numerics.domain_um == DomainSize::Auto,
             models: setup.models.clone(),
             records: Vec::new(),
@@ -132,6 +137,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             maps: Vec::new(),
             solves: 0,
             iterations: 0,
+            fallback_solves: 0,
             max_step: 1,
             window_fractions: WindowFractions::default(),
         }
@@ -243,6 +249,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let solution = solved.map_err(|source| SimulationError::Contact { cycle, source })?;
         self.solves += 1;
         self.iterations += solution.iterations;
+        self.fallback_solves += usize::from(solution.preconditioner_fallbacks > 0);
         Ok((solution, separation))
     }
 
@@ -257,14 +264,16 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let Some(cell) = self.cell.as_mut() else {
             return Ok(None);
         };
+        let in_contact: Vec<bool> = solution.pressure.iter().map(|&p| p > 0.0).collect();
+        let grid = &self.grid;
         let surface = Surface {
             groove: &self.groove,
-            contact_area_m2: solution.contact_area_m2(&self.grid),
+            contact: ContactGeometry::of(&in_contact, grid.nx, grid.dx, grid.dy),
             load_n: scene.load_n(),
             hardness_pa,
             track_length_m: scene.track_length_m(),
         };
-        cell.solved_cycle(&surface, scene.cycle_period_s())
+        cell.solved_cycle(cycle, &surface, scene.cycle_period_s())
             .map(Some)
             .map_err(|source| SimulationError::Corrosion { cycle, source })
     }
@@ -283,10 +292,11 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let n = cycle as f64;
         let track_length = setup.scene().track_length_m();
         let contact: Vec<bool> = solution.pressure.iter().map(|&p| p > 0.0).collect();
+        let wear_volume_mm3 = self.groove.area_m2() * track_length * 1e9;
         let record = CycleRecord {
             cycle,
             time_s: n * setup.scene().cycle_period_s(),
-            wear_volume_mm3: self.groove.area_m2() * track_length * 1e9,
+            wear_volume_mm3,
             max_depth_um: self.groove.max_depth_m() * 1e6,
             max_pressure_mpa: solution.max_pressure_pa() / 1e6,
             contact_area_mm2: solution.contact_area_m2(grid) * 1e6,
@@ -297,7 +307,11 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             iterations: solution.iterations,
             potential_v: reading.map(|r| r.potential_v),
             anodic_area_mm2: reading.map(|r| r.anodic_area_m2 * 1e6),
+            contact_chord_um: reading.and_then(|r| r.contact_chord_m).map(|c| c * 1e6),
+            anodic_current_ma: reading.map(|r| r.anodic_current_a * 1e3),
+            charge_c: reading.map(|r| r.charge_c),
             wac_volume_mm3: reading.map(|r| r.wac_m3 * 1e9),
+            total_volume_mm3: reading.map(|r| wear_volume_mm3 + r.wac_m3 * 1e9),
         };
         on_cycle(&record);
         self.records.push(record);
@@ -377,23 +391,49 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             }
         }
         self.window_fractions += self.solver.fractions();
-        let models = self.run_models();
+        let mut warnings = setup.warnings.clone();
+        let mut models = self.run_models();
+        let mut ocp = Vec::new();
+        if let Some(cell) = &self.cell {
+            warnings.extend(cell.warnings());
+            let mut reason = cell.describe();
+            let measured = balance(scene, setup.plan.hardness(), cell.model(), &self.records);
+            if let Some(measured) = measured {
+                warnings.extend(measured.warning);
+                reason.push_str("; ");
+                reason.push_str(&measured.reason);
+            }
+            models.push(ModelChoice {
+                name: Model::Corrosion,
+                active: true,
+                reason,
+            });
+            ocp = ocp_trace(scene, cell, &self.records);
+        } else {
+            models.push(ModelChoice {
+                name: Model::Corrosion,
+                active: false,
+                reason: "no corrosion section in the scene".to_owned(),
+            });
+        }
         let summary = setup.summary(&self.records, started.elapsed().as_secs_f64());
         SimulationResult {
             complete: true,
             scene: scene.clone(),
             surface: setup.surface_report(),
             models,
-            warnings: setup.warnings.clone(),
+            warnings: warnings.iter().map(ToString::to_string).collect(),
+            field_warnings: warnings,
             cycles: self.records,
             profiles: self.profiles,
             pressure_maps: self.maps,
+            ocp_trace: ocp,
             summary,
         }
     }
 
     /// The setup's model choices and the run's: domain growths, then the cycle step, the
-    /// solve window, the wear law and corrosion.
+    /// solve window and the wear law (corrosion follows, in [`Run::finish`]).
     fn run_models(&mut self) -> Vec<ModelChoice> {
         let setup = self.setup;
         let numerics = &setup.scene().numerics;
@@ -410,30 +450,29 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 numerics.cycle_step_bound * 100.0
             ),
         });
+        let mut window = format!(
+            "each solve on the last contact's bounding box plus {:.0}% (at least {} cells), checked on the cells that could touch: on average {:.0}% of the grid's cells solved, {:.0}% checked",
+            100.0 * MARGIN_FRACTION,
+            MIN_MARGIN,
+            100.0 * self.window_fractions.solved / self.solves as f64,
+            100.0 * self.window_fractions.checked / self.solves as f64
+        );
+        if self.fallback_solves > 0 {
+            window += &format!(
+                "; the free-set preconditioner stalled and fell back to the whole grid in {} of {} solves",
+                self.fallback_solves, self.solves
+            );
+        }
         models.push(ModelChoice {
             name: Model::SolveWindow,
             active: true,
-            reason: format!(
-                "each solve on the last contact's bounding box plus {:.0}% (at least {} cells), checked on the cells that could touch: on average {:.0}% of the grid's cells solved, {:.0}% checked",
-                100.0 * MARGIN_FRACTION,
-                MIN_MARGIN,
-                100.0 * self.window_fractions.solved / self.solves as f64,
-                100.0 * self.window_fractions.checked / self.solves as f64
-            ),
+            reason: window,
         });
         let law = setup.plan.wear().choice();
         models.push(ModelChoice {
             name: Model::of_law(setup.plan.wear()),
             active: law.active,
             reason: law.reason,
-        });
-        models.push(ModelChoice {
-            name: Model::Corrosion,
-            active: self.cell.is_some(),
-            reason: match &self.cell {
-                Some(cell) => cell.describe(),
-                None => "no corrosion section in the scene".to_owned(),
-            },
         });
         models
     }

@@ -8,7 +8,7 @@ use crate::contact::{
     ContactSolver, CoupledSolver, DcFft, ElasticPair, Grid, Hertz, Kernel, NormalSolver,
     SolverOptions, split_threads,
 };
-use crate::scene::{Scene, SolverThreads, Switch};
+use crate::scene::{FieldWarning, Scene, SolverThreads, Switch};
 use crate::surface::HeightMap;
 use crate::wear::Groove;
 
@@ -60,8 +60,9 @@ pub struct Setup {
     pub options: SolverOptions,
     /// The decisions, for the result's `models`.
     pub models: Vec<ModelChoice>,
-    /// What in the scene looks wrong without being invalid, for the result's `warnings`.
-    pub warnings: Vec<String>,
+    /// What in the scene looks wrong without being invalid, each with its field's path: the
+    /// plan's, then the hardness points far off their law; for the result's `warnings`.
+    pub warnings: Vec<FieldWarning>,
     /// The disc's initial roughness on the first grid; `None` for a smooth disc.
     pub surface: Option<DiscSurface>,
 }
@@ -109,7 +110,14 @@ impl Setup {
             wear_volume_mm3: last.map_or(0.0, |c| c.wear_volume_mm3),
             max_depth_um: last.map_or(0.0, |c| c.max_depth_um),
             wac_volume_mm3: last.and_then(|c| c.wac_volume_mm3),
+            total_volume_mm3: last.and_then(|c| c.total_volume_mm3),
+            charge_c: last.and_then(|c| c.charge_c),
             potential_v: last.and_then(|c| c.potential_v),
+            potential_reference: self
+                .scene()
+                .corrosion
+                .as_ref()
+                .map(|c| c.reference_electrode),
             wear: self.plan.wear().summary(),
             wall_s,
             solves: cycles.len(),
@@ -146,8 +154,9 @@ impl Setup {
             }
             models.push(surface.model.clone());
         }
-        let (hardening, warnings) = work_hardening_report(&scene.disc, plan.hardness());
+        let (hardening, far_off) = work_hardening_report(&scene.disc, plan.hardness());
         models.push(hardening);
+        let warnings = plan.warnings().iter().cloned().chain(far_off).collect();
         Ok(Self {
             plan: plan.clone(),
             grid,
@@ -158,6 +167,11 @@ impl Setup {
             warnings,
             surface,
         })
+    }
+
+    /// The warnings as the result's `warnings` carries them, `path: message`.
+    pub fn warning_lines(&self) -> Vec<String> {
+        self.warnings.iter().map(ToString::to_string).collect()
     }
 
     /// The scene, defaults filled in.

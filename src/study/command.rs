@@ -103,12 +103,18 @@ pub fn read_members(
 /// summary JSON to `args.output` (or standard output), the markdown table to standard
 /// error. Members that fail leave the others running and make the command fail at the end.
 pub fn study(args: &StudyArgs) -> Result<StudySummary, CommandError> {
-    let (_, members) = read_members(&args.study, args.max_members)?;
+    let (text, members) = read_members(&args.study, args.max_members)?;
+    let name = Study::parse(&text)
+        .map(|study| study.name())
+        .unwrap_or_default();
     let workers = args.workers.unwrap_or_else(|| {
         std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
     });
     let workers = workers.clamp(1, members.len());
-    eprintln!("{} members on {workers} worker threads", members.len());
+    eprintln!(
+        "study `{name}`: {} members on {workers} worker threads",
+        members.len()
+    );
     let started = Instant::now();
     let mut done = 0;
     let total = members.len();

@@ -31,6 +31,8 @@ pub const MAX_MEMBERS: usize = 1000;
 /// A base scene and the axes along which it varies.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Study {
+    /// The study's own name, if the file gives one (else [`Study::name`] is the base's).
+    pub name: Option<String>,
     /// Any scene document, including the `{"preset": ..., "overrides": ...}` form.
     pub base: Value,
     /// The axes, in the order given: the first varies slowest across the members.
@@ -54,8 +56,8 @@ pub enum StudyError {
     /// The study file is not JSON, or gives a key twice.
     #[error("{0}")]
     Json(#[from] JsonError),
-    /// The study document does not have the study's shape (`base` and `axes`, nothing
-    /// else).
+    /// The study document does not have the study's shape (`base` and `axes`, an optional
+    /// `name`, nothing else).
     #[error("invalid study: {0}")]
     Shape(#[source] serde_json::Error),
     /// `base` is not a JSON object, so no scene.
@@ -110,14 +112,16 @@ pub fn describe_values(values: &[(String, Value)]) -> String {
 #[derive(serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 struct StudyFile {
+    #[serde(default)]
+    name: Option<String>,
     base: Value,
     axes: axes::OrderedAxes,
 }
 
 impl Study {
-    /// Parses a study: `{"base": SCENE, "axes": {"test.load_n": [2, 5, 10], ...}}`, each
-    /// axis a list of values or `{"from": A, "to": B, "steps": N}`. Refuses a key given
-    /// twice anywhere, as a scene does.
+    /// Parses a study: `{"name": ..., "base": SCENE, "axes": {"test.load_n": [2, 5, 10],
+    /// ...}}` (`name` optional), each axis a list of values or `{"from": A, "to": B,
+    /// "steps": N}`. Refuses a key given twice anywhere, as a scene does.
     pub fn parse(text: &str) -> Result<Self, StudyError> {
         crate::json::from_str(text)?;
         let file: StudyFile = serde_json::from_str(text).map_err(StudyError::Shape)?;
@@ -128,9 +132,26 @@ impl Study {
             .map(|(path, values)| Axis::from_json(path, &values))
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Self {
+            name: file.name,
             base: file.base,
             axes,
         })
+    }
+
+    /// What the study is called: the file's `name`, or else its base scene's (a preset's
+    /// own name, or the one its overrides give), or the scene's default.
+    pub fn name(&self) -> String {
+        if let Some(name) = &self.name {
+            return name.clone();
+        }
+        match crate::scene::parse_scene(&self.base) {
+            Ok(scene) => scene.name,
+            // A base that only its axes complete: its name as written, if any.
+            Err(_) => ["/name", "/overrides/name"]
+                .iter()
+                .find_map(|at| self.base.pointer(at).and_then(Value::as_str))
+                .map_or_else(|| Scene::default().name, str::to_owned),
+        }
     }
 
     /// How many members the axes give, from their counts alone (no value is built),

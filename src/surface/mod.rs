@@ -19,7 +19,9 @@ use thiserror::Error;
 pub use islands::count_islands;
 pub use read::{Format, MAX_PIXEL_M, MIN_PIXEL_M, declared_pixels, read, read_as, read_file};
 pub use spikes::SPIKE_RMS;
-pub use statistics::{Statistics, measured_fit_range, psd_slope, rms_height, rms_slope};
+pub use statistics::{
+    PsdFit, Statistics, measured_fit_range, psd_fit, psd_slope, rms_height, rms_slope,
+};
 pub use synthetic::{Roughness, SelfAffine};
 
 /// The most pixels per side of a map: twice the contact grid's largest side (2048), so a

@@ -320,6 +320,7 @@ mod tests {
                 iterations: 0,
                 operator_applies: 0,
                 residual: 0.0,
+                preconditioner_fallbacks: 0,
             };
             for &(i, u) in displacement_um {
                 solution.pressure[i] = 1e9;

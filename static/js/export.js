@@ -1,7 +1,7 @@
 // Each figure as SVG, and as PNG at print resolution, with its legend and axis labels.
 import { $, button, saveBlob } from "./dom.js";
 import { COMPARE_PLOT, STUDY, STUDY_PLOT, RUN } from "./ids.js";
-import { chart, spec, svgFigure } from "./plots.js";
+import { BAND_COLOR, chart, spec, svgFigure } from "./plots.js";
 import { FONT, FONT_FAMILY, esc, niceTicks } from "./svg.js";
 
 // The exported line chart's frame: width, margins and plot height, in px.
@@ -40,10 +40,22 @@ function seriesSvg(s, { X, Y }) {
   }).filter((part) => part);
 }
 
+// A shaded band of x under the series, clipped to the plot.
+function bandSvg(s, { X }) {
+  if (!s.band) return [];
+  const left = Math.max(L, X(s.band.from)), right = Math.min(L + PW, X(s.band.to));
+  if (right <= left) return [];
+  return [`<rect data-band="${esc(s.band.label)}" x="${left.toFixed(2)}" y="${T}" width="${(right - left).toFixed(2)}" height="${PH}" fill="${BAND_COLOR}"/>`];
+}
+
 // The legend under the plot; returns its parts and the y below it.
 function legendSvg(s) {
   const out = [];
   let y = T + PH + 62;
+  if (s.band) {
+    out.push(`<rect x="${L}" y="${y - 11}" width="24" height="12" fill="${BAND_COLOR}"/><text ${FONT} x="${L + 32}" y="${y}">${esc(s.band.label)}</text>`);
+    y += 20;
+  }
   for (const series of s.series) {
     const swatch = series.marker
       ? `<circle cx="${L + 12}" cy="${y - 4}" r="4" fill="${series.stroke}"/>`
@@ -65,7 +77,7 @@ function lineChartSvg(plotId) {
   const frame = { X, Y, sx, sy };
   const out = [`<text ${FONT_FAMILY} font-size="15" font-weight="600" x="${L}" y="24">${esc(title)}</text>`];
   out.push(`<defs><clipPath id="plotarea"><rect x="${L}" y="${T}" width="${PW}" height="${PH}"/></clipPath></defs>`);
-  out.push(...axesSvg(s, frame), ...seriesSvg(s, frame));
+  out.push(...bandSvg(s, frame), ...axesSvg(s, frame), ...seriesSvg(s, frame));
   const legend = legendSvg(s);
   out.push(...legend.out);
   const H = legend.y + 4;

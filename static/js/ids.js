@@ -48,6 +48,7 @@ export const RUN = Object.freeze({
   progress: "run-progress",
   reason: "run-reason",
   partial: "run-partial",
+  warnings: "run-warnings",
   downloadJson: "download-json",
   downloadCsv: "download-csv",
   editAgain: "edit-again",

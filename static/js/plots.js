@@ -7,6 +7,8 @@ import { $ } from "./dom.js";
 export const COLORS = ["#0a58ca", "#c2255c", "#1a7f37", "#b35900", "#6f42c1", "#0b7285", "#b42318", "#495057"];
 export const MEASURED_COLOR = "#b42318";
 export const ATTACHED_COLOR = "#1b1f24";
+/** The fill of a band of x (the rubbing on the potential figure). */
+export const BAND_COLOR = "rgba(179, 89, 0, 0.12)";
 
 // Tick steps of 1, 2 and 5 times a power of ten (uPlot's default also has 2.5).
 const ROUND_STEPS = [];
@@ -68,6 +70,19 @@ export function joinTables(tables) {
   return tables.length > 1 ? uPlot.join(tables) : tables[0];
 }
 
+// Shades `band` ({ from, to } in x) across the plot, under the series.
+function shade(band) {
+  return (u) => {
+    const left = Math.max(u.bbox.left, u.valToPos(band.from, "x", true));
+    const right = Math.min(u.bbox.left + u.bbox.width, u.valToPos(band.to, "x", true));
+    if (right <= left) return;
+    u.ctx.save();
+    u.ctx.fillStyle = BAND_COLOR;
+    u.ctx.fillRect(left, u.bbox.top, right - left, u.bbox.height);
+    u.ctx.restore();
+  };
+}
+
 function chartOptions(plotId, series, xLabel, yLabel, extra) {
   return {
     width: chartWidth(plotId),
@@ -82,28 +97,32 @@ function chartOptions(plotId, series, xLabel, yLabel, extra) {
     // Every series reads the cursor's own row, so the legend's values are of one x (one
     // cycle, one time, one y), never of neighbouring points.
     cursor: { dataIdx: (_u, _s, idx) => idx },
-    hooks: { ready: [blankLegend], setLegend: [blankLegend] },
+    hooks: { ready: [blankLegend], setLegend: [blankLegend], drawClear: extra.band ? [shade(extra.band)] : [] },
   };
 }
 
 /**
  * Draws (or updates) a uPlot line chart in the plot box `plotId`; `data` is uPlot's column
  * table; `points` is recorded on the box as data-points for tests and tools. The chart is
- * made anew when its series change or `extra.rebuild` asks; `extra.scales` adds scales.
+ * made anew when its series change or `extra.rebuild` asks; `extra.scales` adds scales;
+ * `extra.band` ({ from, to, label }) shades a band of x under the series.
  */
 export function linePlot(plotId, data, series, xLabel, yLabel, points, extra = {}) {
   const box = $(plotId);
   box.dataset.points = String(points);
-  specs.set(plotId, { data, series, xLabel, yLabel });
+  specs.set(plotId, { data, series, xLabel, yLabel, band: extra.band });
   const chartBox = box.querySelector(".chart");
   chartBox.setAttribute("role", "img");
   chartBox.setAttribute("aria-label", `${box.querySelector("h3").textContent}: ${series.map((s) => s.label).join("; ")}; ${points} points; ${yLabel} against ${xLabel}. The values are in the summary table and the downloads.`);
   const existing = charts.get(plotId);
   const sameSeries = existing && existing.series.length === series.length + 1 && series.every((s, i) => existing.series[i + 1].label === s.label);
-  if (sameSeries && !extra.rebuild) {
+  const sameBand = JSON.stringify(existing && existing.band) === JSON.stringify(extra.band);
+  if (sameSeries && sameBand && !extra.rebuild) {
     existing.setData(data);
     return;
   }
   if (existing) existing.destroy();
-  charts.set(plotId, new uPlot(chartOptions(plotId, series, xLabel, yLabel, extra), data, chartBox));
+  const made = new uPlot(chartOptions(plotId, series, xLabel, yLabel, extra), data, chartBox);
+  made.band = extra.band;
+  charts.set(plotId, made);
 }

@@ -1,12 +1,13 @@
 // The run panel's line figures: volume, depth, potential and WAC from the cycle records
-// (live or final), with the paper's Table 3 and the attached measurements where they
-// belong, and the groove's profiles with the ball once the run has a result.
+// (live or final; the potential from the result's OCP trace once it has one), with the
+// paper's Table 3 and the attached measurements where they belong, and the groove's
+// profiles with the ball once the run has a result.
 import { $ } from "./dom.js";
 import { RUN, RUN_PLOT } from "./ids.js";
 import { attachedPoints } from "./measurements.js";
 import { ATTACHED_COLOR, COLORS, MEASURED_COLOR, chart, dropChart, joinTables, linePlot, lineSeries, markerSeries } from "./plots.js";
 import { presetNamed } from "./scenes.js";
-import { getPath } from "./words.js";
+import { getPath, referenceShort } from "./words.js";
 
 // The paper's Table 3: wear volume (1e-3 mm^3) at rubbing time (s); at 60 rpm cycle = s.
 const TABLE3 = [[10, 0.97], [60, 1.09], [300, 1.18], [1800, 5.33], [3600, 11.72]];
@@ -65,44 +66,72 @@ function drawVolume(cycles, c, scene) {
   linePlot(RUN_PLOT.volume, joinTables(tables), volSeries, CYCLES_LABEL, "wear volume (10⁻³ mm³)", c.length);
 }
 
-// Potential (with E_corr dashed and attached potentials) and WAC volume against time.
-function drawCorrosion(cycles, scene) {
-  const t = cycles.map((r) => r.time_s);
-  const hasCorrosion = cycles.some((r) => r.potential_v != null);
-  const ecorr = getPath(scene, "corrosion.corrosion_potential_v");
-  for (const [plotId, key, label, unit, scale, color] of [
-    [RUN_PLOT.potential, "potential_v", "potential", "potential (V vs Ag/AgCl)", 1, COLORS[4]],
-    [RUN_PLOT.wac, "wac_volume_mm3", "WAC volume", "WAC volume (10⁻³ mm³)", 1e3, COLORS[3]],
-  ]) {
-    $(plotId).querySelector(".note").textContent = cycles.length && !hasCorrosion ? "This scene has no corrosion model: nothing to plot." : "";
-    const ys = cycles.map((r) => (r[key] == null ? null : r[key] * scale));
-    const series = [lineSeries(label, color)];
-    const cols = [t, ys];
-    if (key === "potential_v" && ecorr != null) {
-      cols.push(t.map(() => ecorr));
-      series.push({ label: "E_corr, free corrosion potential", stroke: "#444", width: 1.5, dash: [6, 4], spanGaps: true, points: { show: false } });
-    }
-    const parts = [cols];
-    if (key === "potential_v") {
-      const attached = attachedPoints("potential", (tb, i) => tb.time_s[i], (tb, i) => tb.potential_v[i]);
-      $(plotId).dataset.attached = String(attached.length);
-      if (attached.length) {
-        parts.push([attached.map((p) => p[0]), attached.map((p) => p[1])]);
-        series.push(markerSeries("attached measurement", ATTACHED_COLOR));
-      }
-    }
-    linePlot(plotId, joinTables(parts), series, "time (s)", unit, hasCorrosion ? ys.filter((v) => v != null).length : 0);
-  }
+// The rubbing on the record's clock: from `test.ocp_before_s` for the run's cycles.
+function rubbingBand(scene) {
+  const start = getPath(scene, "test.ocp_before_s") || 0;
+  const cycles = getPath(scene, "test.cycles");
+  const rpm = getPath(scene, "test.speed_rpm") || 60;
+  return cycles ? { from: start, to: start + (cycles * 60) / rpm, label: "rubbing (the ball sliding)" } : null;
 }
 
-/** Volume, depth, potential and WAC from the cycle records of a run of this scene. */
-export function drawSeries(cycles, scene) {
+/**
+ * The potential as the potentiostat records it: the result's OCP trace (E_corr before, the
+ * rubbing, the recovery after) once the run has one, else the solved cycles so far; the
+ * rubbing shaded, E_corr dashed, and attached potentials on the same clock (the record's,
+ * `test.ocp_before_s` before the ball starts).
+ */
+function drawPotential(cycles, scene, trace) {
+  const box = $(RUN_PLOT.potential);
+  const start = getPath(scene, "test.ocp_before_s") || 0;
+  const live = cycles.filter((r) => r.potential_v != null).map((r) => [start + r.time_s, r.potential_v]);
+  const points = trace && trace.length ? trace.map((p) => [p.time_s, p.potential_v]) : live;
+  const hasCorrosion = points.length > 0;
+  box.querySelector(".note").textContent = cycles.length && !hasCorrosion ? "This scene has no corrosion model: nothing to plot."
+    : hasCorrosion ? "Shaded: the rubbing. Before it the passive film holds E_corr; after it the bare metal repassivates." : "";
+  const t = points.map((p) => p[0]);
+  const series = [lineSeries("potential", COLORS[4])];
+  const cols = [t, points.map((p) => p[1])];
+  const ecorr = getPath(scene, "corrosion.corrosion_potential_v");
+  if (ecorr != null) {
+    cols.push(t.map(() => ecorr));
+    series.push({ label: "E_corr, free corrosion potential", stroke: "#444", width: 1.5, dash: [6, 4], spanGaps: true, points: { show: false } });
+  }
+  const parts = [cols];
+  const attached = attachedPoints("potential", (tb, i) => tb.time_s[i], (tb, i) => tb.potential_v[i]);
+  box.dataset.attached = String(attached.length);
+  if (attached.length) {
+    parts.push([attached.map((p) => p[0]), attached.map((p) => p[1])]);
+    series.push(markerSeries("attached measurement", ATTACHED_COLOR));
+  }
+  const band = hasCorrosion ? rubbingBand(scene) : null;
+  box.dataset.trace = String(trace ? trace.length : 0);
+  box.dataset.rubbing = band ? `${band.from} ${band.to}` : "";
+  const unit = `potential (V vs ${referenceShort(getPath(scene, "corrosion.reference_electrode"))})`;
+  linePlot(RUN_PLOT.potential, joinTables(parts), series, "time since the record started (s)", unit, points.length, { band });
+}
+
+// The WAC volume against the rubbing time.
+function drawWac(cycles) {
+  const box = $(RUN_PLOT.wac);
+  const hasCorrosion = cycles.some((r) => r.wac_volume_mm3 != null);
+  box.querySelector(".note").textContent = cycles.length && !hasCorrosion ? "This scene has no corrosion model: nothing to plot." : "";
+  const ys = cycles.map((r) => (r.wac_volume_mm3 == null ? null : r.wac_volume_mm3 * 1e3));
+  linePlot(RUN_PLOT.wac, [cycles.map((r) => r.time_s), ys], [lineSeries("WAC volume", COLORS[3])],
+    "time of rubbing (s)", "WAC volume (10⁻³ mm³)", hasCorrosion ? ys.filter((v) => v != null).length : 0);
+}
+
+/**
+ * Volume, depth, potential and WAC from the cycle records of a run of this scene; the
+ * potential from the result's OCP `trace` once it has one.
+ */
+export function drawSeries(cycles, scene, trace) {
   const c = cycles.map((r) => r.cycle);
   drawVolume(cycles, c, scene);
   linePlot(RUN_PLOT.depth, [c, cycles.map((r) => r.max_depth_um)],
     [{ label: "maximum depth", stroke: COLORS[2], width: 2, points: { show: false } }],
     CYCLES_LABEL, "maximum wear depth (µm)", c.length);
-  drawCorrosion(cycles, scene);
+  drawPotential(cycles, scene, trace);
+  drawWac(cycles);
 }
 
 /** Empties the profile figure until a result comes. */

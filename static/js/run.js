@@ -11,7 +11,7 @@ import { drawProfiles, drawSeries, resetProfiles, updateTable3Choice } from "./r
 import { closestPreset, remember, submittedScene } from "./scenes.js";
 import { readEvents } from "./sse.js";
 import { topic } from "./topic.js";
-import { METRICS, describe, differingPaths, fieldLabel, fmtValue, getPath, metricLabel, metricValue, readable } from "./words.js";
+import { METRICS, describe, differingPaths, fieldLabel, fmtValue, getPath, metricLabel, metricValue, readable, referenceLabel } from "./words.js";
 
 let selected = null; // id of the job shown
 let follow = null;   // AbortController of the event stream being read
@@ -27,7 +27,7 @@ export const currentResult = () => result;
 /** Listens for "Edit and run again": (the scene as run). */
 export const onEditAgain = editRequested.on;
 
-const redrawSeries = () => drawSeries(cycles, scene);
+const redrawSeries = () => drawSeries(cycles, scene, result && result.ocp_trace);
 
 // The Table 3 choice for the scene known now, and the volume figure again if drawn.
 function table3() {
@@ -53,7 +53,7 @@ function select(id, how = {}) {
   measurements.forget();
   $(RUN.panel).hidden = false;
   for (const b of [RUN.downloadJson, RUN.downloadCsv, RUN.editAgain]) $(b).disabled = true;
-  for (const d of [RUN.models, RUN.params, RUN.summary]) $(d).hidden = true;
+  for (const d of [RUN.models, RUN.params, RUN.summary, RUN.warnings]) $(d).hidden = true;
   $(RUN.partial).textContent = "";
   jobs.highlight(id);
   const job = jobs.find(id);
@@ -147,6 +147,17 @@ function partialNote(res) {
   return `Partial result: the cycles computed before the run stopped (to cycle ${lastCycle} of ${getPath(res.scene, "test.cycles") ?? "?"}). It is drawn below and downloads as JSON and CSV.`;
 }
 
+// What the run found wrong without failing: a potential capped at E_corr or outside the Tafel
+// line's domain, more corrosion than the measured total, a hardness point off its law.
+function renderWarnings(warnings) {
+  $(RUN.warnings).querySelector("ul").replaceChildren(...warnings.map((w) => {
+    const li = document.createElement("li");
+    li.textContent = readable(w);
+    return li;
+  }));
+  $(RUN.warnings).hidden = !warnings.length;
+}
+
 function renderModels(models) {
   $(RUN.models).querySelector("ul").replaceChildren(...models.map((m) => {
     const li = document.createElement("li");
@@ -167,6 +178,7 @@ async function loadResult(id) {
   $(RUN.partial).textContent = partialNote(r.body);
   $(RUN.downloadJson).disabled = false;
   $(RUN.downloadCsv).disabled = false;
+  renderWarnings(r.body.warnings || []);
   renderModels(r.body.models || []);
   renderSummary(r.body);
   renderParams();
@@ -222,6 +234,13 @@ function renderSummary(res) {
     tr.children[1].textContent = fmtValue(metricValue(res.summary, m));
     return tr;
   });
+  const reference = res.summary && res.summary.potential_reference;
+  if (reference) {
+    const tr = document.createElement("tr");
+    tr.innerHTML = "<th scope=row>potentials against</th><td></td>";
+    tr.children[1].textContent = referenceLabel(reference);
+    rows.push(tr);
+  }
   $(RUN.summary).querySelector("tbody").replaceChildren(...rows);
   $(RUN.summary).hidden = !rows.length;
 }

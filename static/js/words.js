@@ -81,12 +81,23 @@ export function readable(text) {
 }
 
 /** The summary's quantities: [field, words, unit, factor to the unit shown]. */
+/** The reference electrodes of `corrosion.reference_electrode`: in full, and short for an axis. */
+const REFERENCES = { ag_agcl_3m_kcl: ["Ag/AgCl (3 M KCl)", "Ag/AgCl"], sce: ["SCE", "SCE"], she: ["SHE", "SHE"] };
+
+/** The electrode a scene's potentials are against, in words (the paper's by default). */
+export const referenceLabel = (name) => (REFERENCES[name] || REFERENCES.ag_agcl_3m_kcl)[0];
+
+/** The same, short enough for an axis label. */
+export const referenceShort = (name) => (REFERENCES[name] || REFERENCES.ag_agcl_3m_kcl)[1];
+
 export const METRICS = [
   ["cycles", "cycles simulated", "", 1],
   ["wear_volume_mm3", "wear volume", "10⁻³ mm³", 1e3],
   ["max_depth_um", "maximum depth", "µm", 1],
   ["wac_volume_mm3", "WAC volume", "10⁻³ mm³", 1e3],
-  ["potential_v", "potential at the last cycle", "V vs Ag/AgCl", 1],
+  ["total_volume_mm3", "total volume, wear + WAC", "10⁻³ mm³", 1e3],
+  ["charge_c", "anodic charge", "C", 1],
+  ["potential_v", "potential at the last cycle", "V vs the reference electrode", 1],
   ["archard_k", "Archard k", "–", 1],
   ["solves", "contact solves", "", 1],
   ["wall_s", "wall time", "s", 1],

@@ -16,6 +16,7 @@ import { compare } from "./steps/compare.mjs";
 import { form } from "./steps/form.mjs";
 import { listing } from "./steps/listing.mjs";
 import { measurements } from "./steps/measurements.mjs";
+import { ocp } from "./steps/ocp.mjs";
 import { rough } from "./steps/rough.mjs";
 import { run } from "./steps/run.mjs";
 import { study } from "./steps/study.mjs";
@@ -41,7 +42,7 @@ try {
   page.on("pageerror", (e) => errors.push(String(e)));
   // What one step finds and a later one uses (the runs' ids, the run's length, ...).
   const found = {};
-  for (const scenario of [form, run, measurements, compare, access, study, calibration, listing, cancel, rough]) {
+  for (const scenario of [form, run, measurements, compare, access, study, calibration, listing, cancel, rough, ocp]) {
     await scenario(page, found);
   }
   assert.deepEqual(errors, [], "errors in the page");

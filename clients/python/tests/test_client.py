@@ -23,6 +23,8 @@ def test_presets(client: tribosim.Client) -> None:
 
 def test_page(client: tribosim.Client) -> None:
     assert "<html" in client.page().lower()
+    assert b"import" in client.page_file("js/main.js")
+    assert b"body" in client.page_file("page.css")
 
 
 def test_an_id_that_is_not_a_uuid_is_refused_as_a_request(client: tribosim.Client) -> None:
@@ -60,7 +62,3 @@ def test_no_server_is_a_transport_error() -> None:
         pytest.raises(tribosim.TransportError),
     ):
         client.health()
-
-
-def test_the_page_files_are_served(client: tribosim.Client) -> None:
-    assert b"body" in client.static_file("page.css")

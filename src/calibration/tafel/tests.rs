@@ -14,17 +14,29 @@ const B_A: f64 = 0.12;
 
 /// The paper's scan: from E_corr down to -1.1 V at 1 mV per point (1 mV/s, Section 2.2).
 fn potentials() -> Vec<f64> {
-    (1..=1000).map(|k| E_CORR - 1e-3 * k as f64).collect()
+    scan(1, 1000)
+}
+
+/// Potentials `first` to `last` mV below E_corr, 1 mV apart (negative `first`: above it).
+fn scan(first: i32, last: i32) -> Vec<f64> {
+    (first..=last)
+        .map(|k| E_CORR - 1e-3 * f64::from(k))
+        .collect()
 }
 
 /// Net current density (A/cm^2, negative: cathodic) of a cell whose cathodic branch is the
 /// Table 2 line and whose anodic branch meets it at E_corr, with log-normal noise of
 /// `noise_decades` from `seed`.
 fn synthetic_curve(noise_decades: f64, seed: u64, anodic: bool) -> Table {
+    curve_over(&potentials(), noise_decades, seed, anodic)
+}
+
+/// [`synthetic_curve`] at the potentials `potential`.
+fn curve_over(potential: &[f64], noise_decades: f64, seed: u64, anodic: bool) -> Table {
     let mut rng = StdRng::seed_from_u64(seed);
     let normal = Normal::new(0.0, noise_decades).expect("finite spread");
     let i_corr = 10f64.powf(A_C / B_C);
-    let potential = potentials();
+    let potential = potential.to_vec();
     let current: Vec<f64> = potential
         .iter()
         .map(|&e| {
@@ -48,7 +60,7 @@ fn synthetic_curve(noise_decades: f64, seed: u64, anodic: bool) -> Table {
 fn given_e_corr() -> TafelOptions {
     TafelOptions {
         corrosion_potential_v: Some(E_CORR),
-        upper_v: None,
+        ..TafelOptions::default()
     }
 }
 
@@ -107,22 +119,88 @@ fn table_2_values_come_back_from_a_noisy_curve_within_three_standard_errors() {
 }
 
 #[test]
-fn e_corr_taken_from_the_curve_is_its_smallest_current() {
-    let fit = fit_tafel(
-        &synthetic_curve(0.02, 15, true),
-        &Scene::default(),
-        TafelOptions::default(),
-    )
-    .expect("a Tafel domain");
-    // The smallest |i| is the first point, 1 mV below the true E_corr; a_c moves with it
-    // (a_c' = a_c + (E_corr - E_corr')), so allow that shift beside 3 standard errors.
+fn e_corr_is_where_the_current_changes_sign() {
+    // The scan from 50 mV above E_corr: the net current is anodic there and cathodic below.
+    let curve = curve_over(&scan(-50, 1000), 0.02, 15, true);
+    let fit = fit_tafel(&curve, &Scene::default(), TafelOptions::default()).expect("fits");
+    // Log-normal noise keeps each current's sign, so the one change lies between the two
+    // points 1 mV apart either side of E_corr.
     let shift = (fit.corrosion_potential_v - E_CORR).abs();
-    assert!(shift < 5e-3, "E_corr {}", fit.corrosion_potential_v);
+    assert!(shift < 1e-3, "E_corr {}", fit.corrosion_potential_v);
+    assert_eq!(
+        fit.corrosion_potential_source,
+        CorrosionPotentialSource::SignChange
+    );
     assert!(!fit.corrosion_potential_given);
+    assert!(
+        fit.warnings[0].contains("changes sign"),
+        "{:?}",
+        fit.warnings
+    );
     let a = fit.tafel_a_c_v;
     assert!(
         (a.value - A_C).abs() < 3.0 * a.standard_error + shift,
         "{a:?}"
+    );
+}
+
+#[test]
+fn a_cathodic_only_scan_needs_e_corr_from_the_option_or_the_labs_scene() {
+    // The curve: Table 2's line from -0.15 to -0.50 V, no noise. Taking its top as
+    // E_corr once gave a_c 1.5% and i_corr 23% off.
+    let curve = curve_over(&scan(50, 400), 0.0, 0, false);
+    let err = fit_tafel(&curve, &Scene::default(), TafelOptions::default()).expect_err("no E_corr");
+    assert!(matches!(err, CalibrationError::CorrosionPotentialUnknown));
+    assert!(err.to_string().contains("--e-corr"), "{err}");
+    let scene_given = TafelOptions {
+        scene_corrosion_potential: true,
+        ..TafelOptions::default()
+    };
+    let fit = fit_tafel(&curve, &Scene::default(), scene_given).expect("E_corr from the scene");
+    assert_eq!(
+        fit.corrosion_potential_source,
+        CorrosionPotentialSource::Scene
+    );
+    assert!(
+        fit.warnings[0].contains("from the scene"),
+        "{:?}",
+        fit.warnings
+    );
+    // Noise-free on the line: as exact as the 1000-point fit.
+    assert!(
+        ((fit.tafel_a_c_v.value - A_C) / A_C).abs() < 1e-9,
+        "{fit:?}"
+    );
+    let corrosion = fit.scene.corrosion.expect("filled in");
+    assert!((corrosion.tafel_overpotential_max_v - -0.05).abs() < 1e-12);
+    assert!((corrosion.tafel_overpotential_min_v - -0.40).abs() < 1e-12);
+}
+
+#[test]
+fn a_domain_too_narrow_for_a_tafel_line_is_refused_with_the_reason() {
+    let scene = Scene::default();
+    // 41 points over 40 mV.
+    let narrow = curve_over(&scan(60, 100), 0.0, 0, false);
+    let err = fit_tafel(&narrow, &scene, given_e_corr()).expect_err("40 mV");
+    assert!(
+        matches!(err, CalibrationError::NarrowTafelDomain(_)),
+        "{err}"
+    );
+    assert!(err.to_string().contains("50 mV"), "{err}");
+    // 8 points over 700 mV.
+    let sparse: Vec<f64> = (0..8).map(|k| E_CORR - 0.2 - 0.1 * f64::from(k)).collect();
+    let err = fit_tafel(&curve_over(&sparse, 0.0, 0, false), &scene, given_e_corr())
+        .expect_err("8 points");
+    assert!(err.to_string().contains("at least 10"), "{err}");
+    // A given upper end that leaves 4 mV, the window a noisy curve was once fitted on.
+    let options = TafelOptions {
+        upper_v: Some(-1.096),
+        ..given_e_corr()
+    };
+    let err = fit_tafel(&synthetic_curve(0.02, 15, true), &scene, options).expect_err("4 mV");
+    assert!(
+        matches!(err, CalibrationError::NarrowTafelDomain(_)),
+        "{err}"
     );
 }
 

@@ -1,19 +1,59 @@
-//! The descriptors of `corrosion`, the electrochemical cell of Section 5.1 (see
-//! [`super::FIELDS`]).
+//! The descriptors of `corrosion`, the electrochemical cell of Section 5.1, and of the
+//! open-circuit times of `test` around the rubbing (see [`super::FIELDS`]).
 
 use crate::scene::field::{Field, Range};
 
 const FARADAY_FEEDS: &str = "Faraday's law: V_WAC = i_a A_a t M / (z F rho)";
 
+/// `test.ocp_before_s`.
+pub(in crate::scene) const OCP_BEFORE: Field = Field {
+    path: "test.ocp_before_s",
+    unit: "s",
+    range: Range::AtLeast(0.0),
+    why: "",
+    meaning: "Open-circuit time recorded before the rubbing starts: the result's `ocp_trace` \
+              starts this long before the ball moves, at E_corr. The paper's protocol holds \
+              the OCP 3600 s before sliding (Section 2.3); 0 starts the trace at the \
+              rubbing's start.",
+    feeds: "the OCP trace of Fig. 6",
+};
+
+/// `test.ocp_after_s`.
+pub(in crate::scene) const OCP_AFTER: Field = Field {
+    path: "test.ocp_after_s",
+    unit: "s",
+    range: Range::AtLeast(0.0),
+    why: "",
+    meaning: "Open-circuit time recorded after the rubbing stops, while the bare area \
+              repassivates (the paper's protocol: 1200 s, Section 2.3); 0 ends the trace at \
+              the stop.",
+    feeds: "the OCP trace of Fig. 6",
+};
+
 /// `corrosion.corrosion_potential_v`.
 pub(in crate::scene) const CORROSION_POTENTIAL: Field = Field {
     path: "corrosion.corrosion_potential_v",
-    unit: "V vs Ag/AgCl",
+    unit: "V",
     range: Range::Finite,
     why: "",
     meaning: "Free corrosion potential E_corr (the open-circuit potential before rubbing, \
-              Table 2).",
+              Table 2), against `corrosion.reference_electrode`. Left out while \
+              `reference_electrode` is given, it is the paper's -0.10 V vs Ag/AgCl in that \
+              electrode (-0.136 V vs SCE, +0.105 V vs SHE).",
     feeds: "E_corr in eq. 18",
+};
+
+/// `corrosion.reference_electrode`.
+pub(in crate::scene) const REFERENCE: Field = Field {
+    path: "corrosion.reference_electrode",
+    unit: "",
+    range: Range::OneOf(&["ag_agcl_3m_kcl", "sce", "she"]),
+    why: "",
+    meaning: "The electrode every potential is against: E_corr here, the potentials of \
+              `tribosim calibrate tafel` and `ocp` tables, and every potential of the result \
+              (`summary.potential_reference` names it). `ag_agcl_3m_kcl`: +0.205 V vs SHE, \
+              the paper's (Section 2.2); `sce`: +0.241 V vs SHE; `she`: 0.",
+    feeds: "the reference of every potential",
 };
 
 /// `corrosion.tafel_a_c_v`.
@@ -34,6 +74,31 @@ pub(in crate::scene) const TAFEL_B: Field = Field {
     why: "",
     meaning: "Cathodic Tafel slope b_c (Table 2).",
     feeds: "b_c in eq. 18",
+};
+
+/// `corrosion.tafel_overpotential_min_v`.
+pub(in crate::scene) const TAFEL_ETA_MIN: Field = Field {
+    path: "corrosion.tafel_overpotential_min_v",
+    unit: "V",
+    range: Range::Closed(-3.0, 0.0),
+    why: "below E_corr, within the few volts an aqueous scan covers",
+    meaning: "The most cathodic potential of the Tafel line's fitted domain, as E - E_corr \
+              (the paper's scan ends at -1.1 V: -1.0). A potential during rubbing below it \
+              is outside what a_c and b_c were fitted on: the result warns.",
+    feeds: "the domain of eq. 18",
+};
+
+/// `corrosion.tafel_overpotential_max_v`.
+pub(in crate::scene) const TAFEL_ETA_MAX: Field = Field {
+    path: "corrosion.tafel_overpotential_max_v",
+    unit: "V",
+    range: Range::Closed(-3.0, 0.0),
+    why: "below E_corr, within the few volts an aqueous scan covers, and above \
+          `tafel_overpotential_min_v`",
+    meaning: "The least cathodic potential of the Tafel line's fitted domain, as E - E_corr \
+              (the paper's Tafel domain lies below -0.15 V: -0.05). A potential during \
+              rubbing above it is outside what a_c and b_c were fitted on: the result warns.",
+    feeds: "the domain of eq. 18",
 };
 
 /// `corrosion.anodic_current_density_a_cm2`.
@@ -62,14 +127,39 @@ pub(in crate::scene) const EXPOSED_AREA: Field = Field {
 pub(in crate::scene) const ANODIC_AREA: Field = Field {
     path: "corrosion.anodic_area",
     unit: "",
-    range: Range::OneOf(&["wear_track", "real_contact", "bem_contact"]),
+    range: Range::OneOf(&[
+        "depassivated_wake",
+        "hertz_band",
+        "wear_track",
+        "real_contact",
+        "bem_contact",
+    ]),
     why: "",
-    meaning: "Which area depassivates: `wear_track` (track width x track length, as in the \
-              paper's Fig. 13), `real_contact` (F / H) or `bem_contact` (the solved contact \
-              area: on a rough disc, `disc.surface`, the real contact area at the asperity \
-              scale, so Fig. 14's depassivated-to-real ratio comes from the model rather \
-              than from F / H).",
+    meaning: "Which area depassivates (`docs/corrosion.md`). `depassivated_wake`: the real \
+              contact F / H, stripped as it crosses the solved contact and bare for \
+              `repassivation_time_s` after it, F / H (1 + v tau / L) with L the solved \
+              contact's mean chord along the sliding (each island's chords counted on a \
+              rough disc); `hertz_band`: F / H plus a band as wide as the unworn Hertz \
+              contact, bare for tau, F / H + 2a v tau; `wear_track` (track width x track \
+              length, as in the paper's Fig. 13); `real_contact` (F / H) or `bem_contact` \
+              (the solved contact area: on a rough disc, `disc.surface`, the real contact \
+              area at the asperity scale).",
     feeds: "A_a in eq. 18 and in Faraday's law",
+};
+
+/// `corrosion.repassivation_time_s`.
+pub(in crate::scene) const REPASSIVATION_TIME: Field = Field {
+    path: "corrosion.repassivation_time_s",
+    unit: "s",
+    range: Range::AtLeast(0.0),
+    why: "and, with `depassivated_wake` or `hertz_band`, short enough that the wake v tau \
+          stays shorter than the track",
+    meaning: "How long a stripped spot stays bare after the contact leaves it, tau, at the \
+              anodic current density i_a. During rubbing tau enters the potential and the WAC \
+              volume only as Q_p = i_a tau, the charge that repassivates a unit of bare area \
+              (default: 1.48 mC/cm^2); after the stop the bare area decays as exp(-t / tau). \
+              The default is the fit to the paper's A_a = 50 F / H on the default run.",
+    feeds: "A_a in eq. 18 and in Faraday's law (Section 5.1's repassivation)",
 };
 
 /// `corrosion.anodic_area_factor`.
@@ -78,8 +168,9 @@ pub(in crate::scene) const ANODIC_AREA_FACTOR: Field = Field {
     unit: "",
     range: Range::Positive,
     why: "",
-    meaning: "Multiplier on the chosen anodic area (the paper finds the depassivated area \
-              about 50 times F / H).",
+    meaning: "Multiplier on the chosen anodic area: 1 for the depassivation models, whose \
+              parameter is `repassivation_time_s`; the paper finds the depassivated area \
+              about 50 times F / H, so 50 with `real_contact` is its reading of Fig. 14.",
     feeds: "A_a in eq. 18 and in Faraday's law",
 };
 

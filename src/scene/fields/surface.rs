@@ -1,7 +1,7 @@
 //! The descriptors of `disc.surface`, the disc's initial roughness (see [`super::FIELDS`]).
 
-use crate::scene::MAX_RMS_SLOPE;
 use crate::scene::field::{Field, Range};
+use crate::scene::{MAX_RMS_HEIGHT_UM, MAX_RMS_SLOPE};
 
 /// `disc.surface`.
 pub(in crate::scene) const SURFACE: Field = Field {
@@ -32,7 +32,7 @@ pub(in crate::scene) const SURFACE_KIND: Field = Field {
 pub(in crate::scene) const SURFACE_RMS_HEIGHT: Field = Field {
     path: "disc.surface.rms_height_um",
     unit: "um",
-    range: Range::Closed(1e-4, 100.0),
+    range: Range::Closed(1e-4, MAX_RMS_HEIGHT_UM),
     why: "0.1 nm is below any measured roughness; 100 um is beyond a ball-on-disc contact",
     meaning: "Synthetic: root mean square height about the mean (give it or `rms_slope`).",
     feeds: "the amplitude of the generated surface",

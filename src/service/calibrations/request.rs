@@ -37,8 +37,12 @@ pub(super) struct CalibrationRequest {
 struct RequestOptions {
     /// Hardness: whether the scene's bulk value takes part in the fit (default true).
     include_bulk: Option<bool>,
-    /// Tafel: E_corr, V, instead of the potential of the smallest current.
+    /// Tafel: E_corr, V, against the scene's reference electrode.
     e_corr_v: Option<f64>,
+    /// OCP: when the rubbing started, s on the table's clock.
+    rubbing_start_s: Option<f64>,
+    /// OCP: when the rubbing stopped, s on the table's clock.
+    rubbing_stop_s: Option<f64>,
     /// Archard: also fit a change of regime at this cycle, or `"auto"` for the best one.
     regime_change: Option<Value>,
 }
@@ -69,29 +73,12 @@ impl CalibrationRequest {
     pub(super) fn inputs(self) -> Result<Inputs, ApiError> {
         let kind = self.kind;
         let options = self.options;
-        if options.include_bulk.is_some() && kind != FitKind::Hardness {
-            return Err(invalid(
-                "options.include_bulk",
-                "applies to the hardness fit only".into(),
-            ));
-        }
-        if options.regime_change.is_some() && kind != FitKind::Archard {
-            return Err(invalid(
-                "options.regime_change",
-                "applies to the archard fit only".into(),
-            ));
-        }
+        options.refuse_misplaced(kind)?;
         let regime_change = options
             .regime_change
             .as_ref()
             .map(change_cycle)
             .transpose()?;
-        if options.e_corr_v.is_some() && kind != FitKind::Tafel {
-            return Err(invalid(
-                "options.e_corr_v",
-                "applies to the tafel fit only".into(),
-            ));
-        }
         let text = match &self.table {
             Value::String(text) => text.clone(),
             table @ (Value::Array(_) | Value::Object(_)) => table.to_string(),
@@ -128,6 +115,9 @@ impl CalibrationRequest {
         let options = CommandOptions {
             without_bulk: !options.include_bulk.unwrap_or(true),
             corrosion_potential_v: options.e_corr_v,
+            scene_given: self.scene.is_some(),
+            rubbing_start_s: options.rubbing_start_s,
+            rubbing_stop_s: options.rubbing_stop_s,
             regime_change,
         };
         Ok(Inputs {
@@ -157,6 +147,48 @@ fn declared_rows(table: &Value) -> usize {
             .max()
             .unwrap_or(0),
         _ => 0,
+    }
+}
+
+impl RequestOptions {
+    /// Refuses an option given to a fit it does not apply to, naming it.
+    fn refuse_misplaced(&self, kind: FitKind) -> Result<(), ApiError> {
+        let given = [
+            (
+                "include_bulk",
+                self.include_bulk.is_some(),
+                FitKind::Hardness,
+            ),
+            ("e_corr_v", self.e_corr_v.is_some(), FitKind::Tafel),
+            (
+                "rubbing_start_s",
+                self.rubbing_start_s.is_some(),
+                FitKind::Ocp,
+            ),
+            (
+                "rubbing_stop_s",
+                self.rubbing_stop_s.is_some(),
+                FitKind::Ocp,
+            ),
+            (
+                "regime_change",
+                self.regime_change.is_some(),
+                FitKind::Archard,
+            ),
+        ];
+        match given.iter().find(|&&(_, set, fit)| set && fit != kind) {
+            Some(&(name, _, fit)) => {
+                let fit = serde_json::to_value(fit).unwrap_or_default();
+                Err(invalid(
+                    &format!("options.{name}"),
+                    format!(
+                        "applies to the {} fit only",
+                        fit.as_str().unwrap_or("other")
+                    ),
+                ))
+            }
+            None => Ok(()),
+        }
     }
 }
 

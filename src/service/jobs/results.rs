@@ -136,15 +136,18 @@ fn partial(
     };
     let setup = Setup::new(&Plan::new(scene.clone())?, &options)?;
     let summary = setup.summary(&cycles, wall_s);
+    let warnings = setup.warning_lines();
     Ok(SimulationResult {
         complete: false,
         surface: setup.surface_report(),
         scene: setup.plan.into_scene(),
         models: setup.models,
-        warnings: setup.warnings,
+        warnings,
+        field_warnings: setup.warnings,
         cycles,
         profiles: Vec::new(),
         pressure_maps: Vec::new(),
+        ocp_trace: Vec::new(),
         summary,
     })
 }

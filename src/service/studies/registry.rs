@@ -30,15 +30,15 @@ use crate::study::{MemberRow, Pending, Study, StudyError, StudySummary, describe
 /// Why a study was not accepted.
 #[derive(Debug)]
 pub enum StudySubmitError {
-    /// The document is not a valid study (including a member scene the parser refuses, and
-    /// more members than the server's limit).
+    /// The document is not a valid study (including a member scene the parser refuses).
     Invalid(StudyError),
-    /// More members than the queue can ever hold.
-    OverCapacity {
-        /// Members in the study.
-        members: usize,
-        /// The queue's capacity.
-        capacity: usize,
+    /// More members than the server's limit: the smaller of `--max-study-members` and the
+    /// queue's capacity, which could never hold more.
+    OverLimit {
+        /// The counts and the limit ([`StudyError::TooManyMembers`]).
+        source: StudyError,
+        /// The option that sets the limit in force.
+        set_by: &'static str,
     },
     /// The jobs could not be accepted (queue full now, disk full, storage).
     Submit(SubmitError),
@@ -132,9 +132,16 @@ impl Studies {
     /// anything is wrong), then submits its members as jobs and keeps the study. Blocking
     /// (file writes).
     pub fn submit(&self, jobs: &Jobs, study: &Study) -> Result<StudyRecord, StudySubmitError> {
-        let members = study
-            .members(self.max_members)
-            .map_err(StudySubmitError::Invalid)?;
+        let capacity = jobs.capacity();
+        let (limit, set_by) = if capacity < self.max_members {
+            (capacity, "--queue-capacity")
+        } else {
+            (self.max_members, "--max-study-members")
+        };
+        let members = study.members(limit).map_err(|source| match source {
+            StudyError::TooManyMembers { .. } => StudySubmitError::OverLimit { source, set_by },
+            other => StudySubmitError::Invalid(other),
+        })?;
         // Held until the members are queued, so no surface they name is deleted meanwhile.
         let names_surface = members.iter().any(|m| surface_id(&m.scene).is_some());
         let _hold = names_surface.then(|| jobs.surfaces().hold());
@@ -147,18 +154,8 @@ impl Studies {
                 })
             })?;
         }
-        let capacity = jobs.capacity();
-        if members.len() > capacity {
-            return Err(StudySubmitError::OverCapacity {
-                members: members.len(),
-                capacity,
-            });
-        }
         let id = Uuid::new_v4();
-        let name = members
-            .first()
-            .map(|member| member.scene.name.clone())
-            .unwrap_or_default();
+        let name = study.name();
         let axes = study
             .axes
             .iter()

@@ -164,10 +164,7 @@ impl From<StudyError> for ApiError {
                     .map(|field| FieldError::new(format!("base.{}", field.path), field.message))
                     .collect(),
             ),
-            e @ StudyError::TooManyMembers { .. } => invalid(
-                "axes".into(),
-                format!("{e}; the server's limit is set by --max-study-members"),
-            ),
+            e @ StudyError::TooManyMembers { .. } => invalid("axes".into(), e.to_string()),
             e @ StudyError::NoAxes => invalid("axes".into(), e.to_string()),
             StudyError::Shape(e) => invalid(
                 String::new(),
@@ -187,11 +184,9 @@ impl From<StudySubmitError> for ApiError {
     fn from(error: StudySubmitError) -> Self {
         match error {
             StudySubmitError::Invalid(e) => e.into(),
-            StudySubmitError::OverCapacity { members, capacity } => invalid(
+            StudySubmitError::OverLimit { source, set_by } => invalid(
                 "axes".into(),
-                format!(
-                    "the axes give {members} members, more than the job queue holds ({capacity}, set by --queue-capacity)"
-                ),
+                format!("{source}; the server's limit is set by {set_by}"),
             ),
             StudySubmitError::Submit(SubmitError::QueueFull {
                 capacity,

@@ -21,7 +21,7 @@ DEFAULT_URL = "http://127.0.0.1:8080"
 DEFAULT_TIMEOUT_S = 30.0
 
 _PAGE = route("GET", "/")
-_STATIC = route("GET", "/static/{path}")
+_PAGE_FILE = route("GET", "/static/{path}")
 _HEALTH = route("GET", "/healthz")
 _OPENAPI = route("GET", "/api/v1/openapi.yaml")
 _PRESETS = route("GET", "/api/v1/presets")
@@ -87,11 +87,11 @@ class Client:
         """The results page's HTML (open `base_url` in a browser to use it)."""
         return self._http.send(_PAGE).text
 
-    @_STATIC.implements
-    def static_file(self, path: str) -> bytes:
-        """A file of the web page (``js/main.js``, ``page.css``, ...), as the server has it
-        built in."""
-        return self._http.send(_STATIC, path=path).content
+    @_PAGE_FILE.implements
+    def page_file(self, path: str) -> bytes:
+        """One of the page's files by its path under the page's folder (``js/main.js``):
+        its styles, modules and the vendored uPlot."""
+        return self._http.send(_PAGE_FILE, path=path).content
 
 
 def _token(token: str | None, token_file: str | os.PathLike[str] | None) -> str | None:

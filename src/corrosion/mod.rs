@@ -1,11 +1,22 @@
 //! Wear-accelerated corrosion (paper Section 5.1): galvanic coupling between the depassivated
-//! anode and the passive cathode (eq. 18), and Faraday's law for the dissolved volume.
+//! anode and the passive cathode (eq. 18), Faraday's law for the dissolved volume, the
+//! depassivated area of a sliding contact ([`depassivation`]) and the reference electrodes
+//! potentials are measured against ([`mod@reference`]).
 //!
 //! Everything here is in SI units (V, A/m^2, m^2, s, kg/mol, kg/m^3, m^3). The one exception is
 //! inside the Tafel logarithm: the paper fitted a_c with current densities in A/cm^2, so the
-//! argument of log10 is converted to A/cm^2 there and nowhere else.
+//! argument of log10 is converted to A/cm^2 there and nowhere else. Potentials are against
+//! whichever electrode E_corr is given against: eq. 18 only adds differences to it.
+
+pub mod depassivation;
+pub mod reference;
 
 use thiserror::Error;
+
+pub use depassivation::{
+    AreaInputs, ContactGeometry, band_area_m2, recovering_area_m2, wake_area_m2,
+};
+pub use reference::ReferenceElectrode;
 
 /// Faraday constant, C/mol (CODATA 2018, exact since the 2019 SI redefinition).
 pub const FARADAY_C_PER_MOL: f64 = 96_485.332_12;
@@ -91,22 +102,59 @@ impl CorrosionModel {
         Ok(self.exposed_area_m2 - anodic_area_m2)
     }
 
-    /// Mixed potential of the coupled electrode, eq. 18:
-    /// E_c = E_corr + a_c - b_c log10(i_a A_a / A_c), V.
+    /// Eq. 18 as printed, E_c = E_corr + a_c - b_c log10(i_a A_a / A_c), V, for an anodic
+    /// area > 0: above E_corr when the coupled current density is below the line's own
+    /// current at E_corr (see [`Self::potential_v`]).
     ///
     /// Charge balance puts the anodic current i_a A_a on the cathode, so the cathodic current
-    /// density is i_a A_a / A_c. Eq. 18 is a Tafel line, valid only while that density exceeds
-    /// the free corrosion current; below it (including A_a = 0) the electrode stays at E_corr,
-    /// so the result is capped there.
-    pub fn potential_v(&self, anodic_area_m2: f64) -> Result<f64, CorrosionError> {
+    /// density is i_a A_a / A_c.
+    pub fn coupled_potential_v(&self, anodic_area_m2: f64) -> Result<f64, CorrosionError> {
         let cathodic_area = self.cathodic_area_m2(anodic_area_m2)?;
+        let cathodic_density = self.anodic_current_density_a_m2 * anodic_area_m2 / cathodic_area;
+        Ok(self.tafel_potential_v(cathodic_density))
+    }
+
+    /// Mixed potential of the coupled electrode, eq. 18, V, capped at E_corr.
+    ///
+    /// Eq. 18 is a Tafel line, valid only while the coupled current density exceeds the free
+    /// corrosion current; below it (including A_a = 0) the electrode stays at E_corr, so the
+    /// result is capped there. [`Self::coupled_potential_v`] is the value before the cap.
+    pub fn potential_v(&self, anodic_area_m2: f64) -> Result<f64, CorrosionError> {
         if anodic_area_m2 == 0.0 {
+            self.cathodic_area_m2(anodic_area_m2)?;
             return Ok(self.corrosion_potential_v);
         }
-        let cathodic_density = self.anodic_current_density_a_m2 * anodic_area_m2 / cathodic_area;
         Ok(self
-            .tafel_potential_v(cathodic_density)
+            .coupled_potential_v(anodic_area_m2)?
             .min(self.corrosion_potential_v))
+    }
+
+    /// The current density at which the Tafel line crosses E_corr, 10^(a_c / b_c) A/cm^2 in
+    /// A/m^2 (Table 2's line: 1.23e-6 A/cm^2, against the measured i_corr 1.13e-6).
+    pub fn line_corrosion_current_density_a_m2(&self) -> f64 {
+        10f64.powf(self.tafel_a_c_v / self.tafel_b_c_v_per_decade) * A_M2_PER_A_CM2
+    }
+
+    /// The anodic area below which eq. 18 puts the potential above E_corr, where the coupled
+    /// current density equals the line's own current at E_corr, m^2.
+    pub fn capping_area_m2(&self) -> f64 {
+        let line = self.line_corrosion_current_density_a_m2();
+        line * self.exposed_area_m2 / (self.anodic_current_density_a_m2 + line)
+    }
+
+    /// The current the depassivated area `anodic_area_m2` passes, i_a A_a, A.
+    pub fn anodic_current_a(&self, anodic_area_m2: f64) -> f64 {
+        self.anodic_current_density_a_m2 * anodic_area_m2
+    }
+
+    /// Volume dissolved by the anodic charge `charge_c` (Faraday's law), m^3.
+    pub fn dissolved_volume_m3(&self, charge_c: f64) -> f64 {
+        faraday_volume_m3(
+            charge_c,
+            self.molar_mass_kg_mol,
+            self.valence,
+            self.density_kg_m3,
+        )
     }
 
     /// Depassivated (anodic) area implied by a measured potential: eq. 18 solved for A_a with
@@ -127,12 +175,7 @@ impl CorrosionModel {
     /// Volume dissolved from an anodic area over a duration (one time step, e.g. one cycle
     /// period, gives the per-step increment): V_WAC = i_a A_a t M / (n F rho), m^3.
     pub fn wac_volume_m3(&self, anodic_area_m2: f64, duration_s: f64) -> f64 {
-        faraday_volume_m3(
-            self.anodic_current_density_a_m2 * anodic_area_m2 * duration_s,
-            self.molar_mass_kg_mol,
-            self.valence,
-            self.density_kg_m3,
-        )
+        self.dissolved_volume_m3(self.anodic_current_a(anodic_area_m2) * duration_s)
     }
 }
 
@@ -201,8 +244,19 @@ mod tests {
         // (6e-3 mm^2) lies below it: eq. 18 would put E above E_corr there.
         let hertz = cell.potential_v(6e-3 * 1e-6).expect("valid area");
         assert!((hertz - cell.corrosion_potential_v).abs() < f64::EPSILON);
+        let uncapped = cell.coupled_potential_v(6e-3 * 1e-6).expect("valid area");
+        assert!(uncapped > cell.corrosion_potential_v, "{uncapped}");
         let above = cell.potential_v(0.05e-6).expect("valid area");
         assert!(above < cell.corrosion_potential_v);
+        // The cap sits where the coupled density is the line's own current at E_corr.
+        let there = cell
+            .coupled_potential_v(cell.capping_area_m2())
+            .expect("valid area");
+        // powf and log10 of the same number: 1e-15 relative of a_c (3.31 V).
+        assert!(
+            (there - cell.corrosion_potential_v).abs() < 1e-13,
+            "{there}"
+        );
     }
 
     #[test]

@@ -1,0 +1,77 @@
+//! The material balance of a run after ASTM G119: the total a profilometer measures is the
+//! mechanical loss (the groove and Archard's wear, W0 + delta W_c) and the corrosion loss
+//! (the wear-accelerated corrosion, delta C_w) together. A scene whose Archard k comes from a
+//! measured volume derives it from such a total; this says what that means for the run.
+
+use crate::corrosion::CorrosionModel;
+use crate::hardness::HardnessLaw;
+use crate::scene::{FieldWarning, Scene};
+
+use super::result::CycleRecord;
+
+/// What the run says about its balance against the measured point its k comes from: a
+/// warning when the corrosion alone exceeds the measured total, and the words for the
+/// corrosion model's reason. `None` when k is given, the point was measured in another
+/// test, or the run has no corrosion.
+pub(super) struct Balance {
+    /// The corrosion exceeds the measured total: a warning about the anodic area.
+    pub(super) warning: Option<FieldWarning>,
+    /// The share of the measured total the run dissolves.
+    pub(super) reason: String,
+}
+
+/// The balance of `records`, a run of `scene` with the hardness law `hardness` and the cell
+/// `model`.
+pub(super) fn balance(
+    scene: &Scene,
+    hardness: &HardnessLaw,
+    model: &CorrosionModel,
+    records: &[CycleRecord],
+) -> Option<Balance> {
+    if scene.wear.archard_k.is_some() {
+        return None;
+    }
+    let point = scene.wear.calibration_point(&scene.test, hardness);
+    let test = &scene.test;
+    // A point that does not give its conditions takes the scene's own numbers: the same
+    // test is the same bits.
+    let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+    let same_test = same(point.load_n, test.load_n)
+        && same(point.speed_rpm, test.speed_rpm)
+        && same(point.track_radius_mm, test.track_radius_mm);
+    let last = records.last()?;
+    if !same_test {
+        return None;
+    }
+    // After a solve the run dissolves at its current until the next.
+    let at = point.time_s.min(last.time_s);
+    let before = records
+        .iter()
+        .rev()
+        .find(|r| r.time_s <= at)
+        .unwrap_or(last);
+    let charge =
+        before.charge_c? + before.anodic_current_ma? * 1e-3 * (at - before.time_s).max(0.0);
+    let wac_at = model.dissolved_volume_m3(charge) * 1e9;
+    let measured = point.wear_volume_mm3;
+    let share = wac_at / measured;
+    let warning = (wac_at > measured).then(|| {
+        let message = format!(
+            "the wear-accelerated corrosion alone, {wac_at:.4e} mm^3 after {at} s, exceeds \
+             the total volume measured after {} s ({measured} mm^3, \
+             `wear.archard_calibration`), which includes the corrosion: the anodic area \
+             dissolves {share:.1} times what was measured",
+            point.time_s
+        );
+        FieldWarning::new("corrosion.anodic_area", message)
+    });
+    let reason = format!(
+        "Archard's k comes from the measured total {measured} mm^3 after {} s, which \
+         includes the corrosion; the run's WAC after {at} s ({wac_at:.3e} mm^3, {:.1}% of that \
+         total) is counted again in its `total_volume_mm3` (`tribosim calibrate archard` fits \
+         k on the mechanical part)",
+        point.time_s,
+        100.0 * share
+    );
+    Some(Balance { warning, reason })
+}

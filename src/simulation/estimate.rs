@@ -1,0 +1,124 @@
+//! What a run will cost before it starts: its solves, its wall time and the size of its
+//! result, extrapolated from two measured runs of the paper's scene. A rough guide (a
+//! factor of about three either way), for a warning before a long run, not a schedule.
+
+use crate::scene::{CycleStep, Scene};
+
+/// The paper's scene (the defaults: auto grid of [`PAPER_CELLS`] cells, auto stepping) run
+/// with `tribosim run '-' -o result.json` at two lengths, on the development machine (2
+/// cores shared with other builds): 3600 cycles in 464 solves, 5.9 s and a 1,010,628-byte
+/// result; 36,000 cycles in 3175 solves, 59.1 s and 2,708,393 bytes. The power laws below
+/// pass through both points. A quiet machine is faster (the 3600-cycle run used 2.15 s of
+/// CPU for its 5.9 s), and the paper's groove, which keeps widening, sets the step sizes.
+const MEASURED_CYCLES: [f64; 2] = [3600.0, 36_000.0];
+/// Solves of the two measured runs (see [`MEASURED_CYCLES`]).
+const MEASURED_SOLVES: [f64; 2] = [464.0, 3175.0];
+/// Wall time of the two measured runs, s (see [`MEASURED_CYCLES`]).
+const MEASURED_WALL_S: [f64; 2] = [5.9, 59.1];
+/// Cells per side of the paper's first grid (its `grid` model: 144 x 144).
+const PAPER_CELLS: f64 = 144.0;
+/// Bytes of one cycle record in the pretty-printed result: 1,591,352 bytes for the 3175
+/// records of the 36,000-cycle run (501), 233,346 for 464 at 3600 (503).
+const RECORD_BYTES: f64 = 502.0;
+/// Bytes of the rest of the result, mostly the two pressure maps and the profiles: 777 kB
+/// at 3600 cycles, 937 kB at 36,000 (the maps grow with the domain); the larger is taken.
+const OTHER_BYTES: f64 = 937e3;
+
+/// What a run is expected to cost.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunEstimate {
+    /// Contact solves (one cycle record each).
+    pub solves: u64,
+    /// Wall time, s.
+    pub wall_s: f64,
+    /// Size of the result JSON as `tribosim run` writes it, bytes.
+    pub bytes: f64,
+}
+
+/// The exponent of the power law through the two measured points of `values`.
+fn exponent(values: [f64; 2]) -> f64 {
+    (values[1] / values[0]).ln() / (MEASURED_CYCLES[1] / MEASURED_CYCLES[0]).ln()
+}
+
+/// The estimate for `scene` on a first grid of `cells` per side.
+pub fn estimate(scene: &Scene, cells: usize) -> RunEstimate {
+    let cycles = scene.test.cycles as f64;
+    let along = cycles / MEASURED_CYCLES[0];
+    let auto_solves = MEASURED_SOLVES[0] * along.powf(exponent(MEASURED_SOLVES));
+    let solves = match scene.numerics.cycle_step {
+        CycleStep::EveryCycle => cycles,
+        CycleStep::Auto => auto_solves.clamp(1.0, cycles),
+    };
+    // A solve's cost grows with the domain as the groove widens (wall time per solve over
+    // solves per cycle), and with the cells of the grid (the FFT's N^2 log N, taken as N^2).
+    let per_solve_s = MEASURED_WALL_S[0] / MEASURED_SOLVES[0]
+        * along.powf(exponent(MEASURED_WALL_S) - exponent(MEASURED_SOLVES));
+    let grid = (cells as f64 / PAPER_CELLS).powi(2);
+    RunEstimate {
+        solves: solves.round() as u64,
+        wall_s: solves * per_solve_s * grid,
+        bytes: solves * RECORD_BYTES + OTHER_BYTES,
+    }
+}
+
+/// `seconds` as a person reads it: "40 s", "12 min", "3.2 h".
+pub fn describe_duration(seconds: f64) -> String {
+    if seconds < 90.0 {
+        format!("{seconds:.0} s")
+    } else if seconds < 5400.0 {
+        format!("{:.0} min", seconds / 60.0)
+    } else {
+        format!("{:.1} h", seconds / 3600.0)
+    }
+}
+
+/// `bytes` as a person reads it: "940 kB", "27 MB".
+pub fn describe_size(bytes: f64) -> String {
+    if bytes < 1e6 {
+        format!("{:.0} kB", bytes / 1e3)
+    } else if bytes < 1e9 {
+        format!("{:.0} MB", bytes / 1e6)
+    } else {
+        format!("{:.1} GB", bytes / 1e9)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_estimate_passes_through_the_measured_runs() {
+        let mut scene = Scene::default();
+        for (i, cycles) in MEASURED_CYCLES.into_iter().enumerate() {
+            scene.test.cycles = cycles as u64;
+            let e = estimate(&scene, PAPER_CELLS as usize);
+            // The power laws pass through both points: exact but for rounding (1e-9).
+            assert_eq!(e.solves, MEASURED_SOLVES[i] as u64);
+            assert!((e.wall_s / MEASURED_WALL_S[i] - 1.0).abs() < 1e-9, "{e:?}");
+        }
+    }
+
+    #[test]
+    fn every_cycle_solves_each_and_costs_more() {
+        let mut scene = Scene::default();
+        scene.test.cycles = 36_000;
+        let auto = estimate(&scene, 144);
+        scene.numerics.cycle_step = CycleStep::EveryCycle;
+        let every = estimate(&scene, 144);
+        assert_eq!(every.solves, 36_000);
+        assert!(every.wall_s > auto.wall_s && every.bytes > auto.bytes);
+        // A grid of half the cells per side costs a quarter.
+        let half = estimate(&scene, 72);
+        assert!((half.wall_s / every.wall_s - 0.25).abs() < 1e-12);
+    }
+
+    #[test]
+    fn durations_and_sizes_read_in_their_unit() {
+        assert_eq!(describe_duration(40.0), "40 s");
+        assert_eq!(describe_duration(1640.0), "27 min");
+        assert_eq!(describe_duration(9000.0), "2.5 h");
+        assert_eq!(describe_size(937e3), "937 kB");
+        assert_eq!(describe_size(26.6e6), "27 MB");
+    }
+}

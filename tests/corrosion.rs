@@ -1,0 +1,235 @@
+//! The corrosion half of the paper's test against the paper's own data (Section 5.1, Figs. 6
+//! and 14, Table 3): the default repassivation time is the fit to the paper's depassivated
+//! area, `{}` reads the potential the paper infers, dissolves less than Table 3 measured in
+//! all, and speed and load move the potential as the depassivated wake says. Also the OCP
+//! trace, the reference electrodes and the warnings that replace silent clamps.
+
+mod common {
+    pub mod physics;
+}
+
+use std::path::PathBuf;
+
+use common::physics::{scene, simulate};
+use serde_json::json;
+use tribosim::calibration::{OcpOptions, Table, fit_ocp};
+use tribosim::scene::{PAPER_REPASSIVATION_TIME_S, Scene, TABLE3_TIMES_S};
+use tribosim::simulation::{OcpPhase, SimulationResult};
+
+/// Table 3's total volumes after each rubbing time, mm^3.
+const TABLE3_TOTAL_MM3: [f64; 5] = [0.97e-3, 1.09e-3, 1.18e-3, 5.33e-3, 11.72e-3];
+
+fn example(name: &str) -> Table {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("docs/calibration")
+        .join(name);
+    let text = std::fs::read_to_string(&path).expect("the example table is readable");
+    Table::parse(&text).expect("a valid table")
+}
+
+fn run(json: &str) -> SimulationResult {
+    simulate(&scene(json)).expect("runs")
+}
+
+/// The record of `result` at `cycle`, which the scene records exactly.
+fn potential_at(result: &SimulationResult, cycle: u64) -> f64 {
+    let record = result.cycles.iter().find(|r| r.cycle == cycle);
+    record
+        .and_then(|r| r.potential_v)
+        .unwrap_or_else(|| panic!("no potential at cycle {cycle}"))
+}
+
+#[test]
+fn the_default_repassivation_time_is_the_fit_to_the_papers_fig_14() {
+    // docs/calibration/paper_ocp.csv: eq. 18 at A_a = 50 F / H at Table 3's times. Fitted on
+    // the default run (the scene's own numerics), tau is the default constant to the three
+    // digits it is written with: a change of the mechanics that moves the fit fails here.
+    let fit = fit_ocp(
+        &example("paper_ocp.csv"),
+        &Scene::default(),
+        OcpOptions::default(),
+    )
+    .expect("fits");
+    let tau = fit.repassivation_time_s.expect("the wake's tau is fitted");
+    println!(
+        "tau = {:.5} +- {:.5} s, Q_p = {:?} mC/cm2, rms {:.4} V, A_a / (F/H) = {:.1}",
+        tau.value,
+        tau.standard_error,
+        fit.repassivation_charge_mc_cm2,
+        fit.rms_residual_v,
+        fit.anodic_to_real_contact
+    );
+    for point in &fit.points {
+        println!(
+            "{:6} s: measured {:.4} V, model {:.4} V, residual {:+.4} V",
+            point.time_s, point.potential_v, point.model_potential_v, point.residual_v
+        );
+    }
+    assert!(
+        (tau.value - PAPER_REPASSIVATION_TIME_S).abs() <= 0.5e-3,
+        "fit {tau:?} against the default {PAPER_REPASSIVATION_TIME_S} s"
+    );
+    // The same potentials as a whole trace on the potentiostat's clock: the same run, the
+    // same rubbing rows, so the same tau.
+    let options = OcpOptions {
+        rubbing_start_s: Some(3600.0),
+        rubbing_stop_s: Some(7200.0),
+    };
+    let trace = fit_ocp(&example("paper_ocp_trace.csv"), &Scene::default(), options).expect("fits");
+    let same = trace.repassivation_time_s.expect("fitted");
+    assert!(
+        (same.value - tau.value).abs() < 1e-12 * tau.value,
+        "{same:?}"
+    );
+    assert!((trace.scene.test.ocp_before_s - 3600.0).abs() < 1e-12);
+    assert_eq!(trace.scene.test.cycles, 3600);
+}
+
+#[test]
+fn the_papers_test_reads_the_papers_potential_and_dissolves_less_than_was_measured() {
+    let result = run("{}");
+    // Section 5.1: the potential of A_a = 50 F / H, -0.377 V at 10 s to -0.341 V at 3600 s
+    // (docs/calibration/paper_ocp.csv), a few hundred mV below E_corr = -0.10 V; the issue
+    // asks -0.30 to -0.40 V through the run. Measured: -0.326 to -0.397 V.
+    for record in &result.cycles {
+        let potential = record.potential_v.expect("corrosion on");
+        assert!(
+            (-0.40..=-0.30).contains(&potential),
+            "cycle {}: {potential} V",
+            record.cycle
+        );
+    }
+    // Table 3's volumes are totals, corrosion included: the model's corrosion alone must
+    // stay below each. Measured shares: 0.3, 1.6, 7.6, 11.3 and 10.9%.
+    for (time, measured) in TABLE3_TIMES_S.iter().zip(TABLE3_TOTAL_MM3) {
+        let record = result
+            .cycles
+            .iter()
+            .find(|r| r.cycle == *time as u64)
+            .expect("Table 3's times are recorded");
+        let wac = record.wac_volume_mm3.expect("corrosion on");
+        assert!(
+            wac < measured,
+            "{time} s: WAC {wac} against {measured} mm^3"
+        );
+    }
+    // Nothing capped, nothing outside the Tafel line's domain, no WAC above the total.
+    assert!(result.warnings.is_empty(), "{:?}", result.warnings);
+    assert_eq!(
+        result.ocp_trace.first().map(|s| (s.potential_v, s.phase)),
+        Some((-0.10, OcpPhase::Before))
+    );
+}
+
+#[test]
+fn a_faster_disc_and_a_heavier_load_read_lower() {
+    // The wake's area F / H (1 + v tau / L): v tau grows with the speed, and F / H / L with
+    // the load (as F^(2/3) for a Hertz contact). At 300 s of rubbing on 48 cells.
+    let at_300_s = |test: serde_json::Value| {
+        let speed = test["speed_rpm"].as_f64().unwrap_or(60.0);
+        let cycles = (300.0 * speed / 60.0) as u64;
+        let mut test = test;
+        test["cycles"] = json!(cycles);
+        let document = json!({"test": test, "numerics": {"grid": 48}});
+        potential_at(&run(&document.to_string()), cycles)
+    };
+    let slow = at_300_s(json!({"speed_rpm": 30}));
+    let paper = at_300_s(json!({"speed_rpm": 60}));
+    let fast = at_300_s(json!({"speed_rpm": 120}));
+    println!("30, 60, 120 rpm: {slow:.4}, {paper:.4}, {fast:.4} V");
+    assert!(fast < paper && paper < slow, "{slow} {paper} {fast}");
+    let light = at_300_s(json!({"load_n": 2}));
+    let heavy = at_300_s(json!({"load_n": 10}));
+    println!("2, 5, 10 N: {light:.4}, {paper:.4}, {heavy:.4} V");
+    assert!(heavy < paper && paper < light, "{light} {paper} {heavy}");
+}
+
+#[test]
+fn the_whole_trace_holds_e_corr_drops_and_recovers() {
+    let result = run(
+        r#"{"test": {"cycles": 20, "ocp_before_s": 3600, "ocp_after_s": 1200},
+        "numerics": {"grid": 48}}"#,
+    );
+    let trace = &result.ocp_trace;
+    let first = trace[0];
+    assert_eq!((first.time_s, first.phase), (0.0, OcpPhase::Before));
+    // Whole seconds plus whole cycles of 1 s: exact in binary, compared as bits.
+    assert_eq!(trace[1].time_s.to_bits(), 3600f64.to_bits());
+    let rubbing: Vec<_> = trace
+        .iter()
+        .filter(|s| s.phase == OcpPhase::Rubbing)
+        .collect();
+    assert_eq!(rubbing.len(), result.cycles.len());
+    // The first cycle ends 1 s after the start, at the record's potential.
+    assert_eq!(rubbing[0].time_s.to_bits(), 3601f64.to_bits());
+    assert!(rubbing.iter().all(|s| s.potential_v < -0.3));
+    let after: Vec<_> = trace
+        .iter()
+        .filter(|s| s.phase == OcpPhase::After)
+        .collect();
+    // The potential rises monotonically back to E_corr, which the record ends at.
+    assert!(
+        after
+            .windows(2)
+            .all(|w| w[1].potential_v >= w[0].potential_v)
+    );
+    let last = after.last().expect("after points");
+    assert_eq!((last.time_s, last.potential_v), (4820.0, -0.10));
+    assert!(after[0].potential_v < -0.2, "{after:?}");
+}
+
+#[test]
+fn another_reference_electrode_shifts_every_potential_and_names_itself() {
+    let base = r#"{"test": {"cycles": 10}, "numerics": {"grid": 32}"#;
+    let agcl = run(&format!("{base}}}"));
+    let sce = run(&format!(
+        r#"{base}, "corrosion": {{"reference_electrode": "sce"}}}}"#
+    ));
+    // Ag/AgCl (3 M KCl) is +0.205 V and SCE +0.241 V against SHE: every SCE potential is
+    // 36 mV lower, to the rounding of the shifted E_corr.
+    for (a, s) in agcl.cycles.iter().zip(&sce.cycles) {
+        let shift = s.potential_v.expect("on") - a.potential_v.expect("on");
+        assert!((shift + 0.036).abs() < 1e-12, "{shift}");
+        assert_eq!(s.anodic_area_mm2, a.anodic_area_mm2);
+    }
+    let reference = serde_json::to_value(sce.summary.potential_reference).expect("serialises");
+    assert_eq!(reference, json!("sce"));
+    assert!(sce.summary.to_string().contains("V vs SCE"));
+}
+
+#[test]
+fn a_clamped_potential_and_an_oversized_anode_are_said_not_hidden() {
+    // The issue's silent clamp: F / H alone (factor 1) puts eq. 18 at +0.59 V, above
+    // E_corr; the run reads E_corr and says why.
+    let capped = run(r#"{"test": {"cycles": 5}, "numerics": {"grid": 32},
+        "corrosion": {"anodic_area": "real_contact"}}"#);
+    assert!(capped.cycles.iter().all(|r| r.potential_v == Some(-0.10)));
+    assert!(
+        capped
+            .warnings
+            .iter()
+            .any(|w| w.contains("capped at E_corr")
+                && w.contains("at 5 solved cycle(s), the first at cycle 1")),
+        "{:?}",
+        capped.warnings
+    );
+    let reason = &capped
+        .models
+        .iter()
+        .find(|m| m.name == tribosim::simulation::Model::Corrosion)
+        .expect("a corrosion model")
+        .reason;
+    assert!(reason.contains("capped at E_corr"), "{reason}");
+    // The paper's Fig. 13 anode, the whole wear track: 4.7 times Table 3's measured total
+    // dissolved by 3600 s, and below the -1.1 V end of Table 2's scan.
+    let track = run(r#"{"numerics": {"grid": 48}, "corrosion": {"anodic_area": "wear_track"}}"#);
+    let warnings = track.warnings.join("\n");
+    assert!(
+        warnings.contains("exceeds the total volume measured after 3600 s"),
+        "{warnings}"
+    );
+    assert!(
+        warnings.contains("outside the domain the Tafel line"),
+        "{warnings}"
+    );
+}
