@@ -67,6 +67,8 @@ fn a_change_of_regime_through_the_command_line() {
     let mut scene = parse_scene_str(small).expect("valid").into_scene();
     scene.wear.archard_k = Some(1e-4);
     scene.wear.archard_calibration = None;
+    // The fit compares totals, wear plus WAC, so its k is the mechanical loss's.
+    scene.wear.archard_k_basis = tribosim::wear::VolumeBasis::Mechanical;
     scene.wear.archard_regime_change = Some(tribosim::scene::ArchardRegimeChange {
         cycle: 85,
         archard_k_before: 2e-5,

@@ -178,8 +178,24 @@ fn corrosion_follows_eq18_and_faraday_in_the_users_units() {
     assert!(relative_error(last.anodic_current_ma.expect("on"), current_ma) < 1e-12);
     let charge = last.charge_c.expect("on") - before.charge_c.expect("on");
     assert!(relative_error(charge, current_ma * 1e-3 * dt) < 1e-12);
+    // k fitted on total losses (the default basis): the track is the total, and what the
+    // corrosion leaves of it is the mechanical part.
+    let wac = last.wac_volume_mm3.expect("on");
+    assert_eq!(last.total_volume_mm3, Some(last.wear_volume_mm3));
+    let mechanical = (last.wear_volume_mm3 - wac).max(0.0);
+    assert_eq!(last.mechanical_volume_mm3, Some(mechanical));
+    // k fitted on the mechanical loss: the corrosion adds to the track.
+    let mechanical_basis = scene(
+        r#"{"preset": "dalmau2018-316l", "overrides": {
+            "test": {"cycles": 40}, "numerics": {"grid": 48, "cycle_step": 1},
+            "wear": {"archard_k_basis": "mechanical"},
+            "corrosion": {"anodic_area": "wear_track"}}}"#,
+    );
+    let added = simulate(&mechanical_basis);
+    let last = added.cycles.last().expect("records");
     let total = last.wear_volume_mm3 + last.wac_volume_mm3.expect("on");
     assert!(relative_error(last.total_volume_mm3.expect("on"), total) < 1e-15);
+    assert_eq!(last.mechanical_volume_mm3, Some(last.wear_volume_mm3));
 }
 
 #[test]

@@ -23,7 +23,7 @@ use super::{
 };
 use crate::scene::{ArchardRegimeChange, Scene};
 use crate::simulation::{Plan, run};
-use crate::wear::archard_k_from_measurement;
+use crate::wear::{VolumeBasis, archard_k_from_measurement};
 
 /// Settings of the Archard fit.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -180,10 +180,7 @@ impl Problem {
         k: f64,
         change: Option<ArchardRegimeChange>,
     ) -> Result<(Vec<f64>, Option<Vec<f64>>), CalibrationError> {
-        let mut scene = self.scene.clone();
-        scene.wear.archard_k = Some(k);
-        scene.wear.archard_calibration = None;
-        scene.wear.archard_regime_change = change;
+        let scene = fitted_scene(&self.scene, k, change);
         let result = run(&Plan::new(scene)?, &mut |_| {}, &self.cancel)?;
         self.runs += 1;
         let solved: Vec<f64> = result.cycles.iter().map(|r| r.cycle as f64).collect();
@@ -271,9 +268,7 @@ pub fn fit_archard_until(
             eq14_model_volume_mm3: at_eq14[j],
         })
         .collect();
-    let mut filled = scene.clone();
-    filled.wear.archard_k = Some(k);
-    filled.wear.archard_calibration = None;
+    let filled = fitted_scene(scene, k, None);
     Ok(ArchardFit {
         archard_k: Estimate {
             value: k,
@@ -358,3 +353,20 @@ pub(super) fn problem(table: &Table, scene: &Scene) -> Result<Problem, Calibrati
 
 #[cfg(test)]
 mod tests;
+
+/// `scene` with the fitted `k` and `change` in place of its own wear coefficients. The fit
+/// matches the measured totals with the run's total: the groove plus its corrosion when the
+/// scene has a cell, so k is then the mechanical loss's (`wear.archard_k_basis`
+/// `mechanical`), and the groove alone without one, the total loss's.
+pub(super) fn fitted_scene(scene: &Scene, k: f64, change: Option<ArchardRegimeChange>) -> Scene {
+    let mut fitted = scene.clone();
+    fitted.wear.archard_k = Some(k);
+    fitted.wear.archard_calibration = None;
+    fitted.wear.archard_regime_change = change;
+    fitted.wear.archard_k_basis = if scene.corrosion.is_some() {
+        VolumeBasis::Mechanical
+    } else {
+        VolumeBasis::TotalLoss
+    };
+    fitted
+}

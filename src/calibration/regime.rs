@@ -26,7 +26,7 @@ use std::time::Instant;
 use serde::Serialize;
 use thiserror::Error;
 
-use super::archard::{Problem, problem};
+use super::archard::{Problem, fitted_scene, problem};
 use super::minimise::{PairFit, gauss_newton, standard_errors, sum_of_squares};
 use super::{ArchardFit, ArchardOptions, CalibrationError, Estimate, Table, fit_archard_until};
 use crate::scene::{ArchardRegimeChange, Scene};
@@ -484,13 +484,14 @@ impl Search {
             self.residuals(cycle, k)
         })?;
         let model = self.volumes(cycle, fit.values[0], fit.values[1])?;
-        let mut filled = scene.clone();
-        filled.wear.archard_k = Some(fit.values[1]);
-        filled.wear.archard_calibration = None;
-        filled.wear.archard_regime_change = Some(ArchardRegimeChange {
-            cycle,
-            archard_k_before: fit.values[0],
-        });
+        let mut filled = fitted_scene(
+            scene,
+            fit.values[1],
+            Some(ArchardRegimeChange {
+                cycle,
+                archard_k_before: fit.values[0],
+            }),
+        );
         // The scene must run past the change for its second regime to apply.
         if filled.test.cycles <= cycle {
             filled.test.cycles = self.problem.scene.test.cycles;

@@ -202,6 +202,20 @@ pub(super) const ARCHARD_K: Field = Field {
     feeds: "k in Archard's law (eqs. 14-16)",
 };
 
+/// `wear.archard_k_basis`.
+pub(super) const ARCHARD_K_BASIS: Field = Field {
+    path: "wear.archard_k_basis",
+    unit: "",
+    range: Range::OneOf(&["total_loss", "mechanical"]),
+    why: "",
+    meaning: "The loss k was fitted on. `total_loss`: a profilometer's volume, corrosion \
+              included (Table 3, and eq. 1 on it): the wear track is the total and the \
+              mechanical part is the track less the WAC. `mechanical`: the loss without \
+              corrosion (a cathodically protected test, or `tribosim calibrate archard`): the \
+              total is the track plus the WAC. Without `corrosion` the two read the same.",
+    feeds: "`total_volume_mm3` and `mechanical_volume_mm3` (ASTM G119's balance)",
+};
+
 /// `wear.archard_calibration`.
 pub(super) const CALIBRATION: Field = Field {
     path: "wear.archard_calibration",
@@ -480,6 +494,7 @@ pub const FIELDS: &[Field] = &[
     REGIME_CHANGE,
     REGIME_CHANGE_CYCLE,
     REGIME_CHANGE_K_BEFORE,
+    ARCHARD_K_BASIS,
     PLASTICITY,
     section(
         "corrosion",

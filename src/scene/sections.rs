@@ -8,7 +8,7 @@ use super::auto_or::{CycleStep, DomainSize, GridSize, SolverThreads};
 use super::record::RecordCycles;
 use super::surface::SurfaceSpec;
 use crate::hardness::{HardnessError, HardnessLaw};
-use crate::wear::{Archard, ArchardK, ArchardRegimeChange, MeasuredPoint, WearLaw};
+use crate::wear::{Archard, ArchardK, ArchardRegimeChange, MeasuredPoint, VolumeBasis, WearLaw};
 
 /// The calibration point when a scene gives neither `archard_k` nor `archard_calibration`:
 /// the paper's own rule (Section 4.5), k by eq. 14 from the final measured time and wear
@@ -216,6 +216,8 @@ pub struct Wear {
     /// gives k after it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub archard_regime_change: Option<ArchardRegimeChange>,
+    /// The loss k was fitted on, which decides how the groove and the corrosion add up.
+    pub archard_k_basis: VolumeBasis,
     /// Elastic-perfectly-plastic pressure cap.
     pub plasticity: Switch,
 }
@@ -226,6 +228,7 @@ impl Default for Wear {
             archard_k: None,
             archard_calibration: Some(PAPER_ARCHARD_CALIBRATION),
             archard_regime_change: None,
+            archard_k_basis: VolumeBasis::TotalLoss,
             plasticity: Switch::Auto,
         }
     }

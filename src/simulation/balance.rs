@@ -1,11 +1,13 @@
 //! The material balance of a run after ASTM G119: the total a profilometer measures is the
 //! mechanical loss (the groove and Archard's wear, W0 + delta W_c) and the corrosion loss
 //! (the wear-accelerated corrosion, delta C_w) together. A scene whose Archard k comes from a
-//! measured volume derives it from such a total; this says what that means for the run.
+//! measured volume derives it from such a total; this says what that means for the run
+//! ([`VolumeBasis`] splits each record's loss).
 
 use crate::corrosion::CorrosionModel;
 use crate::hardness::HardnessLaw;
 use crate::scene::{FieldWarning, Scene};
+use crate::wear::VolumeBasis;
 
 use super::result::CycleRecord;
 
@@ -65,13 +67,46 @@ pub(super) fn balance(
         );
         FieldWarning::new("corrosion.anodic_area", message)
     });
-    let reason = format!(
-        "Archard's k comes from the measured total {measured} mm^3 after {} s, which \
-         includes the corrosion; the run's WAC after {at} s ({wac_at:.3e} mm^3, {:.1}% of that \
-         total) is counted again in its `total_volume_mm3` (`tribosim calibrate archard` fits \
-         k on the mechanical part)",
-        point.time_s,
-        100.0 * share
-    );
+    let reason = match scene.wear.archard_k_basis {
+        VolumeBasis::TotalLoss => format!(
+            "Archard's k comes from the measured total {measured} mm^3 after {} s, which \
+             includes the corrosion (`wear.archard_k_basis` total_loss): the wear track is the \
+             total, of which the WAC after {at} s ({wac_at:.3e} mm^3) is {:.1}%; \
+             `mechanical_volume_mm3` is the rest",
+            point.time_s,
+            100.0 * share
+        ),
+        VolumeBasis::Mechanical => format!(
+            "Archard's k comes from the measured total {measured} mm^3 after {} s but is read \
+             as mechanical (`wear.archard_k_basis` mechanical): the run's WAC after {at} s \
+             ({wac_at:.3e} mm^3, {:.1}% of that total) is added to the wear track, so its \
+             `total_volume_mm3` counts the corrosion twice against that point",
+            point.time_s,
+            100.0 * share
+        ),
+    };
     Some(Balance { warning, reason })
+}
+
+/// A warning when the run's corrosion outgrows the loss its k was fitted on: on the
+/// total-loss basis the wear track is the whole loss, and a WAC beyond it leaves a
+/// mechanical part of 0, which no measurement can give.
+pub(super) fn overdrawn(scene: &Scene, records: &[CycleRecord]) -> Option<FieldWarning> {
+    if scene.wear.archard_k_basis != VolumeBasis::TotalLoss {
+        return None;
+    }
+    let last = records.last()?;
+    let wac = last.wac_volume_mm3?;
+    (wac > last.wear_volume_mm3).then(|| {
+        FieldWarning::new(
+            "wear.archard_k_basis",
+            format!(
+                "the wear-accelerated corrosion after {} s, {wac:.4e} mm^3, exceeds the wear \
+                 track, {:.4e} mm^3, which k fitted on total losses makes the whole loss: \
+                 the mechanical part reads 0; the anodic area dissolves too much, or k was \
+                 fitted on the mechanical loss (`mechanical`)",
+                last.time_s, last.wear_volume_mm3
+            ),
+        )
+    })
 }

@@ -165,10 +165,16 @@ pub struct CycleRecord {
     /// Wear-accelerated corrosion volume so far, mm^3; absent without `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wac_volume_mm3: Option<f64>,
-    /// The mechanical and the corrosion volume together, `wear_volume_mm3 +
-    /// wac_volume_mm3`: what a profilometer measures, mm^3; absent without `corrosion`.
+    /// The mechanical and the corrosion volume together, what a profilometer measures,
+    /// mm^3: `wear_volume_mm3` when k was fitted on total losses (`wear.archard_k_basis`
+    /// `total_loss`), `wear_volume_mm3 + wac_volume_mm3` when on the mechanical loss; absent
+    /// without `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub total_volume_mm3: Option<f64>,
+    /// The mechanical loss, `total_volume_mm3 - wac_volume_mm3` (never below 0), mm^3;
+    /// absent without `corrosion`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mechanical_volume_mm3: Option<f64>,
 }
 
 /// The statistics of a rough disc's surface.
@@ -256,9 +262,14 @@ pub struct Summary {
     /// Final wear-accelerated corrosion volume, mm^3; absent without `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wac_volume_mm3: Option<f64>,
-    /// Final total volume, mechanical plus corrosion, mm^3; absent without `corrosion`.
+    /// Final total volume, mechanical plus corrosion, mm^3 (as the cycle record's); absent
+    /// without `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub total_volume_mm3: Option<f64>,
+    /// Final mechanical volume, the total less the corrosion, mm^3; absent without
+    /// `corrosion`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mechanical_volume_mm3: Option<f64>,
     /// The anodic charge passed during the rubbing, C; absent without `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub charge_c: Option<f64>,
@@ -295,7 +306,10 @@ impl std::fmt::Display for Summary {
             writeln!(f, "  WAC volume       {wac:.4e} mm^3")?;
         }
         if let Some(total) = self.total_volume_mm3 {
-            writeln!(f, "  total volume     {total:.4e} mm^3 (wear + WAC)")?;
+            writeln!(f, "  total volume     {total:.4e} mm^3 (mechanical + WAC)")?;
+        }
+        if let Some(mechanical) = self.mechanical_volume_mm3 {
+            writeln!(f, "  mechanical part  {mechanical:.4e} mm^3")?;
         }
         if let Some(charge) = self.charge_c {
             writeln!(f, "  anodic charge    {charge:.4e} C")?;
@@ -325,7 +339,8 @@ mod tests {
             wear_volume_mm3: 1.2e-2,
             max_depth_um: 12.5,
             wac_volume_mm3: Some(3.4e-4),
-            total_volume_mm3: Some(1.234e-2),
+            total_volume_mm3: Some(1.2e-2),
+            mechanical_volume_mm3: Some(1.166e-2),
             charge_c: Some(2.9e-2),
             potential_v: Some(-0.5432),
             potential_reference: Some(ReferenceElectrode::AgAgCl3MKcl),
@@ -344,7 +359,8 @@ mod tests {
         );
         assert!(text.contains("wear volume      1.2000e-2 mm^3"), "{text}");
         assert!(text.contains("-0.5432 V vs Ag/AgCl (3 M KCl)"), "{text}");
-        assert!(text.contains("total volume     1.2340e-2 mm^3"), "{text}");
+        assert!(text.contains("total volume     1.2000e-2 mm^3"), "{text}");
+        assert!(text.contains("mechanical part  1.1660e-2 mm^3"), "{text}");
         let sce = Summary {
             potential_reference: Some(ReferenceElectrode::Sce),
             ..summary
@@ -353,6 +369,7 @@ mod tests {
         let dry = Summary {
             wac_volume_mm3: None,
             total_volume_mm3: None,
+            mechanical_volume_mm3: None,
             charge_c: None,
             potential_v: None,
             potential_reference: None,

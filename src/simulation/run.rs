@@ -27,7 +27,7 @@ use crate::scene::DomainSize;
 use crate::surface::count_islands;
 use crate::wear::Groove;
 
-use super::balance::balance;
+use super::balance::{balance, overdrawn};
 use super::electrochemistry::{Cell, Reading, Surface};
 use super::growth::{GROW_AT_EDGE_CELLS, GROW_AT_FRACTION, near_edges, widen};
 use super::ocp_trace::ocp_trace;
@@ -292,7 +292,10 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let n = cycle as f64;
         let track_length = setup.scene().track_length_m();
         let contact: Vec<bool> = solution.pressure.iter().map(|&p| p > 0.0).collect();
-        let wear_volume_mm3 = self.groove.area_m2() * track_length * 1e9;
+        let groove_m3 = self.groove.area_m2() * track_length;
+        let wear_volume_mm3 = groove_m3 * 1e9;
+        let basis = setup.scene().wear.archard_k_basis;
+        let loss = reading.map(|r| basis.split(groove_m3, r.wac_m3));
         let record = CycleRecord {
             cycle,
             time_s: n * setup.scene().cycle_period_s(),
@@ -311,7 +314,8 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             anodic_current_ma: reading.map(|r| r.anodic_current_a * 1e3),
             charge_c: reading.map(|r| r.charge_c),
             wac_volume_mm3: reading.map(|r| r.wac_m3 * 1e9),
-            total_volume_mm3: reading.map(|r| wear_volume_mm3 + r.wac_m3 * 1e9),
+            total_volume_mm3: loss.map(|l| l.total_m3 * 1e9),
+            mechanical_volume_mm3: loss.map(|l| l.mechanical_m3 * 1e9),
         };
         on_cycle(&record);
         self.records.push(record);
@@ -397,6 +401,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         if let Some(cell) = &self.cell {
             warnings.extend(cell.warnings());
             let mut reason = cell.describe();
+            warnings.extend(overdrawn(scene, &self.records));
             let measured = balance(scene, setup.plan.hardness(), cell.model(), &self.records);
             if let Some(measured) = measured {
                 warnings.extend(measured.warning);

@@ -111,6 +111,7 @@ impl Setup {
             max_depth_um: last.map_or(0.0, |c| c.max_depth_um),
             wac_volume_mm3: last.and_then(|c| c.wac_volume_mm3),
             total_volume_mm3: last.and_then(|c| c.total_volume_mm3),
+            mechanical_volume_mm3: last.and_then(|c| c.mechanical_volume_mm3),
             charge_c: last.and_then(|c| c.charge_c),
             potential_v: last.and_then(|c| c.potential_v),
             potential_reference: self

@@ -8,6 +8,7 @@
 //! that parses into it, and the docs (`docs/architecture.md` lists the files).
 
 mod archard;
+mod basis;
 mod groove;
 mod law;
 mod regime;
@@ -17,6 +18,7 @@ pub use archard::{
     Archard, ArchardK, MeasuredPoint, archard_k_from_measurement, archard_volume,
     pass_pressure_integral,
 };
+pub use basis::{LossSplit, VolumeBasis};
 pub use groove::{EDGE_DEPTH_FRACTION, Groove};
 pub use law::WearLaw;
 pub use regime::ArchardRegimeChange;
