@@ -13,12 +13,11 @@ use clap::{Args, Parser, Subcommand};
 use tribosim::bench::{self, BenchTarget};
 use tribosim::calibration::{ChangeCycle, CommandOptions, FitKind, calibrate_files};
 use tribosim::scene::presets;
-use tribosim::simulation::first_contact;
 use tribosim::study::command::StudyArgs;
 use tribosim::study::slurm::{CollectArgs, SlurmOptions, collect, write_dir};
 
 use cli::output::{Destination, FileName, destination, today, write_json};
-use cli::run::{SurfaceFile, read_scene, run_scene};
+use cli::run::{SurfaceFile, contact_scene, run_scene};
 
 #[derive(Parser)]
 #[command(
@@ -34,6 +33,32 @@ struct Cli {
     serve: tribosim::service::ServeArgs,
 }
 
+/// A measured height map for the disc, as `run` and `contact` take it.
+#[derive(clap::Args)]
+struct SurfaceArgs {
+    /// A measured height map for the disc: Gwyddion .gsf, three columns x y z in m, or
+    /// a text matrix of heights in m (with --pixel-um). Sets `disc.surface` to it.
+    #[arg(long, value_name = "FILE")]
+    surface: Option<PathBuf>,
+    /// The pixel size of a text-matrix surface, um.
+    #[arg(long, value_name = "UM", requires = "surface")]
+    pixel_um: Option<f64>,
+    /// Subtract the surface's least-squares plane (its tilt) before use.
+    #[arg(long, requires = "surface")]
+    remove_tilt: bool,
+}
+
+impl SurfaceArgs {
+    /// The file the arguments name, if any.
+    fn file(&self) -> Option<SurfaceFile<'_>> {
+        self.surface.as_deref().map(|path| SurfaceFile {
+            path,
+            pixel_um: self.pixel_um,
+            remove_tilt: self.remove_tilt,
+        })
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Serve the HTTP API and the web page (the default).
@@ -47,21 +72,15 @@ enum Command {
         /// `result-<name>-<date>.json` here when it is a terminal.
         #[arg(short, long)]
         output: Option<PathBuf>,
-        /// A measured height map for the disc: Gwyddion .gsf, three columns x y z in m, or
-        /// a text matrix of heights in m (with --pixel-um). Sets `disc.surface` to it.
-        #[arg(long, value_name = "FILE")]
-        surface: Option<PathBuf>,
-        /// The pixel size of a text-matrix surface, um.
-        #[arg(long, value_name = "UM", requires = "surface")]
-        pixel_um: Option<f64>,
-        /// Subtract the surface's least-squares plane (its tilt) before use.
-        #[arg(long, requires = "surface")]
-        remove_tilt: bool,
+        #[command(flatten)]
+        surface: SurfaceArgs,
     },
     /// Solve the first cycle's contact alone and print it as JSON.
     Contact {
-        /// The scene (JSON).
+        /// The scene (JSON); `-` reads standard input.
         scene: PathBuf,
+        #[command(flatten)]
+        surface: SurfaceArgs,
     },
     /// Print the built-in scenes as JSON.
     Presets,
@@ -271,19 +290,8 @@ fn main() -> ExitCode {
             scene,
             output,
             surface,
-            pixel_um,
-            remove_tilt,
-        } => {
-            let file = surface.as_deref().map(|path| SurfaceFile {
-                path,
-                pixel_um,
-                remove_tilt,
-            });
-            run_scene(&scene, output.as_deref(), file.as_ref())
-        }
-        Command::Contact { scene } => read_scene(&scene)
-            .and_then(|s| first_contact(&s).map_err(|e| e.to_string()))
-            .and_then(|c| write_json(&c, &Destination::Stdout)),
+        } => run_scene(&scene, output.as_deref(), surface.file().as_ref()),
+        Command::Contact { scene, surface } => contact_scene(&scene, surface.file().as_ref()),
         Command::Presets => write_json(&presets(), &Destination::Stdout),
         Command::Calibrate {
             fit,

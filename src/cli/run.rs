@@ -8,10 +8,12 @@ use std::sync::atomic::AtomicBool;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use tribosim::scene::SurfaceSpec;
-use tribosim::simulation::{CycleRecord, Plan, RunOptions, parse_scene_str, run_with};
+use tribosim::simulation::{
+    CycleRecord, Plan, RunOptions, first_contact_with, parse_scene_str, run_with,
+};
 use tribosim::surface::{HeightMap, read_file as read_surface};
 
-use super::output::{FileName, destination, today, write_json};
+use super::output::{Destination, FileName, destination, today, write_json};
 
 /// The scene at `path` (`-`: standard input), checked into a plan.
 pub fn read_scene(path: &Path) -> Result<Plan, String> {
@@ -64,6 +66,30 @@ fn with_surface(plan: Plan, file: &SurfaceFile) -> Result<(Plan, HeightMap), Str
     Ok((Plan::new(scene).map_err(|e| e.to_string())?, map))
 }
 
+/// The scene at `path` checked into a plan, on the measured map of `surface` if given.
+fn read_scene_on(
+    path: &Path,
+    surface: Option<&SurfaceFile>,
+) -> Result<(Plan, Option<HeightMap>), String> {
+    let plan = read_scene(path)?;
+    match surface {
+        Some(file) => with_surface(plan, file).map(|(plan, map)| (plan, Some(map))),
+        None => Ok((plan, None)),
+    }
+}
+
+/// `tribosim contact`: the first cycle's contact of the scene at `path`, on the measured
+/// map of `surface` if given, as JSON on standard output.
+pub fn contact_scene(path: &Path, surface: Option<&SurfaceFile>) -> Result<(), String> {
+    let (plan, map) = read_scene_on(path, surface)?;
+    let options = RunOptions {
+        surface: map.as_ref(),
+        ..RunOptions::default()
+    };
+    let contact = first_contact_with(&plan, &options).map_err(|e| e.to_string())?;
+    write_json(&contact, &Destination::Stdout)
+}
+
 /// Runs the scene at `path`: its warnings (with the estimate of a long run) on standard
 /// error before the first cycle, a progress bar, the result JSON where
 /// [`super::output::destination`] decides, then the summary.
@@ -72,14 +98,7 @@ pub fn run_scene(
     output: Option<&Path>,
     surface: Option<&SurfaceFile>,
 ) -> Result<(), String> {
-    let plan = read_scene(path)?;
-    let (plan, map) = match surface {
-        Some(file) => {
-            let (plan, map) = with_surface(plan, file)?;
-            (plan, Some(map))
-        }
-        None => (plan, None),
-    };
+    let (plan, map) = read_scene_on(path, surface)?;
     for warning in plan.warnings() {
         eprintln!("warning: {warning}");
     }

@@ -44,8 +44,17 @@ pub struct FirstContact {
 /// Solves the first cycle of `plan` (unworn surfaces, Y at cycle 1). An auto domain grows
 /// when the contact reaches its edge, as the run's first cycle does.
 pub fn first_contact(plan: &Plan) -> Result<FirstContact, SimulationError> {
+    first_contact_with(plan, &RunOptions::default())
+}
+
+/// [`first_contact`] with `options`: a measured map for a scene whose `disc.surface` names
+/// one, the FFT plans' sharing.
+pub fn first_contact_with(
+    plan: &Plan,
+    options: &RunOptions,
+) -> Result<FirstContact, SimulationError> {
     let started = Instant::now();
-    let mut setup = Setup::new(plan, &RunOptions::default())?;
+    let mut setup = Setup::new(plan, options)?;
     let cap = setup.yield_pressure_pa(1.0);
     let (grid, solution) = solve_growing(&mut setup, cap)?;
     Ok(FirstContact {

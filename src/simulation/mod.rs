@@ -32,7 +32,7 @@ use crate::surface::SurfaceError;
 /// callers that study the stepping (the benchmarks).
 pub use crate::scene::STEP_CHANGE_BOUND;
 pub use estimate::{RunEstimate, describe_duration, describe_size};
-pub use first::{FirstContact, first_contact};
+pub use first::{FirstContact, first_contact, first_contact_with};
 pub use hardening::FAR_OFF_FRACTION;
 pub use plan::{Plan, parse_scene, parse_scene_str};
 pub use plausibility::{RULES_BEGIN, RULES_END, check_map, rules_table};
