@@ -161,6 +161,13 @@ enum Command {
         /// (`rough-N.txt`), the arrays `scripts/peers.py` gives the public solvers.
         #[arg(long, value_name = "DIR")]
         surfaces: Option<PathBuf>,
+        /// `kappa`: also press this measured height map (.gsf, x y z columns, or a text
+        /// matrix of heights in m with --pixel-um) on the periodic flat.
+        #[arg(long, value_name = "FILE")]
+        map: Option<PathBuf>,
+        /// The pixel size of a text-matrix `--map`, um.
+        #[arg(long, value_name = "UM", requires = "map")]
+        pixel_um: Option<f64>,
     },
 }
 
@@ -337,8 +344,16 @@ fn main() -> ExitCode {
             json,
             markdown,
             surfaces,
-        } => bench::print(target, json, markdown.as_deref(), surfaces.as_deref())
-            .map_err(|e| e.to_string()),
+            map,
+            pixel_um,
+        } => {
+            let map = map.as_deref().map(|path| bench::MeasuredMap {
+                path,
+                pixel_m: pixel_um.map(|um| um * 1e-6),
+            });
+            bench::print(target, json, markdown.as_deref(), surfaces.as_deref(), map)
+                .map_err(|e| e.to_string())
+        }
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

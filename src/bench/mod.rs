@@ -6,6 +6,7 @@ mod auto;
 mod contact;
 mod error;
 mod fft_pair;
+mod kappa;
 mod plot;
 mod report;
 mod rough;
@@ -17,6 +18,7 @@ use std::path::Path;
 use std::time::Instant;
 
 pub use error::BenchError;
+pub use kappa::{KappaRow, MeasuredMap, generated_surface, kappa_rows};
 
 use contact::{CAPPED_REFERENCE_N, GRID_STUDY_SIZES, Reference, TOLERANCE_STUDY};
 use report::{Machine, Measurements};
@@ -38,7 +40,11 @@ pub enum BenchTarget {
     /// A rough flat on a flat, periodic: one seeded self-affine surface on grids up to
     /// N = 2048, real contact area and mean gap against the finest grid.
     Rough,
-    /// All five (the thread study within `speed`).
+    /// The area-load slope (Persson's kappa) of the generated rough surface, and of a
+    /// measured map with `--map`, each on a periodic flat (a table, never written to the
+    /// report).
+    Kappa,
+    /// All five (the thread study within `speed`; `kappa` apart).
     All,
 }
 
@@ -76,12 +82,13 @@ fn median_times_alternating(reps: usize, mut a: impl FnMut(), mut b: impl FnMut(
 
 /// Runs the chosen benchmark and prints it as a table or as JSON lines; with `markdown`, also
 /// writes the report there and its plots beside it; with `surfaces`, the rough study writes
-/// the height array of each grid there.
+/// the height array of each grid there; `map` is the measured map of the kappa study.
 pub fn print(
     target: BenchTarget,
     json: bool,
     markdown: Option<&Path>,
     surfaces: Option<&Path>,
+    map: Option<MeasuredMap>,
 ) -> Result<(), BenchError> {
     let wanted = |t: BenchTarget| target == t || target == BenchTarget::All;
     let mut measured = Measurements::default();
@@ -124,6 +131,9 @@ pub fn print(
             print!("{}", report::speed_tables(&studies));
         }
         measured.speed = Some(studies);
+    }
+    if target == BenchTarget::Kappa {
+        return emit(&kappa::kappa_rows(map)?, json, kappa::table);
     }
     if target == BenchTarget::Threads {
         emit(&threads::thread_rows()?, json, threads::threads_table)?;
