@@ -6,12 +6,11 @@ use crate::simulation::CycleRecord;
 
 /// The CSV columns: the cycle record's with its names (units in the names), the later
 /// corrosion fields after the first three so that earlier columns keep their places, then
-/// the cycles stepped over since the previous row, then the mechanical volume (last, for
-/// the same reason).
+/// the cycles stepped over since the previous row, always last.
 const HEADER: &str = "cycle,time_s,wear_volume_mm3,max_depth_um,max_pressure_mpa,\
                       contact_area_mm2,plastic_area_mm2,contact_islands,hardness_mpa,approach_um,iterations,\
                       potential_v,anodic_area_mm2,wac_volume_mm3,contact_chord_um,anodic_current_ma,\
-                      charge_c,total_volume_mm3,cycles_stepped_over,mechanical_volume_mm3";
+                      charge_c,total_volume_mm3,mechanical_volume_mm3,cycles_stepped_over";
 
 /// Only the cycles of a result; the rest of the document is skipped unparsed.
 #[derive(Deserialize)]
@@ -55,8 +54,8 @@ pub fn cycles_csv(result_json: &[u8]) -> Result<String, serde_json::Error> {
             optional(c.anodic_current_ma),
             optional(c.charge_c),
             optional(c.total_volume_mm3),
-            stepped_over.to_string(),
             optional(c.mechanical_volume_mm3),
+            stepped_over.to_string(),
         ];
         csv.push_str(&crate::csv::line(&cells, "\r\n"));
     }
@@ -84,11 +83,11 @@ mod tests {
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines.len(), 3);
         assert_eq!(lines[0].split(',').count(), 20);
-        assert_eq!(lines[1], "1,1,0.5,0.25,1200,0.01,0,0,2473,1.5,12,,,,,,,,0,");
+        assert_eq!(lines[1], "1,1,0.5,0.25,1200,0.01,0,0,2473,1.5,12,,,,,,,,,0");
         // Cycle 2 was stepped over: cycle 1's solve stood for it.
         assert_eq!(
             lines[2],
-            "3,3,1.5,0.5,1100,0.02,0.001,4,2500,1.6,9,-0.2,0.3,0.000001,70,0.03,0.5,1.500001,1,1.5"
+            "3,3,1.5,0.5,1100,0.02,0.001,4,2500,1.6,9,-0.2,0.3,0.000001,70,0.03,0.5,1.500001,1.5,1"
         );
     }
 }
