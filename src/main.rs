@@ -16,6 +16,7 @@ use tribosim::scene::presets;
 use tribosim::study::command::StudyArgs;
 use tribosim::study::slurm::{CollectArgs, SlurmOptions, collect, write_dir};
 
+use cli::error::CliError;
 use cli::output::{Destination, FileName, destination, today, write_json};
 use cli::run::{SurfaceFile, contact_scene, run_scene};
 
@@ -217,28 +218,26 @@ fn study(
     study: Option<PathBuf>,
     args: StudyArgs,
     slurm: SlurmCli,
-) -> Result<(), String> {
+) -> Result<(), CliError> {
     if let Some(StudyAction::Collect { dir, output, csv }) = action {
-        return collect(&CollectArgs { dir, output, csv })
-            .map(drop)
-            .map_err(|e| e.to_string());
+        collect(&CollectArgs { dir, output, csv })?;
+        return Ok(());
     }
     let study = study.unwrap_or_default();
     let Some(dir) = slurm.slurm else {
         let output = study_output(&study, args.output.as_deref());
-        return tribosim::study::command::study(&StudyArgs {
+        tribosim::study::command::study(&StudyArgs {
             study,
             output,
             ..args
-        })
-        .map(drop)
-        .map_err(|e| e.to_string());
+        })?;
+        return Ok(());
     };
     let tribosim = match slurm.tribosim {
         Some(path) => std::path::absolute(&path),
         None => std::env::current_exe(),
     }
-    .map_err(|e| format!("cannot find the tribosim binary's path: {e}"))?;
+    .map_err(CliError::Binary)?;
     let options = SlurmOptions {
         dir,
         tribosim,
@@ -248,7 +247,7 @@ fn study(
         max_members: args.max_members,
         submit: slurm.submit,
     };
-    write_dir(&study, &options).map_err(|e| e.to_string())
+    Ok(write_dir(&study, &options)?)
 }
 
 /// Where a local study's summary goes: `output`, standard output when it is a pipe, or a
@@ -283,8 +282,8 @@ fn calibrate(
     scene: Option<&Path>,
     output: Option<&Path>,
     options: CommandOptions,
-) -> Result<(), String> {
-    let fitted = calibrate_files(fit, table, scene, output, options).map_err(|e| e.to_string())?;
+) -> Result<(), CliError> {
+    let fitted = calibrate_files(fit, table, scene, output, options)?;
     eprint!("{}", cli::summary::readable(&fitted));
     Ok(())
 }
@@ -292,7 +291,7 @@ fn calibrate(
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command.unwrap_or(Command::Serve(cli.serve)) {
-        Command::Serve(args) => tribosim::service::serve(args).map_err(|e| e.to_string()),
+        Command::Serve(args) => tribosim::service::serve(args).map_err(CliError::from),
         Command::Run {
             scene,
             output,
@@ -352,7 +351,7 @@ fn main() -> ExitCode {
                 pixel_m: pixel_um.map(|um| um * 1e-6),
             });
             bench::print(target, json, markdown.as_deref(), surfaces.as_deref(), map)
-                .map_err(|e| e.to_string())
+                .map_err(CliError::from)
         }
     };
     match outcome {

@@ -5,6 +5,8 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use super::error::CliError;
+
 /// Where a command's JSON goes.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Destination {
@@ -87,19 +89,28 @@ fn free_path(folder: &Path, name: &FileName) -> PathBuf {
 
 /// Writes `value` as pretty JSON to `destination`; a chosen file is created new (never
 /// replacing one that appeared meanwhile) and named on standard error.
-pub fn write_json(value: &impl serde::Serialize, destination: &Destination) -> Result<(), String> {
-    let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())? + "\n";
-    match destination {
-        Destination::Asked(path) => {
-            write_whole(path, &text).map_err(|e| format!("cannot write {}: {e}", path.display()))
+pub fn write_json(
+    value: &impl serde::Serialize,
+    destination: &Destination,
+) -> Result<(), CliError> {
+    let text = serde_json::to_string_pretty(value)? + "\n";
+    let unwritten = |path: &Path| {
+        let path = path.to_owned();
+        move |source| CliError::File {
+            action: "write",
+            path,
+            source,
         }
+    };
+    match destination {
+        Destination::Asked(path) => write_whole(path, &text).map_err(unwritten(path)),
         Destination::Chosen(path) => {
             let written = std::fs::OpenOptions::new()
                 .write(true)
                 .create_new(true)
                 .open(path)
                 .and_then(|mut file| file.write_all(text.as_bytes()));
-            written.map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            written.map_err(unwritten(path))?;
             eprintln!(
                 "wrote {} (standard output is a terminal: `-o FILE` names the file, a pipe \
                  gets the JSON)",
@@ -107,7 +118,7 @@ pub fn write_json(value: &impl serde::Serialize, destination: &Destination) -> R
             );
             Ok(())
         }
-        Destination::Stdout => write!(std::io::stdout(), "{text}").map_err(|e| e.to_string()),
+        Destination::Stdout => write!(std::io::stdout(), "{text}").map_err(CliError::Stdout),
     }
 }
 

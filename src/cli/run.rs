@@ -13,33 +13,34 @@ use tribosim::simulation::{
 };
 use tribosim::surface::{HeightMap, read_file as read_surface};
 
+use super::error::CliError;
 use super::output::{Destination, FileName, destination, today, write_json};
 
 /// The scene at `path` (`-`: standard input), checked into a plan.
-pub fn read_scene(path: &Path) -> Result<Plan, String> {
+pub fn read_scene(path: &Path) -> Result<Plan, CliError> {
     let text = if path == Path::new("-") {
-        std::io::read_to_string(std::io::stdin())
-            .map_err(|e| format!("cannot read the scene from standard input: {e}"))?
+        std::io::read_to_string(std::io::stdin()).map_err(CliError::Stdin)?
     } else {
-        std::fs::read_to_string(path).map_err(|e| unreadable(path, &e))?
+        std::fs::read_to_string(path).map_err(|e| unreadable(path, e))?
     };
-    parse_scene_str(&text).map_err(|errors| {
-        let lines: Vec<String> = errors.0.iter().map(|e| format!("  {e}")).collect();
-        format!("invalid scene {}:\n{}", path.display(), lines.join("\n"))
+    parse_scene_str(&text).map_err(|errors| CliError::Scene {
+        path: path.to_owned(),
+        errors,
     })
 }
 
 /// Why `path` could not be read; for an argument that is a scene's text rather than a
 /// file's name, how to give the text.
-fn unreadable(path: &Path, error: &std::io::Error) -> String {
+fn unreadable(path: &Path, source: std::io::Error) -> CliError {
     let given = path.to_string_lossy();
     if given.trim_start().starts_with('{') {
-        format!(
-            "`{given}` is not a file: the scene is read from a file, or from standard input \
-             with `-`: echo '{given}' | tribosim run -"
-        )
+        CliError::SceneAsArgument(given.into_owned())
     } else {
-        format!("cannot read {}: {error}", path.display())
+        CliError::File {
+            action: "read",
+            path: path.to_owned(),
+            source,
+        }
     }
 }
 
@@ -54,23 +55,28 @@ pub struct SurfaceFile<'a> {
 }
 
 /// The map of `file`, and `plan`'s scene with `disc.surface` naming it, checked again.
-fn with_surface(plan: Plan, file: &SurfaceFile) -> Result<(Plan, HeightMap), String> {
-    let (map, _) = read_surface(file.path, file.pixel_um.map(|um| um * 1e-6))
-        .map_err(|e| format!("surface {}: {e}", file.path.display()))?;
+fn with_surface(plan: Plan, file: &SurfaceFile) -> Result<(Plan, HeightMap), CliError> {
+    let (map, _) =
+        read_surface(file.path, file.pixel_um.map(|um| um * 1e-6)).map_err(|source| {
+            CliError::Surface {
+                path: file.path.to_owned(),
+                source,
+            }
+        })?;
     let id = file.path.file_name().map_or_else(
         || file.path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
     let mut scene = plan.into_scene();
     scene.disc.surface = Some(SurfaceSpec::measured(&id, file.remove_tilt));
-    Ok((Plan::new(scene).map_err(|e| e.to_string())?, map))
+    Ok((Plan::new(scene)?, map))
 }
 
 /// The scene at `path` checked into a plan, on the measured map of `surface` if given.
 fn read_scene_on(
     path: &Path,
     surface: Option<&SurfaceFile>,
-) -> Result<(Plan, Option<HeightMap>), String> {
+) -> Result<(Plan, Option<HeightMap>), CliError> {
     let plan = read_scene(path)?;
     match surface {
         Some(file) => with_surface(plan, file).map(|(plan, map)| (plan, Some(map))),
@@ -80,13 +86,13 @@ fn read_scene_on(
 
 /// `tribosim contact`: the first cycle's contact of the scene at `path`, on the measured
 /// map of `surface` if given, as JSON on standard output.
-pub fn contact_scene(path: &Path, surface: Option<&SurfaceFile>) -> Result<(), String> {
+pub fn contact_scene(path: &Path, surface: Option<&SurfaceFile>) -> Result<(), CliError> {
     let (plan, map) = read_scene_on(path, surface)?;
     let options = RunOptions {
         surface: map.as_ref(),
         ..RunOptions::default()
     };
-    let contact = first_contact_with(&plan, &options).map_err(|e| e.to_string())?;
+    let contact = first_contact_with(&plan, &options)?;
     write_json(&contact, &Destination::Stdout)
 }
 
@@ -97,19 +103,16 @@ pub fn run_scene(
     path: &Path,
     output: Option<&Path>,
     surface: Option<&SurfaceFile>,
-) -> Result<(), String> {
+) -> Result<(), CliError> {
     let (plan, map) = read_scene_on(path, surface)?;
     for warning in plan.warnings() {
         eprintln!("warning: {warning}");
     }
     // indicatif draws nothing when standard error is not a terminal, so logs stay clean.
     let bar = ProgressBar::new(plan.scene().test.cycles);
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{elapsed_precise} [{bar:40}] cycle {pos}/{len}, {per_sec}, {eta} left {msg}",
-        )
-        .map_err(|e| e.to_string())?,
-    );
+    bar.set_style(ProgressStyle::with_template(
+        "{elapsed_precise} [{bar:40}] cycle {pos}/{len}, {per_sec}, {eta} left {msg}",
+    )?);
     let mut on_cycle = |record: &CycleRecord| {
         bar.set_position(record.cycle);
         bar.set_message(format!("V = {:.3e} mm3", record.wear_volume_mm3));
@@ -120,7 +123,7 @@ pub fn run_scene(
     };
     let result = run_with(&plan, &options, &mut on_cycle, &AtomicBool::new(false));
     bar.finish_and_clear();
-    let result = result.map_err(|e| e.to_string())?;
+    let result = result?;
     let name = FileName {
         kind: "result",
         label: &result.scene.name,
