@@ -106,7 +106,7 @@ impl Axis {
         }
         let values = match json {
             Value::Array(values) => AxisValues::List(values.clone()),
-            Value::Object(_) => range(json).map_err(fail)?,
+            Value::Object(_) => range(json, fail)?,
             other => {
                 return Err(fail(format!(
                     "must be a list of values or {{\"from\": A, \"to\": B, \"steps\": N}}, got {other}"
@@ -120,8 +120,9 @@ impl Axis {
     }
 }
 
-/// `{"from": A, "to": B, "steps": N}` with finite numeric ends and at least one step.
-fn range(json: &Value) -> Result<AxisValues, String> {
+/// `{"from": A, "to": B, "steps": N}` with finite numeric ends and at least one step;
+/// `fail` names the axis in the refusal.
+fn range(json: &Value, fail: impl Fn(String) -> StudyError) -> Result<AxisValues, StudyError> {
     #[derive(serde::Deserialize)]
     #[serde(deny_unknown_fields)]
     struct Range {
@@ -129,15 +130,18 @@ fn range(json: &Value) -> Result<AxisValues, String> {
         to: Number,
         steps: u64,
     }
-    let Range { from, to, steps } = serde_json::from_value(json.clone())
-        .map_err(|e| format!("a range is {{\"from\": A, \"to\": B, \"steps\": N}}: {e}"))?;
+    let Range { from, to, steps } = serde_json::from_value(json.clone()).map_err(|e| {
+        fail(format!(
+            "a range is {{\"from\": A, \"to\": B, \"steps\": N}}: {e}"
+        ))
+    })?;
     if steps == 0 {
-        return Err("a range needs at least 1 step (steps + 1 values, both ends included); for one value give a list".into());
+        return Err(fail("a range needs at least 1 step (steps + 1 values, both ends included); for one value give a list".into()));
     }
     if steps > MAX_RANGE_STEPS {
-        return Err(format!(
+        return Err(fail(format!(
             "a range has at most {MAX_RANGE_STEPS} steps, got {steps}"
-        ));
+        )));
     }
     Ok(AxisValues::Range { from, to, steps })
 }
