@@ -294,3 +294,25 @@ fn contact_takes_a_measured_map_as_run_does() {
     // against 6.58e-3 mm^2 here).
     assert!(rough < smooth, "rough {rough} against smooth {smooth}");
 }
+
+#[test]
+fn an_output_that_is_not_a_regular_file_is_written_into_not_replaced() {
+    // `-o /dev/null` once replaced the device with a regular file (the temporary file's
+    // rename); a named pipe stands in for it here, since a failure on /dev/null itself
+    // would break the machine the test runs on.
+    use std::os::unix::fs::FileTypeExt;
+    let dir = TempDir::new("cli-fifo");
+    let fifo = dir.path().join("out.pipe");
+    let made = Command::new("mkfifo").arg(&fifo).status().expect("mkfifo");
+    assert!(made.success());
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::read_to_string(fifo).expect("read the pipe"))
+    };
+    let output = run_in(dir.path(), &["run", "-", "-o", "out.pipe"], QUICK);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let result: Value = serde_json::from_str(&reader.join().expect("reader")).expect("JSON");
+    assert_eq!(result["summary"]["cycles"], 2);
+    let kind = std::fs::metadata(&fifo).expect("still there").file_type();
+    assert!(kind.is_fifo(), "the pipe was replaced: {kind:?}");
+}

@@ -124,7 +124,18 @@ pub fn write_json(
 
 /// Writes `text` to a temporary file beside `path`, then renames it into place: a reader
 /// (`tribosim study collect` while a cluster's tasks still run) sees the whole file or none.
+/// A `path` that exists and is not a regular file (`/dev/null`, a pipe) is written into
+/// instead: a rename would put a regular file in its place, and a `/dev/null` replaced so,
+/// as root, fills with whatever later commands discard there and feeds it to every reader
+/// (cargo's rustc probe, which reads it, then failed on compiler messages as its source).
 fn write_whole(path: &Path, text: &str) -> std::io::Result<()> {
+    let special = std::fs::metadata(path).is_ok_and(|m| !m.is_file());
+    if special {
+        return std::fs::OpenOptions::new()
+            .write(true)
+            .open(path)?
+            .write_all(text.as_bytes());
+    }
     let mut temporary = path.as_os_str().to_owned();
     temporary.push(format!(".{}.tmp", std::process::id()));
     std::fs::write(&temporary, text)?;
