@@ -1,17 +1,24 @@
 //! `tribosim report` against the built binary: a run's report, a comparison and a study's,
 //! each one self-contained HTML file (nothing fetched, nothing run) holding its figures,
-//! tables, methods and provenance.
+//! tables, methods and provenance; and the same reports over HTTP.
 
 mod common;
 
 use std::path::Path;
 use std::process::{Command, Output};
 
-use common::TempDir;
+use serde_json::{Value, json};
+
+use common::{
+    Server, TempDir, args, expect_client_error, is_final, small_scene, submit, wait_for_job,
+};
 
 /// A run with corrosion on a small grid: a dozen cycles in well under a second.
 const SCENE: &str = r#"{"preset": "dalmau2018-316l", "overrides": {
     "name": "report run", "test": {"cycles": 12}, "numerics": {"grid": 32}}}"#;
+
+/// An id no job has.
+const UNKNOWN_JOB: &str = "00000000-0000-4000-8000-000000000000";
 
 fn tribosim(dir: &Path, args: &[&str]) -> Output {
     let output = Command::new(env!("CARGO_BIN_EXE_tribosim"))
@@ -116,4 +123,79 @@ fn a_comparison_and_a_study_have_their_own_reports() {
     assert_eq!(html.matches("<svg").count(), 8);
     assert!(html.contains("wear volume against test.speed_rpm"));
     assert!(html.contains("<th>test.load_n</th><th>test.speed_rpm</th>"));
+}
+
+/// GET `path` and expect 200 with an HTML download; the body.
+async fn get_report(client: &reqwest::Client, server: &Server, path: &str) -> String {
+    let response = client.get(server.url(path)).send().await.expect("GET");
+    assert_eq!(response.status(), 200, "GET {path}");
+    let headers = response.headers();
+    assert_eq!(headers["content-type"], "text/html; charset=utf-8");
+    let disposition = headers["content-disposition"].to_str().expect("ascii");
+    assert!(disposition.contains("report.html"), "{disposition}");
+    response.text().await.expect("the report's text")
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_service_serves_a_job_report_with_its_measurements_a_comparison_and_a_study() {
+    let dir = TempDir::new("report-http");
+    let server = Server::start(args(dir.path())).await;
+    let client = reqwest::Client::new();
+    let mut ids = Vec::new();
+    for cycles in [6, 9] {
+        let job = submit(&client, &server.base, &small_scene(cycles)).await;
+        let id = job["id"].as_str().expect("id").to_owned();
+        let done = wait_for_job(&client, &server.base, &id, is_final).await;
+        assert_eq!(done["status"], "succeeded", "{done}");
+        ids.push(id);
+    }
+    let put = client
+        .put(server.url(&format!("/api/v1/jobs/{}/measurements/potential", ids[0])))
+        .header("content-type", "text/csv")
+        .body("time_s,potential_v\n1,-0.3\n3,-0.35\n")
+        .send()
+        .await
+        .expect("PUT");
+    assert_eq!(put.status(), 200);
+
+    let html = get_report(&client, &server, &format!("/api/v1/jobs/{}/report", ids[0])).await;
+    assert_self_contained(&html);
+    assert_eq!(html.matches("<svg").count(), 6);
+    assert!(html.contains("Potential against the model&#39;s, on the record&#39;s clock"));
+
+    let both = format!("/api/v1/report?jobs={},{}", ids[0], ids[1]);
+    let html = get_report(&client, &server, &both).await;
+    assert_self_contained(&html);
+    assert!(html.contains("small, 6 cycles") && html.contains("small, 9 cycles"));
+    for refused in [
+        format!("/api/v1/report?jobs={}", ids[0]),
+        format!("/api/v1/report?jobs={0},{0}", ids[0]),
+        "/api/v1/report?jobs=nope,also-not".to_owned(),
+        "/api/v1/report".to_owned(),
+    ] {
+        let response = client.get(server.url(&refused)).send().await.expect("GET");
+        expect_client_error(response, 400).await;
+    }
+    let unknown = format!("/api/v1/jobs/{UNKNOWN_JOB}/report");
+    let response = client.get(server.url(&unknown)).send().await.expect("GET");
+    expect_client_error(response, 404).await;
+
+    let study = json!({"base": small_scene(2), "axes": {"test.load_n": [2, 5]}});
+    let response = client
+        .post(server.url("/api/v1/studies"))
+        .json(&study)
+        .send()
+        .await
+        .expect("POST");
+    assert_eq!(response.status(), 201);
+    let record: Value = response.json().await.expect("JSON");
+    let id = record["id"].as_str().expect("id");
+    for member in record["members"].as_array().expect("members") {
+        let job = member["job_id"].as_str().expect("job id");
+        wait_for_job(&client, &server.base, job, is_final).await;
+    }
+    let html = get_report(&client, &server, &format!("/api/v1/studies/{id}/report")).await;
+    assert_self_contained(&html);
+    assert!(html.contains("wear volume against test.load_n"));
+    server.stop().await;
 }
