@@ -1,5 +1,6 @@
-//! Records the git commit tribosim is built from (`TRIBOSIM_GIT_COMMIT`, "unknown" outside
-//! a git checkout or without git), for the provenance of every result.
+//! Records the git commit tribosim is built from (`TRIBOSIM_GIT_COMMIT`), for the provenance
+//! of every result: the environment's `TRIBOSIM_GIT_COMMIT` when set (a build without the
+//! repository, as the Dockerfile's, is told it), else `git rev-parse HEAD`, else "unknown".
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -26,8 +27,14 @@ fn watch(path: &Path) {
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
-    let commit = rev_parse(&["HEAD"]).unwrap_or_else(|| "unknown".to_owned());
-    println!("cargo:rustc-env=TRIBOSIM_GIT_COMMIT={commit}");
+    println!("cargo:rerun-if-env-changed=TRIBOSIM_GIT_COMMIT");
+    let given = std::env::var("TRIBOSIM_GIT_COMMIT")
+        .ok()
+        .filter(|c| !c.trim().is_empty());
+    let commit = given
+        .or_else(|| rev_parse(&["HEAD"]))
+        .unwrap_or_else(|| "unknown".to_owned());
+    println!("cargo:rustc-env=TRIBOSIM_GIT_COMMIT={}", commit.trim());
     // A new commit moves HEAD (detached) or the branch's ref (loose, or packed).
     let Some(git_dir) = rev_parse(&["--absolute-git-dir"]).map(PathBuf::from) else {
         return;
