@@ -86,8 +86,14 @@ impl Cell {
     }
 }
 
-/// A table with `header` and `rows`, captioned by `caption` when it is not empty.
+/// A table with `header` and `rows`, captioned by `caption` when it is not empty, its
+/// columns of equal width.
 pub fn table(caption: &str, header: &[&str], rows: &[Vec<Cell>]) -> String {
+    sized_table(caption, header, rows, &[])
+}
+
+/// A [`table`] whose columns take `widths`, percent of the page's width (equal when empty).
+pub fn sized_table(caption: &str, header: &[&str], rows: &[Vec<Cell>], widths: &[u8]) -> String {
     let mut out = String::from("<table>");
     if !caption.is_empty() {
         let _ = write!(
@@ -95,6 +101,13 @@ pub fn table(caption: &str, header: &[&str], rows: &[Vec<Cell>]) -> String {
             "<caption class=\"muted\">{}</caption>",
             escape(caption)
         );
+    }
+    if !widths.is_empty() {
+        out.push_str("<colgroup>");
+        for width in widths {
+            let _ = write!(out, "<col style=\"width: {width}%\">");
+        }
+        out.push_str("</colgroup>");
     }
     out.push_str("<thead><tr>");
     for name in header {

@@ -5,7 +5,7 @@ use time::format_description::well_known::Rfc3339;
 
 use crate::simulation::{Build, ModelChoice, Provenance};
 
-use super::html::{Cell, escape, heading, table};
+use super::html::{Cell, escape, heading, sized_table};
 
 /// The paper the model follows.
 pub const PAPER: &str = "A. Dalmau, A. Roda Buch, A. Rovira, J. Navarro-Laboulais, \
@@ -75,12 +75,12 @@ pub fn run_provenance(provenance: Option<&Provenance>) -> String {
         Cell::text("scene SHA-256"),
         Cell::text(&p.scene_sha256),
     ]);
-    table("", &["", "value"], &rows)
+    sized_table("", &["", "value"], &rows, &[28, 72])
 }
 
 /// `build` as a table captioned `caption` (the report's own, a study summary's).
 pub fn build_table(caption: &str, build: &Build) -> String {
-    table(caption, &["", "value"], &build_rows(build))
+    sized_table(caption, &["", "value"], &build_rows(build), &[28, 72])
 }
 
 /// The build that writes this report, now.

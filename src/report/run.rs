@@ -5,7 +5,7 @@
 use crate::simulation::{SimulationResult, Summary};
 
 use super::figure::FigureError;
-use super::html::{Cell, escape, heading, number, page, paragraph, table};
+use super::html::{Cell, escape, heading, number, page, paragraph, sized_table, table};
 use super::methods::{methods, report_provenance, run_provenance};
 use super::residuals::{Measured, Residual, column, residuals, rms};
 use super::run_figures::{measured_volumes, model_potential, model_volume, run_figures};
@@ -106,10 +106,11 @@ pub fn models_section(result: &SimulationResult, title: &str) -> String {
             ]
         })
         .collect();
-    html.push_str(&table(
+    html.push_str(&sized_table(
         "The models the run used, and why",
         &["model", "active", "reason"],
         &rows,
+        &[18, 9, 73],
     ));
     if result.warnings.is_empty() {
         html.push_str(&paragraph("muted", "No warnings."));

@@ -31,10 +31,16 @@ const captions = (html) => [...html.matchAll(/<figcaption>([^<]*)<\/figcaption>/
 
 const words = (text) => text.replace(/\s+/g, " ");
 
-// Elements whose right edge is past `limit` px, at the print media and the viewport set.
-const overflowing = (page, limit) => page.evaluate((edge) => [...document.body.querySelectorAll("*")]
-  .filter((el) => el.getBoundingClientRect().right > edge + 0.5)
-  .slice(0, 5).map((el) => `${el.tagName} ${Math.round(el.getBoundingClientRect().right)} px`), limit);
+// Elements whose right edge is past `limit` px, at the print media and the viewport set,
+// and the page's own width when text runs past its box (an unbreakable line: Chromium would
+// then shrink the whole page to fit the paper, so the margins stay blank).
+const overflowing = (page, limit) => page.evaluate((edge) => {
+  const wide = [...document.body.querySelectorAll("*")]
+    .filter((el) => el.getBoundingClientRect().right > edge + 0.5)
+    .slice(0, 5).map((el) => `${el.tagName} ${Math.round(el.getBoundingClientRect().right)} px`);
+  const scroll = document.documentElement.scrollWidth;
+  return scroll > edge ? [...wide, `the page is ${scroll} px wide`] : wide;
+}, limit);
 
 // How many pixels of the PNG (base64) are not white in the right margin's columns, less
 // 3 mm so that anti-aliasing at the text's edge is not counted. Decoded by the browser.
