@@ -24,7 +24,11 @@ COPY Cargo.toml Cargo.lock ./
 RUN mkdir src && echo 'fn main() {}' > src/main.rs && touch src/lib.rs \
     && cargo build --release --locked --bin tribosim \
     && rm -rf src
+COPY build.rs ./
 COPY src ./src
+# The commit the results' provenance names (the repository is not in the image's context):
+# docker build --build-arg TRIBOSIM_GIT_COMMIT=$(git rev-parse HEAD) .; "unknown" otherwise.
+ARG TRIBOSIM_GIT_COMMIT=unknown
 # Compiled into the binary (served at /api/v1/openapi.yaml and /): the runtime image needs
 # no copy of either.
 COPY openapi.yaml ./

@@ -14,6 +14,7 @@ pub mod corrosion;
 pub mod csv;
 pub mod hardness;
 pub mod json;
+pub mod report;
 pub mod scene;
 pub mod service;
 pub mod simulation;

@@ -85,6 +85,21 @@ enum Command {
     },
     /// Print the built-in scenes as JSON.
     Presets,
+    /// Write a printable HTML report (`docs/report.md`): of one result, of several results
+    /// compared, or of a study's summary.
+    Report {
+        /// Result JSON files (one: a run's report; several: a comparison), or one study
+        /// summary JSON.
+        #[arg(required = true)]
+        inputs: Vec<PathBuf>,
+        /// The measurements attached to a single run, as JSON
+        /// (`GET /api/v1/jobs/{id}/measurements`), drawn and compared with the model.
+        #[arg(long, value_name = "FILE")]
+        measurements: Option<PathBuf>,
+        /// Where to write the report; standard output if absent.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
     /// Fit the model's parameters to a measurement table (CSV or JSON, units in the column
     /// names) and write the fit, with the scene filled in, as JSON.
     Calibrate {
@@ -299,6 +314,11 @@ fn main() -> ExitCode {
         } => run_scene(&scene, output.as_deref(), surface.file().as_ref()),
         Command::Contact { scene, surface } => contact_scene(&scene, surface.file().as_ref()),
         Command::Presets => write_json(&presets(), &Destination::Stdout),
+        Command::Report {
+            inputs,
+            measurements,
+            output,
+        } => cli::report::report(&inputs, measurements.as_deref(), output.as_deref()),
         Command::Calibrate {
             fit,
             table,

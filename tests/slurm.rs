@@ -52,11 +52,15 @@ fn read_json(path: &Path) -> Value {
     serde_json::from_str(&text).expect("parse JSON")
 }
 
-/// A summary without what depends on the machine and the moment: wall times and workers.
+/// A summary without what depends on the machine and the moment: wall times, workers and
+/// the provenance's date.
 fn without_wall_times(mut summary: Value) -> Value {
     let object = summary.as_object_mut().expect("a summary object");
     object.remove("wall_s");
     object.remove("workers");
+    if let Some(provenance) = object.get_mut("provenance").and_then(Value::as_object_mut) {
+        provenance.remove("computed_at");
+    }
     for member in object["members"].as_array_mut().expect("members") {
         if let Some(run) = member.get_mut("summary").and_then(Value::as_object_mut) {
             run.remove("wall_s");

@@ -5,6 +5,7 @@ use std::fmt;
 use std::path::PathBuf;
 
 use tribosim::bench::BenchError;
+use tribosim::report::FigureError;
 use tribosim::scene::SceneErrors;
 use tribosim::service::ServeError;
 use tribosim::simulation::SimulationError;
@@ -82,6 +83,22 @@ pub enum CliError {
     /// A benchmark failed.
     #[error(transparent)]
     Bench(#[from] BenchError),
+    /// A file is not the document the command reads.
+    #[error("{} is not {what}: {source}", path.display())]
+    NotA {
+        /// The file.
+        path: PathBuf,
+        /// What it should have been.
+        what: &'static str,
+        /// Why it is not.
+        source: serde_json::Error,
+    },
+    /// `--measurements` given with more than one run's result.
+    #[error("--measurements goes with a single run's result, not {0}")]
+    MeasurementsAlone(&'static str),
+    /// A report's figure could not be drawn.
+    #[error(transparent)]
+    Figure(#[from] FigureError),
 }
 
 /// A scene's problems, each on a line of its own, indented.

@@ -3,7 +3,8 @@
 //!
 //! - [`serve`] is the whole server: it builds its own tokio runtime, so the command line
 //!   stays synchronous. [`serve_on`] runs on a listener the caller bound (tests bind port 0).
-//! - A folder per resource (`jobs`, `measurements`, `studies`, `calibrations`, `surfaces`),
+//! - A folder per resource (`jobs`, `measurements`, `studies`, `calibrations`, `surfaces`,
+//!   and `reports`, made from the others),
 //!   each with its state, its storage and its `routes.rs`: the handlers, the resource's list
 //!   of routes, and the API's answer to each of its errors. `router` merges the lists into
 //!   the one table ([`routes`]) that `openapi.yaml` at the crate root describes (it is served
@@ -35,6 +36,7 @@ mod listing;
 mod measurements;
 mod meta;
 mod reply;
+mod reports;
 mod route;
 mod router;
 mod state;

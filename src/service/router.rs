@@ -16,7 +16,7 @@ use tracing::Level;
 use super::error::ApiError;
 use super::route::{Endpoint, Route};
 use super::state::AppState;
-use super::{assets, calibrations, jobs, measurements, meta, studies, surfaces};
+use super::{assets, calibrations, jobs, measurements, meta, reports, studies, surfaces};
 
 /// Largest request body accepted: a scene is a few kilobytes, a measured table some tens
 /// (a profilometer trace of a few thousand points). A height map's route takes more.
@@ -35,6 +35,7 @@ fn endpoints() -> Vec<Endpoint<AppState>> {
         jobs::endpoints(),
         measurements::endpoints(),
         studies::endpoints(),
+        reports::endpoints(),
         calibrations::endpoints(),
         surfaces::endpoints(),
     ]

@@ -13,6 +13,7 @@ mod hardening;
 mod ocp_trace;
 mod plan;
 mod plausibility;
+mod provenance;
 mod result;
 mod roughness;
 mod run;
@@ -36,6 +37,7 @@ pub use first::{FirstContact, first_contact, first_contact_with};
 pub use hardening::FAR_OFF_FRACTION;
 pub use plan::{Plan, parse_scene, parse_scene_str};
 pub use plausibility::{RULES_BEGIN, RULES_END, check_map, rules_table};
+pub use provenance::{Build, GIT_COMMIT, Provenance, scene_sha256};
 pub use result::{
     CycleRecord, Model, ModelChoice, OcpPhase, OcpSample, PressureMap, Profile, SimulationResult,
     Summary, SurfaceReport,

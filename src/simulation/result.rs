@@ -9,6 +9,8 @@ use crate::scene::{FieldWarning, Scene};
 use crate::surface::Statistics;
 use crate::wear::{Groove, WearLaw, WearSummary};
 
+use super::provenance::Provenance;
+
 /// A whole run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SimulationResult {
@@ -43,6 +45,10 @@ pub struct SimulationResult {
     pub ocp_trace: Vec<OcpSample>,
     /// Totals.
     pub summary: Summary,
+    /// Which build ran the scene, where and when, and the scene's SHA-256; absent from
+    /// results written before it was recorded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub provenance: Option<Provenance>,
 }
 
 /// One point of the open-circuit potential trace.

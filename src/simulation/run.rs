@@ -31,6 +31,7 @@ use super::balance::{balance, overdrawn};
 use super::electrochemistry::{Cell, Reading, Surface};
 use super::growth::{GROW_AT_EDGE_CELLS, GROW_AT_FRACTION, near_edges, widen};
 use super::ocp_trace::ocp_trace;
+use super::provenance::Provenance;
 use super::stepping::Stepper;
 use super::warm::WarmStart;
 use super::{
@@ -434,6 +435,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             pressure_maps: self.maps,
             ocp_trace: ocp,
             summary,
+            provenance: Some(Provenance::of(scene)),
         }
     }
 

@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 
-use crate::simulation::Summary;
+use crate::simulation::{Build, Summary};
 
 use super::{Member, MemberOutcome};
 
@@ -19,6 +19,11 @@ pub struct StudySummary {
     pub wall_s: f64,
     /// One row per member, in the expansion order.
     pub members: Vec<MemberRow>,
+    /// The build and the machine that wrote the summary, and when (each member's own run
+    /// has its scene's SHA-256 in its result's provenance); absent from summaries written
+    /// before it was recorded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub provenance: Option<Build>,
 }
 
 /// One member of a study that ran.
@@ -126,6 +131,7 @@ impl StudySummary {
             workers,
             wall_s,
             members,
+            provenance: Some(Build::now()),
         }
     }
 
@@ -225,6 +231,7 @@ mod tests {
                 error: Some(error.into()),
                 pending: None,
             }],
+            provenance: None,
         }
     }
 

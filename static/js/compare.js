@@ -1,7 +1,7 @@
 // The comparison of several ended runs: wear volume, depth, potential and WAC against
 // cycles or time, the profiles at a chosen cycle, and the summaries side by side; each run
 // in its colour, its legend naming what differs between the scenes ("load 10 N").
-import { api } from "./api.js";
+import { api, download } from "./api.js";
 import { $, reveal } from "./dom.js";
 import { COMPARE, COMPARE_PLOT, COMPARE_X, JOBS } from "./ids.js";
 import * as jobs from "./jobs.js";
@@ -175,6 +175,8 @@ function renderTable() {
 export function init() {
   $(JOBS.compare).addEventListener("click", open);
   $(COMPARE.close).addEventListener("click", () => { $(COMPARE.panel).hidden = true; });
+  $(COMPARE.report).addEventListener("click", () =>
+    download(`/api/v1/report?jobs=${compared.map((r) => r.job.id).join(",")}`, "tribosim-comparison-report.html"));
   for (const radio of document.querySelectorAll(`input[name="${COMPARE_X}"]`)) radio.addEventListener("change", draw);
   $(COMPARE.cycle).addEventListener("change", drawProfiles);
 }

@@ -51,6 +51,7 @@ export const RUN = Object.freeze({
   warnings: "run-warnings",
   downloadJson: "download-json",
   downloadCsv: "download-csv",
+  downloadReport: "download-report",
   editAgain: "edit-again",
   showTable3: "show-table3",
   table3Note: "table3-note",
@@ -91,6 +92,7 @@ export const COMPARE = Object.freeze({
   table: "cmp-table",
   cycle: "cmp-cycle",
   close: "compare-close",
+  report: "compare-report",
 });
 
 /** The name (not an id) of the comparison's radios: against cycles or time. */
@@ -119,6 +121,7 @@ export const STUDY = Object.freeze({
   status: "study-status",
   progress: "study-progress",
   axis: "study-axis",
+  report: "study-report",
   compare: "study-compare",
   members: "study-members",
 });

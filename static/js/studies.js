@@ -1,7 +1,7 @@
 // Studies: the form's scene across the combinations of some of its values. The list with
 // each study's progress, and the panel with its members, their final results against an
 // axis, and the members ticked for comparison.
-import { api, errorText, postJson } from "./api.js";
+import { api, download, errorText, postJson } from "./api.js";
 import { $, button, reveal } from "./dom.js";
 import * as compare from "./compare.js";
 import * as form from "./form.js";
@@ -241,4 +241,7 @@ export function init() {
   $(STUDY.form).addEventListener("submit", submitStudy);
   $(STUDY.axis).addEventListener("change", drawPlots);
   $(STUDY.compare).addEventListener("click", compareMembers);
+  $(STUDY.report).addEventListener("click", () => {
+    if (study) download(`/api/v1/studies/${study.id}/report`, `tribosim-study-${study.id}-report.html`);
+  });
 }

@@ -278,11 +278,15 @@ pub fn is_final(job: &Value) -> bool {
     )
 }
 
-/// A result with its wall-clock time (the only field that differs between runs) removed.
+/// A result with its wall-clock time and its date (the only fields that differ between
+/// runs) removed.
 pub fn without_wall_time(mut result: Value) -> Value {
     result["summary"]
         .as_object_mut()
         .expect("summary")
         .remove("wall_s");
+    if let Some(provenance) = result.get_mut("provenance").and_then(Value::as_object_mut) {
+        provenance.remove("computed_at");
+    }
     result
 }

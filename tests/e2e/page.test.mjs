@@ -17,6 +17,7 @@ import { form } from "./steps/form.mjs";
 import { listing } from "./steps/listing.mjs";
 import { measurements } from "./steps/measurements.mjs";
 import { ocp } from "./steps/ocp.mjs";
+import { report } from "./steps/report.mjs";
 import { rough } from "./steps/rough.mjs";
 import { run } from "./steps/run.mjs";
 import { study } from "./steps/study.mjs";
@@ -42,7 +43,7 @@ try {
   page.on("pageerror", (e) => errors.push(String(e)));
   // What one step finds and a later one uses (the runs' ids, the run's length, ...).
   const found = {};
-  for (const scenario of [form, run, measurements, compare, access, study, calibration, listing, cancel, rough, ocp]) {
+  for (const scenario of [form, run, measurements, report, compare, access, study, calibration, listing, cancel, rough, ocp]) {
     await scenario(page, found);
   }
   assert.deepEqual(errors, [], "errors in the page");

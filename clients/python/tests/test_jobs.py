@@ -19,7 +19,7 @@ from conftest import ENDLESS, REPO, SMALL, Server
 
 #: The cycle record's columns that are counts, not quantities with a unit.
 COUNTS = {"cycle", "iterations", "contact_islands"}
-UNIT = re.compile(r"_(s|mm3|mm2|um|mpa|v|c|ma)$")  # seconds ... volts, coulombs, milliamperes
+UNIT = re.compile(r"_(s|mm3|mm2|um|mpa|v|ma|c)$")
 #: A job that sends an event for every cycle.
 EVERY_CYCLE = {
     "preset": "dalmau2018-316l",
@@ -239,3 +239,20 @@ def test_the_list_pages_and_filters(client: tribosim.Client, small_job: tribosim
     named = client.jobs.list(name="LIST other", status="succeeded,failed")
     assert [job.id for job in named] == [other.id]
     assert client.jobs.list(status="queued", name="pytest list other") == []
+
+
+def test_report_of_a_run_and_of_two(
+    client: tribosim.Client, small_job: tribosim.Job, tmp_path: Path
+) -> None:
+    path = tmp_path / "report.html"
+    html = small_job.report(path)
+    assert html.startswith("<!DOCTYPE html>")
+    assert path.read_text(encoding="utf-8") == html
+    assert html.count("<svg") == 6
+    assert small_job.result().raw["provenance"]["scene_sha256"] in html
+    other = client.jobs.submit(SMALL, name="pytest other")
+    other.wait(progress=False)
+    compared = client.jobs.report([small_job, other.id])
+    assert "pytest small" in compared and "pytest other" in compared
+    with pytest.raises(tribosim.ApiError):
+        client.jobs.report([small_job])

@@ -103,3 +103,10 @@ def test_cancel_and_delete(client: tribosim.Client) -> None:
         study.refresh()
     with pytest.raises(tribosim.NotFoundError):
         client.jobs.get(job_ids[0])
+
+
+def test_report(study: tribosim.Study, tmp_path: Path) -> None:
+    html = study.report(tmp_path / "study.html")
+    assert html.startswith("<!DOCTYPE html>")
+    assert "<table>" in html and "<svg" in html
+    assert (tmp_path / "study.html").read_text(encoding="utf-8") == html

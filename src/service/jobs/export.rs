@@ -2,20 +2,42 @@
 
 use serde::Deserialize;
 
-use crate::simulation::CycleRecord;
+use time::format_description::well_known::Rfc3339;
+
+use crate::simulation::{CycleRecord, Provenance};
 
 /// The CSV columns: the cycle record's with its names (units in the names), the later
-/// corrosion fields after the first three so that earlier columns keep their places, then
-/// the cycles stepped over since the previous row, always last.
+/// corrosion fields after the first three so that earlier columns keep their places, the
+/// cycles stepped over since the previous row, then the result's provenance, the same on
+/// every row, so that the file stays one table any CSV reader takes and a row copied
+/// elsewhere still says where it comes from.
 const HEADER: &str = "cycle,time_s,wear_volume_mm3,max_depth_um,max_pressure_mpa,\
                       contact_area_mm2,plastic_area_mm2,contact_islands,hardness_mpa,approach_um,iterations,\
                       potential_v,anodic_area_mm2,wac_volume_mm3,contact_chord_um,anodic_current_ma,\
-                      charge_c,total_volume_mm3,mechanical_volume_mm3,cycles_stepped_over";
+                      charge_c,total_volume_mm3,mechanical_volume_mm3,cycles_stepped_over,\
+                      tribosim_version,git_commit,scene_sha256,computed_at,cores";
 
-/// Only the cycles of a result; the rest of the document is skipped unparsed.
+/// Only the cycles and the provenance of a result; the rest of the document is skipped
+/// unparsed.
 #[derive(Deserialize)]
 struct Cycles {
     cycles: Vec<CycleRecord>,
+    #[serde(default)]
+    provenance: Option<Provenance>,
+}
+
+/// The provenance columns' cells: empty for a result written before it was recorded.
+fn provenance_cells(provenance: Option<&Provenance>) -> [String; 5] {
+    let Some(p) = provenance else {
+        return Default::default();
+    };
+    [
+        p.build.tribosim_version.clone(),
+        p.build.git_commit.clone(),
+        p.scene_sha256.clone(),
+        p.build.computed_at.format(&Rfc3339).unwrap_or_default(),
+        p.build.cores.to_string(),
+    ]
 }
 
 /// The `cycles` of a result JSON as CSV: one row per solved cycle. The corrosion columns are
@@ -24,7 +46,8 @@ struct Cycles {
 /// not solved: with `numerics.cycle_step` "auto" the previous solve stood for them (the
 /// cycle loop's step, Fig. 4), wearing the groove at its pressure.
 pub fn cycles_csv(result_json: &[u8]) -> Result<String, serde_json::Error> {
-    let Cycles { cycles } = serde_json::from_slice(result_json)?;
+    let Cycles { cycles, provenance } = serde_json::from_slice(result_json)?;
+    let provenance = provenance_cells(provenance.as_ref());
     let mut csv = String::with_capacity(64 + cycles.len() * 160);
     csv.push_str(&crate::csv::line(
         &HEADER.split(',').collect::<Vec<_>>(),
@@ -57,7 +80,12 @@ pub fn cycles_csv(result_json: &[u8]) -> Result<String, serde_json::Error> {
             optional(c.mechanical_volume_mm3),
             stepped_over.to_string(),
         ];
-        csv.push_str(&crate::csv::line(&cells, "\r\n"));
+        let row: Vec<&str> = cells
+            .iter()
+            .chain(&provenance)
+            .map(String::as_str)
+            .collect();
+        csv.push_str(&crate::csv::line(&row, "\r\n"));
     }
     Ok(csv)
 }
@@ -82,12 +110,33 @@ mod tests {
         let csv = cycles_csv(json).expect("valid result");
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines.len(), 3);
-        assert_eq!(lines[0].split(',').count(), 20);
-        assert_eq!(lines[1], "1,1,0.5,0.25,1200,0.01,0,0,2473,1.5,12,,,,,,,,,0");
+        assert_eq!(lines[0].split(',').count(), 25);
+        assert_eq!(
+            lines[1],
+            "1,1,0.5,0.25,1200,0.01,0,0,2473,1.5,12,,,,,,,,,0,,,,,"
+        );
         // Cycle 2 was stepped over: cycle 1's solve stood for it.
         assert_eq!(
             lines[2],
-            "3,3,1.5,0.5,1100,0.02,0.001,4,2500,1.6,9,-0.2,0.3,0.000001,70,0.03,0.5,1.500001,1.5,1"
+            "3,3,1.5,0.5,1100,0.02,0.001,4,2500,1.6,9,-0.2,0.3,0.000001,70,0.03,0.5,1.500001,1.5,1,,,,,"
+        );
+    }
+
+    #[test]
+    fn every_row_carries_the_provenance() {
+        let json = br#"{"cycles": [
+            {"cycle": 1, "time_s": 1.0, "wear_volume_mm3": 0.5, "max_depth_um": 0.25,
+             "max_pressure_mpa": 1200.0, "contact_area_mm2": 0.01, "plastic_area_mm2": 0.0,
+             "hardness_mpa": 2473.0, "approach_um": 1.5, "iterations": 12}],
+            "provenance": {"tribosim_version": "0.1.0", "git_commit": "unknown",
+             "computed_at": "2026-11-26T18:00:00Z", "cores": 2, "scene_sha256": "ab12"}}"#;
+        let csv = cycles_csv(json).expect("valid result");
+        let lines: Vec<&str> = csv.lines().collect();
+        assert!(lines[0].ends_with(",tribosim_version,git_commit,scene_sha256,computed_at,cores"));
+        assert!(
+            lines[1].ends_with(",0,0.1.0,unknown,ab12,2026-11-26T18:00:00Z,2"),
+            "{}",
+            lines[1]
         );
     }
 }

@@ -15,7 +15,9 @@ use super::job::{Job, JobStatus};
 use super::registry::Jobs;
 use crate::scene::Scene;
 use crate::service::surfaces::surface_id;
-use crate::simulation::{CycleRecord, Plan, RunOptions, Setup, SimulationError, SimulationResult};
+use crate::simulation::{
+    CycleRecord, Plan, Provenance, RunOptions, Setup, SimulationError, SimulationResult,
+};
 use crate::surface::HeightMap;
 
 impl Jobs {
@@ -94,12 +96,16 @@ impl Jobs {
         let map = surface_id(&scene)
             .map(|id| self.surfaces.load(id))
             .transpose()?;
-        let result = partial(&scene, map.as_ref(), cycles(&log), wall_s).map_err(|source| {
+        let mut result = partial(&scene, map.as_ref(), cycles(&log), wall_s).map_err(|source| {
             PartialError::Setup {
                 source,
                 recorded: record.error,
             }
         })?;
+        // The run's date is when it stopped, not when its result is read.
+        if let (Some(provenance), Some(finished)) = (&mut result.provenance, record.finished_at) {
+            provenance.build.computed_at = finished;
+        }
         Ok(serde_json::to_vec(&result)?)
     }
 }
@@ -137,6 +143,7 @@ fn partial(
     let setup = Setup::new(&Plan::new(scene.clone())?, &options)?;
     let summary = setup.summary(&cycles, wall_s);
     let warnings = setup.warning_lines();
+    let provenance = Some(Provenance::of(scene));
     Ok(SimulationResult {
         complete: false,
         surface: setup.surface_report(),
@@ -149,6 +156,7 @@ fn partial(
         pressure_maps: Vec::new(),
         ocp_trace: Vec::new(),
         summary,
+        provenance,
     })
 }
 

@@ -7,3 +7,4 @@ mod store;
 mod table;
 
 pub(crate) use routes::endpoints;
+pub(crate) use store::read_of as read;

@@ -24,7 +24,7 @@ use super::store::{AxisRecord, StoredMember, StoredStudy, StudyFiles};
 use crate::service::files::Damage;
 use crate::service::jobs::{DeleteError, Deletion, JobRecord, JobStatus, Jobs, Store, SubmitError};
 use crate::service::surfaces::{servable, surface_id};
-use crate::simulation::Summary;
+use crate::simulation::{Build, Summary};
 use crate::study::{MemberRow, Pending, Study, StudyError, StudySummary, describe_values};
 
 /// Why a study was not accepted.
@@ -286,6 +286,7 @@ impl Studies {
             workers: self.workers,
             wall_s: (end - entry.stored.created_at).as_seconds_f64().max(0.0),
             members: rows,
+            provenance: Some(Build::now()),
         })
     }
 }

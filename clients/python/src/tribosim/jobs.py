@@ -33,6 +33,8 @@ _EVENTS = route("GET", "/api/v1/jobs/{id}/events")
 _RESULT = route("GET", "/api/v1/jobs/{id}/result")
 _RESULT_CSV = route("GET", "/api/v1/jobs/{id}/result.csv")
 _SCENE = route("GET", "/api/v1/jobs/{id}/scene")
+_REPORT = route("GET", "/api/v1/jobs/{id}/report")
+_COMPARISON = route("GET", "/api/v1/report")
 
 #: Attempts in a row to follow a job's events again after the stream broke (a dropped
 #: connection, a server restarting: it serves its jobs' events again once up), and the
@@ -75,6 +77,14 @@ class Jobs:
         return [Job(self._http, JobInfo.from_json(raw)) for raw in self._http.pages(_LIST, params)]
 
     @_GET.implements
+    @_COMPARISON.implements
+    def report(self, jobs: Iterable[Job | str], path: str | os.PathLike[str] | None = None) -> str:
+        """The printable report comparing 2 to 8 ended `jobs` (`Job`s or ids): one
+        self-contained HTML file (docs/report.md), written to `path` when given."""
+        ids = ",".join(job.id if isinstance(job, Job) else str(job) for job in jobs)
+        html = self._http.send(_COMPARISON, params={"jobs": ids}).text
+        return _saved(html, path)
+
     def get(self, job_id: str) -> Job:
         """The job of `job_id` (`NotFoundError` if there is none)."""
         return Job(self._http, _fetch(self._http, job_id))
@@ -176,6 +186,13 @@ class Job:
         scene: dict[str, Any] = self._http.json(_SCENE, id=self.id)
         return scene
 
+    @_REPORT.implements
+    def report(self, path: str | os.PathLike[str] | None = None) -> str:
+        """The run's printable report with its measurements against the model: one
+        self-contained HTML file that prints to A4 and Letter (docs/report.md), written to
+        `path` when given."""
+        return _saved(self._http.send(_REPORT, id=self.id).text, path)
+
     def _events(self, after: int, deadline: float | None) -> Iterator[Event]:
         failures = 0
         while True:
@@ -203,6 +220,13 @@ def _until(lines: Iterable[str], deadline: float | None) -> Iterator[str]:
         if deadline is not None and time.monotonic() > deadline:
             raise WaitTimeoutError("the wait's timeout passed")
         yield line
+
+
+def _saved(html: str, path: str | os.PathLike[str] | None) -> str:
+    """`html`, written to `path` first when there is one."""
+    if path is not None:
+        Path(path).write_text(html, encoding="utf-8")
+    return html
 
 
 def _scene_body(scene: SceneInput, name: str | None) -> bytes:

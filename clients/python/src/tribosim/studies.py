@@ -30,6 +30,7 @@ _GET = route("GET", "/api/v1/studies/{id}")
 _DELETE = route("DELETE", "/api/v1/studies/{id}")
 _SUMMARY = route("GET", "/api/v1/studies/{id}/summary")
 _SUMMARY_CSV = route("GET", "/api/v1/studies/{id}/summary.csv")
+_REPORT = route("GET", "/api/v1/studies/{id}/report")
 
 _ENDED_MEMBERS = ("succeeded", "failed", "cancelled", "damaged", "deleted")
 
@@ -149,6 +150,15 @@ class Study:
     def summary_csv(self) -> str:
         """The summary as the CSV table ``tribosim study --csv`` writes."""
         return self._http.send(_SUMMARY_CSV, id=self.id).text
+
+    @_REPORT.implements
+    def report(self, path: str | os.PathLike[str] | None = None) -> str:
+        """The study's printable report, its table and each quantity against each axis:
+        one self-contained HTML file (docs/report.md), written to `path` when given."""
+        html = self._http.send(_REPORT, id=self.id).text
+        if path is not None:
+            Path(path).write_text(html, encoding="utf-8")
+        return html
 
     @_DELETE.implements
     def cancel(self) -> StudyInfo:

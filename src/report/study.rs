@@ -1,0 +1,179 @@
+//! The report of a study: its table, a figure of each summary quantity against each axis,
+//! the methods and the provenance.
+
+use std::collections::BTreeMap;
+
+use serde_json::Value;
+
+use crate::simulation::Summary;
+use crate::study::{MemberRow, StudySummary};
+
+use super::figure::{FigureError, LineFigure, Series, Style, figure};
+use super::html::{Cell, heading, page, paragraph, table};
+use super::methods::{PAPER, build_table, report_provenance};
+
+/// A summary quantity: its name, its unit and where in a summary it is.
+type Quantity = (&'static str, &'static str, fn(&Summary) -> Option<f64>);
+
+/// The quantities drawn against each axis.
+const QUANTITIES: [Quantity; 4] = [
+    ("wear volume", "mm^3", |s| Some(s.wear_volume_mm3)),
+    ("maximum depth", "um", |s| Some(s.max_depth_um)),
+    ("total volume (wear + WAC)", "mm^3", |s| s.total_volume_mm3),
+    ("final potential", "V", |s| s.potential_v),
+];
+
+/// A value as text: strings without their quotes.
+fn plain(value: Option<&Value>) -> String {
+    match value {
+        Some(Value::String(text)) => text.clone(),
+        Some(other) => other.to_string(),
+        None => String::new(),
+    }
+}
+
+/// The study's table: a row per member, its axis values, its summary or why it has none.
+fn members_table(study: &StudySummary) -> String {
+    let rows: Vec<Vec<Cell>> = study
+        .members
+        .iter()
+        .map(|m| {
+            let mut row = vec![Cell::text(m.index.to_string())];
+            row.extend(
+                study
+                    .axes
+                    .iter()
+                    .map(|a| Cell::text(plain(m.values.get(a)))),
+            );
+            match &m.summary {
+                Some(s) => row.extend(
+                    QUANTITIES
+                        .iter()
+                        .map(|(_, _, of)| Cell::optional(of(s)))
+                        .chain([Cell::text("")]),
+                ),
+                None => {
+                    row.extend(QUANTITIES.iter().map(|_| Cell::text("")));
+                    let pending = m.pending.map(|p| format!("not finished ({})", p.name()));
+                    row.push(Cell::text(m.error.clone().or(pending).unwrap_or_default()));
+                }
+            }
+            row
+        })
+        .collect();
+    let units: Vec<String> = QUANTITIES
+        .iter()
+        .map(|(name, unit, _)| format!("{name} ({unit})"))
+        .collect();
+    let mut header: Vec<&str> = vec!["member"];
+    header.extend(study.axes.iter().map(String::as_str));
+    header.extend(units.iter().map(String::as_str));
+    header.push("error");
+    table("One row per member", &header, &rows)
+}
+
+/// The members that finished, grouped by their values on every axis but `axis` (a line per
+/// group), as `(value on axis, summary)` in the axis's order; `None` when a value on
+/// `axis` is not a number.
+fn lines_along<'a>(
+    study: &'a StudySummary,
+    axis: &str,
+) -> Option<BTreeMap<String, Vec<(f64, &'a Summary)>>> {
+    let mut groups: BTreeMap<String, Vec<(f64, &Summary)>> = BTreeMap::new();
+    for member in &study.members {
+        let Some(summary) = &member.summary else {
+            continue;
+        };
+        let x = member.values.get(axis)?.as_f64()?;
+        groups
+            .entry(others(study, member, axis))
+            .or_default()
+            .push((x, summary));
+    }
+    for points in groups.values_mut() {
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    Some(groups)
+}
+
+/// The member's values on the axes other than `axis`, as a legend reads them.
+fn others(study: &StudySummary, member: &MemberRow, axis: &str) -> String {
+    let parts: Vec<String> = study
+        .axes
+        .iter()
+        .filter(|a| a.as_str() != axis)
+        .map(|a| format!("{a} = {}", plain(member.values.get(a))))
+        .collect();
+    if parts.is_empty() {
+        "members".to_owned()
+    } else {
+        parts.join(", ")
+    }
+}
+
+/// Each quantity against each axis with numeric values.
+fn figures(study: &StudySummary) -> Result<String, FigureError> {
+    let mut html = String::new();
+    for axis in &study.axes {
+        let Some(groups) = lines_along(study, axis) else {
+            html.push_str(&paragraph(
+                "muted",
+                &format!("`{axis}` takes values that are not numbers: no figure along it."),
+            ));
+            continue;
+        };
+        for (name, unit, of) in QUANTITIES {
+            let series = groups
+                .iter()
+                .map(|(label, points)| {
+                    let points = points
+                        .iter()
+                        .filter_map(|(x, s)| Some((*x, of(s)?)))
+                        .collect();
+                    Series::new(label.clone(), points, Style::Line)
+                })
+                .collect();
+            let f = LineFigure {
+                title: format!("{name} against {axis}"),
+                x_label: axis.clone(),
+                y_label: format!("{name} ({unit})"),
+                series,
+            };
+            html.push_str(&figure(
+                f.svg()?.as_deref(),
+                &f.title,
+                "no finished member has this quantity",
+            ));
+        }
+    }
+    Ok(html)
+}
+
+/// The report of the study `name` summarised in `study`.
+pub fn study_report(name: &str, study: &StudySummary) -> Result<String, FigureError> {
+    let mut body = paragraph(
+        "",
+        &format!(
+            "{} members over the axes {}; {} ended without a result. Each member is an \
+             ordinary run of the model after {PAPER}; its own result holds its scene, its \
+             models with their reasons and its provenance.",
+            study.members.len(),
+            study.axes.join(", "),
+            study.failed()
+        ),
+    );
+    body.push_str(&heading(2, "The members"));
+    body.push_str(&members_table(study));
+    body.push_str(&heading(2, "Figures against each axis"));
+    body.push_str(&figures(study)?);
+    body.push_str(&heading(2, "Provenance"));
+    match &study.provenance {
+        Some(build) => body.push_str(&build_table("The summary", build)),
+        None => body.push_str(&paragraph(
+            "muted",
+            "The summary was written before tribosim recorded its provenance.",
+        )),
+    }
+    body.push_str(&report_provenance());
+    Ok(page(&format!("tribosim study report: {name}"), &body))
+}
