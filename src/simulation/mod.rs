@@ -10,6 +10,7 @@ mod feasibility;
 mod first;
 mod growth;
 mod hardening;
+mod loaded;
 mod ocp_trace;
 mod plan;
 mod plausibility;
@@ -34,6 +35,7 @@ pub use crate::scene::STEP_CHANGE_BOUND;
 pub use estimate::{RunEstimate, describe_duration, describe_size};
 pub use first::{FirstContact, first_contact};
 pub use hardening::FAR_OFF_FRACTION;
+pub use loaded::disc_share;
 pub use plan::{Plan, parse_scene, parse_scene_str};
 pub use plausibility::{RULES_BEGIN, RULES_END, check_map, rules_table};
 pub use result::{

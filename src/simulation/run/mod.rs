@@ -30,6 +30,7 @@ use crate::wear::Groove;
 use super::balance::balance;
 use super::electrochemistry::{Cell, Reading, Surface};
 use super::growth::{GROW_AT_EDGE_CELLS, GROW_AT_FRACTION, near_edges, widen};
+use super::loaded::{disc_share, full_displacement, loaded_max_depth_m, loaded_profile_m};
 use super::ocp_trace::ocp_trace;
 use super::stepping::Stepper;
 use super::warm::WarmStart;
@@ -95,6 +96,8 @@ struct Run<'a, F> {
     /// The unworn ball's height over `grid`.
     ball: Vec<f64>,
     groove: Groove,
+    /// The disc's share of the elastic displacement, for the loaded surface.
+    share: f64,
     stepper: Stepper,
     /// The cycles that must be solved and their profiles kept, ascending.
     record_cycles: Vec<u64>,
@@ -126,6 +129,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             solver: WindowedSolver::new(grid, factory),
             ball: setup.ball_height(&grid),
             groove: setup.unworn_disc(),
+            share: disc_share(setup),
             stepper: Stepper::new(scene.numerics.cycle_step, scene.numerics.cycle_step_bound),
             record_cycles: scene.record_cycles(),
             history: WarmStart::new(setup.plan.pair().reduced_modulus_pa, grid.dx.min(grid.dy)),
@@ -298,6 +302,12 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             time_s: n * setup.scene().cycle_period_s(),
             wear_volume_mm3,
             max_depth_um: self.groove.max_depth_m() * 1e6,
+            loaded_max_depth_um: loaded_max_depth_m(
+                &self.groove,
+                grid,
+                &solution.displacement,
+                self.share,
+            ) * 1e6,
             max_pressure_mpa: solution.max_pressure_pa() / 1e6,
             contact_area_mm2: solution.contact_area_m2(grid) * 1e6,
             contact_islands: count_islands(&contact, grid.nx),
@@ -323,7 +333,10 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             || self.record_cycles.contains(&cycle)
             || cycle == setup.scene().test.cycles
         {
-            self.profiles.push(Profile::of(cycle, grid, &self.groove));
+            let displacement = full_displacement(setup, grid, &solution.pressure);
+            let loaded = loaded_profile_m(&self.groove, grid, &displacement, self.share);
+            self.profiles
+                .push(Profile::of(cycle, grid, &self.groove, &loaded));
         }
     }
 
