@@ -6,6 +6,7 @@ mod auto;
 mod contact;
 mod error;
 mod fft_pair;
+mod paper;
 mod plot;
 mod report;
 mod rough;
@@ -17,6 +18,10 @@ use std::path::Path;
 use std::time::Instant;
 
 pub use error::BenchError;
+pub use paper::{
+    COARSE_GRID, PAPER_GRID, PaperNumbers, PaperStudy, TABLE3, markdown as paper_markdown,
+    write as write_paper,
+};
 
 use contact::{CAPPED_REFERENCE_N, GRID_STUDY_SIZES, Reference, TOLERANCE_STUDY};
 use report::{Machine, Measurements};
@@ -38,6 +43,9 @@ pub enum BenchTarget {
     /// A rough flat on a flat, periodic: one seeded self-affine surface on grids up to
     /// N = 2048, real contact area and mean gap against the finest grid.
     Rough,
+    /// The paper's Section 4 figure by figure: `--markdown docs/paper.md` writes the page
+    /// and its SVG figures (never part of `all`).
+    Paper,
     /// All five (the thread study within `speed`).
     All,
 }
@@ -125,6 +133,9 @@ pub fn print(
         }
         measured.speed = Some(studies);
     }
+    if target == BenchTarget::Paper {
+        return paper_only(markdown);
+    }
     if target == BenchTarget::Threads {
         emit(&threads::thread_rows()?, json, threads::threads_table)?;
         if markdown.is_some() {
@@ -169,6 +180,18 @@ fn write_markdown(
             let plots = report::write(path, measured, &machine, &command)?;
             eprintln!("wrote {} and {plots} plots", path.display());
         }
+    }
+    Ok(())
+}
+
+/// `bench paper`: the page and its figures at `markdown`, or the reproduced numbers.
+fn paper_only(markdown: Option<&Path>) -> Result<(), BenchError> {
+    match markdown {
+        Some(path) => {
+            let figures = paper::write(path)?;
+            eprintln!("wrote {} and {figures} figures", path.display());
+        }
+        None => println!("{:#?}", PaperStudy::run(PAPER_GRID)?.numbers()),
     }
     Ok(())
 }
