@@ -28,13 +28,13 @@ pub struct PaperNumbers {
     pub formula_depth_um: [f64; 2],
     /// The first cycle from which no pressure sits at the cap.
     pub plastic_gone_cycle: u64,
-    /// The EPP groove's volume at [`EARLY`], mm^3.
+    /// The EPP groove's volume at cycles 10, 60 and 300, mm^3.
     pub groove_volume_mm3: [f64; 3],
-    /// The EPP loaded profile's volume over the window at [`EARLY`], mm^3.
+    /// The EPP loaded profile's volume over the window at cycles 10, 60 and 300, mm^3.
     pub loaded_volume_mm3: [f64; 3],
-    /// The elastic material's groove volume at [`EARLY`], mm^3.
+    /// The elastic material's groove volume at cycles 10, 60 and 300, mm^3.
     pub elastic_volume_mm3: [f64; 3],
-    /// The elastic material's loaded volume at [`EARLY`], mm^3.
+    /// The elastic material's loaded volume at cycles 10, 60 and 300, mm^3.
     pub elastic_loaded_volume_mm3: [f64; 3],
     /// The whole test's mechanical wear volume at Table 3's times, mm^3.
     pub whole_volume_mm3: [f64; 5],
