@@ -308,9 +308,10 @@ fn fig13(study: &PaperStudy) -> String {
          the whole wear track was considered\"; the text gives no value. tribosim's default \
          anodic area is the depassivated wake (`corrosion.md`), not the whole track: V_WAC is \
          {w1800:.3e} mm^3 at 1800 s and {w3600:.3e} at 3600 s ({share:.1}% of the total \
-         {t3600:.3e}); its ratio 3600 s / 1800 s is {ratio:.2} (2 for a straight line), as the \
-         wake shrinks with the hardening's F / H. The difference from the paper's line is the \
-         anodic area chosen (a named model, `corrosion.anodic_area`), not a fit.\n",
+         {t3600:.3e}); its ratio 3600 s / 1800 s is {ratio:.2} (2 for a straight line): the \
+         depassivated wake grows as the contact's chord shortens (Fig. 14). The difference \
+         from the paper's line is the anodic area chosen (a named model, \
+         `corrosion.anodic_area`), not a fit.\n",
         w1800 = wac(1800),
         w3600 = wac(3600),
         share = 100.0 * wac(3600) / total(3600),
@@ -332,6 +333,7 @@ fn fig14(study: &PaperStudy) -> String {
                 format!("{real:.2e}"),
                 format!("{anodic:.2e}"),
                 format!("{:.0}", anodic / real),
+                format!("{:.0}", r.contact_chord_um.unwrap_or(0.0)),
             ]
         })
         .collect();
@@ -341,12 +343,22 @@ fn fig14(study: &PaperStudy) -> String {
          Section 5.1: the real area F / H falls as the disc hardens; the depassivated area \
          from eq. 18 at i_a = 10 mA/cm^2 is \"around 50 times higher\"; \"the Hertzian area of \
          contact lies between both values (6e-3 mm^2)\".\n\n{}\n\
-         Hertz's area here is {hertz:.2e} mm^2, between the two as in the paper. The ratio \
-         is set by the wake's repassivation time (the fitted `repassivation_time_s`, \
-         `corrosion.md`), which gives the potential the paper measured; the paper's 50 comes \
-         from the potentials directly.\n",
+         Hertz's area here is {hertz:.2e} mm^2, between the two as in the paper. The \
+         ratio is near the paper's 50 but not constant: the wake is A_a = A_r (1 + v tau / \
+         L) (`corrosion.md`), its length v tau fixed by the fitted `repassivation_time_s`, \
+         while the contact's mean chord L shortens as the groove widens the contact (Fig. \
+         10), so A_a grows while A_r falls. The paper derives A_a from its measured \
+         potentials through eq. 18 and finds the ratio constant; a constant ratio would need \
+         a chord that stays constant. This is a named difference of the wake model \
+         (`corrosion.anodic_area`), not of the contact.\n",
         table(
-            &["time (s)", "A_r = F / H (mm^2)", "A_a (mm^2)", "A_a / A_r"],
+            &[
+                "time (s)",
+                "A_r = F / H (mm^2)",
+                "A_a (mm^2)",
+                "A_a / A_r",
+                "chord L (um)"
+            ],
             &rows
         ),
         hertz = study.hertz_area_mm2,
