@@ -45,8 +45,8 @@ fn header(study: &PaperStudy) -> String {
          the ball: the groove plus the disc's own elastic displacement, its share s = \
          [(1 - nu2^2) / E2] E* = {s:.3} of the pair's (eqs. 3-6; from the elastic constants \
          alone) times the solved displacement (`cycles[].loaded_max_depth_um`, \
-         `profiles[].loaded_depth_um`). The paper's depths in Section 5.2 are the loaded \
-         ones (Fig. 12, below).\n",
+         `profiles[].loaded_depth_um`). The paper's depths in Section 5.2 match the loaded \
+         ones, not the groove (Fig. 12, below).\n",
         s = study.disc_share
     )
 }
