@@ -7,6 +7,7 @@ mod contact;
 mod error;
 mod fft_pair;
 mod kappa;
+mod paper;
 mod plot;
 mod report;
 mod rough;
@@ -19,6 +20,10 @@ use std::time::Instant;
 
 pub use error::BenchError;
 pub use kappa::{KappaRow, MeasuredMap, generated_surface, kappa_rows};
+pub use paper::{
+    COARSE_GRID, PAPER_GRID, PaperNumbers, PaperStudy, TABLE3, markdown as paper_markdown,
+    write as write_paper,
+};
 
 use contact::{CAPPED_REFERENCE_N, GRID_STUDY_SIZES, Reference, TOLERANCE_STUDY};
 use report::{Machine, Measurements};
@@ -44,7 +49,10 @@ pub enum BenchTarget {
     /// measured map with `--map`, each on a periodic flat (a table, never written to the
     /// report).
     Kappa,
-    /// All five (the thread study within `speed`; `kappa` apart).
+    /// The paper's Section 4 figure by figure: `--markdown docs/paper.md` writes the page
+    /// and its SVG figures (never part of `all`).
+    Paper,
+    /// All five (the thread study within `speed`; `kappa` and `paper` apart).
     All,
 }
 
@@ -135,6 +143,9 @@ pub fn print(
     if target == BenchTarget::Kappa {
         return emit(&kappa::kappa_rows(map)?, json, kappa::table);
     }
+    if target == BenchTarget::Paper {
+        return paper_only(markdown);
+    }
     if target == BenchTarget::Threads {
         emit(&threads::thread_rows()?, json, threads::threads_table)?;
         if markdown.is_some() {
@@ -179,6 +190,18 @@ fn write_markdown(
             let plots = report::write(path, measured, &machine, &command)?;
             eprintln!("wrote {} and {plots} plots", path.display());
         }
+    }
+    Ok(())
+}
+
+/// `bench paper`: the page and its figures at `markdown`, or the reproduced numbers.
+fn paper_only(markdown: Option<&Path>) -> Result<(), BenchError> {
+    match markdown {
+        Some(path) => {
+            let figures = paper::write(path)?;
+            eprintln!("wrote {} and {figures} figures", path.display());
+        }
+        None => println!("{:#?}", PaperStudy::run(PAPER_GRID)?.numbers()),
     }
     Ok(())
 }

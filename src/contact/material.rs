@@ -36,6 +36,12 @@ impl Material {
         })
     }
 
+    /// Normal compliance of the half-space, (1 - nu^2) / E, 1/Pa: this body's term of 1/E*
+    /// (eq. 6), so times E* its share of the elastic approach under the same pressure.
+    pub fn compliance_per_pa(&self) -> f64 {
+        (1.0 - self.poisson_ratio * self.poisson_ratio) / self.youngs_modulus_pa
+    }
+
     /// Shear modulus G = E / (2 (1 + nu)), Pa.
     pub fn shear_modulus_pa(&self) -> f64 {
         self.youngs_modulus_pa / (2.0 * (1.0 + self.poisson_ratio))
@@ -61,8 +67,7 @@ impl ElasticPair {
     pub fn new(ball: Material, disc: Material) -> Self {
         let (g1, g2) = (ball.shear_modulus_pa(), disc.shear_modulus_pa());
         let (nu1, nu2) = (ball.poisson_ratio, disc.poisson_ratio);
-        let compliance =
-            (1.0 - nu1 * nu1) / ball.youngs_modulus_pa + (1.0 - nu2 * nu2) / disc.youngs_modulus_pa;
+        let compliance = ball.compliance_per_pa() + disc.compliance_per_pa();
         Self {
             reduced_modulus_pa: 1.0 / compliance,
             reduced_shear_modulus_pa: g1 * g2 / (g1 + g2),

@@ -19,10 +19,11 @@ pub fn summary_rows(summary: &Summary) -> Vec<Vec<Cell>> {
         ("maximum depth", Some(summary.max_depth_um), "um"),
         ("WAC volume", summary.wac_volume_mm3, "mm^3"),
         (
-            "total volume (wear + WAC)",
+            "total volume (mechanical + WAC)",
             summary.total_volume_mm3,
             "mm^3",
         ),
+        ("mechanical volume", summary.mechanical_volume_mm3, "mm^3"),
         ("anodic charge", summary.charge_c, "C"),
         ("final potential", summary.potential_v, "V"),
         ("Archard k", Some(summary.wear.archard_k), "1"),
@@ -172,7 +173,7 @@ fn measurements_section(result: &SimulationResult, measured: &Measured) -> Strin
     if measured.wear_volume.is_some() {
         let points = residuals(&model_volume(result), &measured_volumes(result, measured));
         let of = if result.scene.corrosion.is_some() {
-            "wear + WAC, what a profilometer measures"
+            "total volume, what a profilometer measures"
         } else {
             "wear"
         };

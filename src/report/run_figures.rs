@@ -100,7 +100,7 @@ fn volume(result: &SimulationResult, measured: &Measured) -> LineFigure {
     let c = &result.cycles;
     let milli = |points: Vec<(f64, f64)>| points.into_iter().map(|(x, y)| (x, y * 1e3)).collect();
     let mut series = vec![Series::new(
-        "model: mechanical wear",
+        "model: wear track",
         milli(
             c.iter()
                 .map(|r| (r.cycle as f64, r.wear_volume_mm3))
@@ -108,11 +108,22 @@ fn volume(result: &SimulationResult, measured: &Measured) -> LineFigure {
         ),
         Style::Line,
     )];
+    // Which of the two the track is depends on the loss k was fitted on
+    // (`wear.archard_k_basis`): drawn both, the other is never hidden.
     let total: Vec<(f64, f64)> = c
         .iter()
         .filter_map(|r| Some((r.cycle as f64, r.total_volume_mm3?)))
         .collect();
-    series.push(Series::new("model: wear + WAC", milli(total), Style::Line));
+    series.push(Series::new("model: total", milli(total), Style::Line));
+    let mechanical: Vec<(f64, f64)> = c
+        .iter()
+        .filter_map(|r| Some((r.cycle as f64, r.mechanical_volume_mm3?)))
+        .collect();
+    series.push(Series::new(
+        "model: mechanical",
+        milli(mechanical),
+        Style::Line,
+    ));
     if table3_applies(result) {
         let last = result.scene.test.cycles as f64;
         let points = TABLE3

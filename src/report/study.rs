@@ -19,7 +19,9 @@ type Quantity = (&'static str, &'static str, fn(&Summary) -> Option<f64>);
 const QUANTITIES: [Quantity; 4] = [
     ("wear volume", "mm^3", |s| Some(s.wear_volume_mm3)),
     ("maximum depth", "um", |s| Some(s.max_depth_um)),
-    ("total volume (wear + WAC)", "mm^3", |s| s.total_volume_mm3),
+    ("total volume (mechanical + WAC)", "mm^3", |s| {
+        s.total_volume_mm3
+    }),
     ("final potential", "V", |s| s.potential_v),
 ];
 

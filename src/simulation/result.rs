@@ -133,6 +133,11 @@ pub struct CycleRecord {
     pub wear_volume_mm3: f64,
     /// Deepest point of the groove, um.
     pub max_depth_um: f64,
+    /// Deepest point of the disc's surface under the ball, um: the groove's depth plus the
+    /// disc's share of the elastic displacement (0 in results written before it was
+    /// computed).
+    #[serde(default)]
+    pub loaded_max_depth_um: f64,
     /// Largest contact pressure, MPa.
     pub max_pressure_mpa: f64,
     /// Area in contact (cells with p > 0), mm^2: on a rough disc the real contact area at
@@ -203,15 +208,22 @@ pub struct Profile {
     pub y_um: Vec<f64>,
     /// Depth below the original surface, um (positive into the disc).
     pub depth_um: Vec<f64>,
+    /// Depth of the disc's surface under the ball, um: `depth_um` plus the disc's share of
+    /// the elastic displacement, the deepest along each row (empty in results written
+    /// before it was computed).
+    #[serde(default)]
+    pub loaded_depth_um: Vec<f64>,
 }
 
 impl Profile {
-    /// The depth of `groove` on `grid` at `cycle`.
-    pub fn of(cycle: u64, grid: &Grid, groove: &Groove) -> Self {
+    /// The depth of `groove` on `grid` at `cycle`, and the loaded depth `loaded_m` (m, per
+    /// row).
+    pub fn of(cycle: u64, grid: &Grid, groove: &Groove, loaded_m: &[f64]) -> Self {
         Self {
             cycle,
             y_um: (0..grid.ny).map(|iy| grid.y(iy) * 1e6).collect(),
             depth_um: groove.depth_m().iter().map(|d| d * 1e6).collect(),
+            loaded_depth_um: loaded_m.iter().map(|d| d * 1e6).collect(),
         }
     }
 }

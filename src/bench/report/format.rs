@@ -1,7 +1,7 @@
 //! Number and markdown formatting shared by the report's sections.
 
 /// `v` to `digits` significant digits, fixed-point.
-pub(super) fn sig(v: f64, digits: i32) -> String {
+pub(in crate::bench) fn sig(v: f64, digits: i32) -> String {
     if v == 0.0 || !v.is_finite() {
         return format!("{v}");
     }
@@ -19,7 +19,7 @@ pub(super) fn error(v: f64) -> String {
 }
 
 /// A markdown table.
-pub(super) fn table(headers: &[&str], rows: &[Vec<String>]) -> String {
+pub(in crate::bench) fn table(headers: &[&str], rows: &[Vec<String>]) -> String {
     let line = |cells: &[String]| {
         let escaped: Vec<String> = cells.iter().map(|c| c.replace('|', "\\|")).collect();
         format!("| {} |\n", escaped.join(" | "))

@@ -8,7 +8,7 @@
 mod auto;
 mod contact;
 mod coupling;
-mod format;
+pub(super) mod format;
 mod machine;
 mod rough;
 mod speed;

@@ -7,14 +7,14 @@ use time::format_description::well_known::Rfc3339;
 use crate::simulation::{CycleRecord, Provenance};
 
 /// The CSV columns: the cycle record's with its names (units in the names), the later
-/// corrosion fields after the first three so that earlier columns keep their places, the
-/// cycles stepped over since the previous row, then the result's provenance, the same on
+/// corrosion fields and the loaded depth after the first three so that earlier columns keep
+/// their places, the cycles stepped over since the previous row, then the result's provenance, the same on
 /// every row, so that the file stays one table any CSV reader takes and a row copied
 /// elsewhere still says where it comes from.
 const HEADER: &str = "cycle,time_s,wear_volume_mm3,max_depth_um,max_pressure_mpa,\
                       contact_area_mm2,plastic_area_mm2,contact_islands,hardness_mpa,approach_um,iterations,\
                       potential_v,anodic_area_mm2,wac_volume_mm3,contact_chord_um,anodic_current_ma,\
-                      charge_c,total_volume_mm3,mechanical_volume_mm3,cycles_stepped_over,\
+                      charge_c,total_volume_mm3,mechanical_volume_mm3,loaded_max_depth_um,cycles_stepped_over,\
                       tribosim_version,git_commit,scene_sha256,computed_at,cores";
 
 /// Only the cycles and the provenance of a result; the rest of the document is skipped
@@ -78,6 +78,7 @@ pub fn cycles_csv(result_json: &[u8]) -> Result<String, serde_json::Error> {
             optional(c.charge_c),
             optional(c.total_volume_mm3),
             optional(c.mechanical_volume_mm3),
+            c.loaded_max_depth_um.to_string(),
             stepped_over.to_string(),
         ];
         let row: Vec<&str> = cells
@@ -105,20 +106,21 @@ mod tests {
              "hardness_mpa": 2500.0, "approach_um": 1.6, "iterations": 9, "contact_islands": 4,
              "potential_v": -0.2, "anodic_area_mm2": 0.3, "wac_volume_mm3": 1e-6,
              "contact_chord_um": 70.0, "anodic_current_ma": 0.03, "charge_c": 0.5,
-             "total_volume_mm3": 1.500001, "mechanical_volume_mm3": 1.5}
+             "total_volume_mm3": 1.500001, "mechanical_volume_mm3": 1.5,
+             "loaded_max_depth_um": 0.75}
         ]}"#;
         let csv = cycles_csv(json).expect("valid result");
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines.len(), 3);
-        assert_eq!(lines[0].split(',').count(), 25);
+        assert_eq!(lines[0].split(',').count(), 26);
         assert_eq!(
             lines[1],
-            "1,1,0.5,0.25,1200,0.01,0,0,2473,1.5,12,,,,,,,,,0,,,,,"
+            "1,1,0.5,0.25,1200,0.01,0,0,2473,1.5,12,,,,,,,,,0,0,,,,,"
         );
         // Cycle 2 was stepped over: cycle 1's solve stood for it.
         assert_eq!(
             lines[2],
-            "3,3,1.5,0.5,1100,0.02,0.001,4,2500,1.6,9,-0.2,0.3,0.000001,70,0.03,0.5,1.500001,1.5,1,,,,,"
+            "3,3,1.5,0.5,1100,0.02,0.001,4,2500,1.6,9,-0.2,0.3,0.000001,70,0.03,0.5,1.500001,1.5,0.75,1,,,,,"
         );
     }
 
