@@ -24,7 +24,10 @@ pub enum FitKind {
     Hardness,
     /// a_c, b_c from `potential_v` and `current_density_a_cm2` (or `_a_m2`).
     Tafel,
-    /// The depassivation model's parameter from `time_s` and `potential_v`.
+    /// The depassivation model's parameter from `time_s` and `potential_v`: the OCP, which
+    /// a job's measurements call `ocp` too (`potential` is accepted for it in both).
+    #[value(alias = "potential")]
+    #[serde(alias = "potential")]
     Ocp,
     /// Archard's k from `time_s` (or `cycles`), `volume_mm3` and optional `spread_mm3`.
     Archard,

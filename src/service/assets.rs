@@ -53,6 +53,7 @@ const ASSETS: &[Asset] = assets![
     "js/pressure.js",
     "js/run-figures.js",
     "js/run.js",
+    "js/scores.js",
     "js/scenes.js",
     "js/sse.js",
     "js/studies.js",

@@ -13,9 +13,11 @@
 //   export       each figure as SVG and PNG (plots, svg)
 //   pressure     the run's pressure maps (plots, svg)
 //   measurements the tables attached to the run shown (api, topic)
+//   scores       the attached tables scored against the run shown (api)
 //   jobs         the job list (api, topic)
 //   run-figures  the run's line figures (plots, measurements, scenes)
-//   run          the run panel (jobs, measurements, pressure, run-figures, scenes, sse, topic)
+//   run          the run panel (jobs, measurements, scores, pressure, run-figures, scenes, sse,
+//                topic)
 //   form         the new-run form (run, scenes)
 //   compare      the comparison of runs (jobs, plots)
 //   studies      the studies (form, jobs, compare, plots)

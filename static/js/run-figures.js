@@ -97,7 +97,7 @@ function drawPotential(cycles, scene, trace) {
     series.push({ label: "E_corr, free corrosion potential", stroke: "#444", width: 1.5, dash: [6, 4], spanGaps: true, points: { show: false } });
   }
   const parts = [cols];
-  const attached = attachedPoints("potential", (tb, i) => tb.time_s[i], (tb, i) => tb.potential_v[i]);
+  const attached = attachedPoints("ocp", (tb, i) => tb.time_s[i], (tb, i) => tb.potential_v[i]);
   box.dataset.attached = String(attached.length);
   if (attached.length) {
     parts.push([attached.map((p) => p[0]), attached.map((p) => p[1])]);

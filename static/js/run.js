@@ -6,6 +6,7 @@ import { $, reveal, saveBlob, sleep } from "./dom.js";
 import { RUN } from "./ids.js";
 import * as jobs from "./jobs.js";
 import * as measurements from "./measurements.js";
+import * as scores from "./scores.js";
 import { drawPressure, resetPressure } from "./pressure.js";
 import { drawProfiles, drawSeries, resetProfiles, updateTable3Choice } from "./run-figures.js";
 import { closestPreset, remember, submittedScene } from "./scenes.js";
@@ -51,6 +52,7 @@ function select(id, how = {}) {
   result = null;
   scene = submittedScene(id);
   measurements.forget();
+  scores.clear();
   $(RUN.panel).hidden = false;
   for (const b of [RUN.downloadJson, RUN.downloadCsv, RUN.editAgain]) $(b).disabled = true;
   for (const d of [RUN.models, RUN.params, RUN.summary, RUN.warnings]) $(d).hidden = true;
@@ -186,6 +188,7 @@ async function loadResult(id) {
   redrawSeries();
   drawProfiles(result);
   drawPressure(result);
+  scores.show(id, () => selected === id);
 }
 
 // The scene as run, from the service (any status), else from the result or the form.
@@ -272,5 +275,7 @@ export function init() {
       redrawSeries();
       if (result) drawProfiles(result);
     }
+    const id = selected;
+    if (result && id) scores.show(id, () => selected === id);
   });
 }

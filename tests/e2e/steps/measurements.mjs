@@ -24,7 +24,7 @@ export async function measurements(page) {
   await attachedOn(page, RUN_PLOT.volume, 3);
   await attach("profile", "y_mm,depth_um\n-0.1,0.4\n0,3.1\n0.1,0.4\n", false);
   await attachedOn(page, RUN_PLOT.profile, 3);
-  await attach("potential", "time_s,potential_v\n100,-0.30\n1000,-0.35\n", false);
+  await attach("ocp", "time_s,potential_v\n100,-0.30\n1000,-0.35\n", false);
   await attachedOn(page, RUN_PLOT.potential, 2);
   assert.equal(await page.textContent(sel(MEASURE.errors)), "");
   const figures = [RUN_PLOT.volume, RUN_PLOT.profile, RUN_PLOT.potential];
