@@ -1,5 +1,5 @@
 // The service's API (openapi.yaml), with the token the user gave, if any.
-import { $ } from "./dom.js";
+import { $, saveBlob } from "./dom.js";
 import { TOKEN } from "./ids.js";
 
 /** The Authorization header for the token in this tab's session storage, if any. */
@@ -34,4 +34,14 @@ export function errorText(r) {
   const body = r.body || {};
   const fields = (body.fields || []).filter((f) => f.message && !(body.error || "").includes(f.message));
   return (body.error || `the server answered ${r.status}`) + (fields.length ? " — " + fields.map((f) => `${f.path || "(table)"}: ${f.message}`).join("; ") : "");
+}
+
+/** Downloads `path` through fetch, so that a token is sent; the file keeps the server's
+ * name (its Content-Disposition), else `fallback`. */
+export async function download(path, fallback) {
+  const response = await fetch(path, { headers: authHeaders() });
+  if (!response.ok) { alert("Download failed: " + response.status); return; }
+  const disposition = response.headers.get("Content-Disposition") || "";
+  const name = (disposition.match(/filename="?([^";]+)"?/) || [])[1] || fallback;
+  saveBlob(await response.blob(), name);
 }

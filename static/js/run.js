@@ -1,8 +1,8 @@
 // The run panel: one job followed through its event stream (the live figures), then its
 // result (the final figures and the downloads), its scene as run, the models it used and
 // its summary.
-import { api, authHeaders } from "./api.js";
-import { $, reveal, saveBlob, sleep } from "./dom.js";
+import { api, authHeaders, download } from "./api.js";
+import { $, reveal, sleep } from "./dom.js";
 import { RUN } from "./ids.js";
 import * as jobs from "./jobs.js";
 import * as measurements from "./measurements.js";
@@ -54,7 +54,7 @@ function select(id, how = {}) {
   measurements.forget();
   scores.clear();
   $(RUN.panel).hidden = false;
-  for (const b of [RUN.downloadJson, RUN.downloadCsv, RUN.editAgain]) $(b).disabled = true;
+  for (const b of [...DOWNLOADS.map((d) => d[0]), RUN.editAgain]) $(b).disabled = true;
   for (const d of [RUN.models, RUN.params, RUN.summary, RUN.warnings]) $(d).hidden = true;
   $(RUN.partial).textContent = "";
   jobs.highlight(id);
@@ -178,8 +178,7 @@ async function loadResult(id) {
   cycles = r.body.cycles;
   if (r.body.scene) scene = r.body.scene;
   $(RUN.partial).textContent = partialNote(r.body);
-  $(RUN.downloadJson).disabled = false;
-  $(RUN.downloadCsv).disabled = false;
+  for (const [button] of DOWNLOADS) $(button).disabled = false;
   renderWarnings(r.body.warnings || []);
   renderModels(r.body.models || []);
   renderSummary(r.body);
@@ -248,20 +247,20 @@ function renderSummary(res) {
   $(RUN.summary).hidden = !rows.length;
 }
 
-// Downloads through fetch, so that a token is sent; the file keeps the server's name.
-async function download(kind) {
-  const id = selected;
-  const response = await fetch(`/api/v1/jobs/${id}/${kind === "csv" ? "result.csv" : "result"}`, { headers: authHeaders() });
-  if (!response.ok) { alert("Download failed: " + response.status); return; }
-  const disposition = response.headers.get("Content-Disposition") || "";
-  const name = (disposition.match(/filename="?([^";]+)"?/) || [])[1] || `tribosim-${id}.${kind}`;
-  saveBlob(await response.blob(), name);
-}
+// The run's downloads: the button's id, the route under the job, the name without a server's.
+const DOWNLOADS = [
+  [RUN.downloadJson, "result", "result.json"],
+  [RUN.downloadCompact, "result?compact=true", "result.compact.json"],
+  [RUN.downloadCsv, "result.csv", "result.csv"],
+  [RUN.downloadProfiles, "profiles.csv", "profiles.csv"],
+  [RUN.downloadPressure, "pressure.csv", "pressure.csv"],
+];
 
 /** Wires the panel's buttons, and follows the job list and the attached measurements. */
 export function init() {
-  $(RUN.downloadJson).addEventListener("click", () => download("json"));
-  $(RUN.downloadCsv).addEventListener("click", () => download("csv"));
+  for (const [button, route, name] of DOWNLOADS) {
+    $(button).addEventListener("click", () => download(`/api/v1/jobs/${selected}/${route}`, `tribosim-${selected}.${name}`));
+  }
   $(RUN.editAgain).addEventListener("click", () => editRequested.emit(scene));
   $(RUN.showTable3).addEventListener("change", redrawSeries);
   jobs.onView(select);

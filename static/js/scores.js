@@ -1,8 +1,8 @@
 // The attached measurements scored against the run shown (GET .../scores): a small table
 // under each figure that draws them (the model's value at each measured point, the
 // residual measured − model, the z-score against the given spread), and the scores' CSV.
-import { api } from "./api.js";
-import { $ } from "./dom.js";
+import { api, download } from "./api.js";
+import { $, button } from "./dom.js";
 import { RUN_PLOT } from "./ids.js";
 
 const FIGURE = { wear_volume: RUN_PLOT.volume, profile: RUN_PLOT.profile, ocp: RUN_PLOT.potential };
@@ -66,11 +66,8 @@ export async function show(id, current) {
     const div = box(figure);
     div.dataset.points = score ? String(score.points.length) : "0";
     if (!score) continue;
-    const link = document.createElement("a");
-    link.href = `/api/v1/jobs/${id}/scores.csv`;
-    link.textContent = "scores as CSV";
-    link.download = "";
-    div.replaceChildren(table(score), link);
+    const csv = button("Scores CSV", () => download(`/api/v1/jobs/${id}/scores.csv`, `tribosim-${id}.scores.csv`));
+    div.replaceChildren(table(score), csv);
   }
 }
 

@@ -76,6 +76,17 @@ def test_result_csv_is_the_cycles_table(small_job: tribosim.Job) -> None:
     assert "cycles_stepped_over" in rows[0]
 
 
+def test_profiles_and_pressure_as_csv_and_a_compact_result(small_job: tribosim.Job) -> None:
+    result = small_job.result()
+    profiles = list(csv.DictReader(io.StringIO(small_job.profiles_csv())))
+    assert len(profiles) == len(result.profiles)
+    pressure = list(csv.DictReader(io.StringIO(small_job.pressure_csv())))
+    assert len(pressure) == sum(m.pressure_mpa.size for m in result.pressure_maps)
+    assert float(pressure[0]["pressure_mpa"]) == result.pressure_maps[0].pressure_mpa[0][0]
+    compact = small_job.result(compact=True)
+    assert compact.pressure_maps == [] and len(compact.profiles) == len(profiles)
+
+
 def test_scene_as_run(small_job: tribosim.Job) -> None:
     scene = small_job.scene()
     assert scene["name"] == "pytest small"

@@ -5,10 +5,12 @@
 use std::sync::Arc;
 
 use axum::Json;
-use axum::extract::{FromRef, State};
+use axum::extract::rejection::QueryRejection;
+use axum::extract::{FromRef, Query, State};
 use axum::http::{HeaderMap, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::on;
+use serde::Deserialize;
 use serde_json::Value;
 
 use super::error::{DeleteError, JobError, PartialError, SubmitError};
@@ -20,7 +22,7 @@ use crate::service::blocking::blocking;
 use crate::service::error::ApiError;
 use crate::service::extract::{BodyTimeout, JobId, JsonBody, JsonRequest};
 use crate::service::listing::{ListQuery, Page};
-use crate::service::reply::{attachment, created};
+use crate::service::reply::{attachment, created, download_name};
 use crate::service::route::{Endpoint, Verb};
 use crate::simulation::parse_scene;
 
@@ -42,6 +44,12 @@ where
         Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/result", |f| on(f, job_result)),
         Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/result.csv", |f| {
             on(f, job_result_csv)
+        }),
+        Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/profiles.csv", |f| {
+            on(f, job_profiles_csv)
+        }),
+        Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/pressure.csv", |f| {
+            on(f, job_pressure_csv)
         }),
         Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/scene", |f| on(f, job_scene)),
     ]
@@ -110,11 +118,52 @@ async fn job_events(
     Ok(events::response(jobs, job, after, &streams))
 }
 
-/// `GET /api/v1/jobs/{id}/result`: the result JSON, as a download.
-async fn job_result(State(jobs): State<Arc<Jobs>>, JobId(id): JobId) -> Result<Response, ApiError> {
-    let bytes = blocking(move || jobs.result_json(id)).await?;
-    let filename = format!("tribosim-{id}.json");
+/// The query of `GET /api/v1/jobs/{id}/result`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ResultQuery {
+    /// Leave the pressure maps out.
+    #[serde(default)]
+    compact: bool,
+}
+
+/// `GET /api/v1/jobs/{id}/result`: the result JSON, as a download; `?compact=true` without
+/// its pressure maps.
+async fn job_result(
+    State(jobs): State<Arc<Jobs>>,
+    JobId(id): JobId,
+    query: Result<Query<ResultQuery>, QueryRejection>,
+) -> Result<Response, ApiError> {
+    let Query(ResultQuery { compact }) = query?;
+    let name = jobs.find(id)?.record().name;
+    let bytes = blocking(move || {
+        if compact {
+            jobs.compact_result_json(id)
+        } else {
+            jobs.result_json(id)
+        }
+    })
+    .await?;
+    let suffix = if compact {
+        "result.compact.json"
+    } else {
+        "result.json"
+    };
+    let filename = download_name(&name, id, suffix);
     Ok(attachment("application/json", &filename, bytes))
+}
+
+/// A CSV download of job `id` called `<name>.<suffix>`, made by `csv` on the blocking pool.
+async fn csv_download(
+    jobs: Arc<Jobs>,
+    id: uuid::Uuid,
+    suffix: &str,
+    csv: fn(&Jobs, uuid::Uuid) -> Result<String, JobError>,
+) -> Result<Response, ApiError> {
+    let name = jobs.find(id)?.record().name;
+    let body = blocking(move || csv(&jobs, id)).await?;
+    let filename = download_name(&name, id, suffix);
+    Ok(attachment("text/csv; charset=utf-8", &filename, body))
 }
 
 /// `GET /api/v1/jobs/{id}/result.csv`: the result's cycles as CSV, as a download.
@@ -122,9 +171,23 @@ async fn job_result_csv(
     State(jobs): State<Arc<Jobs>>,
     JobId(id): JobId,
 ) -> Result<Response, ApiError> {
-    let csv = blocking(move || jobs.result_csv(id)).await?;
-    let filename = format!("tribosim-{id}.csv");
-    Ok(attachment("text/csv; charset=utf-8", &filename, csv))
+    csv_download(jobs, id, "result.csv", Jobs::result_csv).await
+}
+
+/// `GET /api/v1/jobs/{id}/profiles.csv`: the result's profiles as CSV, as a download.
+async fn job_profiles_csv(
+    State(jobs): State<Arc<Jobs>>,
+    JobId(id): JobId,
+) -> Result<Response, ApiError> {
+    csv_download(jobs, id, "profiles.csv", Jobs::profiles_csv).await
+}
+
+/// `GET /api/v1/jobs/{id}/pressure.csv`: the result's pressure maps as CSV, as a download.
+async fn job_pressure_csv(
+    State(jobs): State<Arc<Jobs>>,
+    JobId(id): JobId,
+) -> Result<Response, ApiError> {
+    csv_download(jobs, id, "pressure.csv", Jobs::pressure_csv).await
 }
 
 /// `GET /api/v1/jobs/{id}/scene`: the scene as run, every default filled in.

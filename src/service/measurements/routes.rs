@@ -19,7 +19,7 @@ use crate::service::blocking::blocking;
 use crate::service::error::ApiError;
 use crate::service::extract::{Body, BodyTimeout, JobId, cut, essence, is_json, parse_id};
 use crate::service::jobs::{JobError, Jobs};
-use crate::service::reply::attachment;
+use crate::service::reply::{attachment, download_name};
 use crate::service::route::{Endpoint, Verb};
 use crate::simulation::SimulationResult;
 
@@ -142,8 +142,9 @@ async fn get_scores_csv(
     State(jobs): State<Arc<Jobs>>,
     JobId(id): JobId,
 ) -> Result<axum::response::Response, ApiError> {
+    let name = jobs.find(id)?.record().name;
     let csv = blocking(move || scored(&jobs, id).map(|s| scores_csv(&s))).await?;
-    let filename = format!("tribosim-{id}.scores.csv");
+    let filename = download_name(&name, id, "scores.csv");
     Ok(attachment("text/csv; charset=utf-8", &filename, csv))
 }
 

@@ -33,6 +33,8 @@ _EVENTS = route("GET", "/api/v1/jobs/{id}/events")
 _RESULT = route("GET", "/api/v1/jobs/{id}/result")
 _RESULT_CSV = route("GET", "/api/v1/jobs/{id}/result.csv")
 _SCENE = route("GET", "/api/v1/jobs/{id}/scene")
+_PROFILES_CSV = route("GET", "/api/v1/jobs/{id}/profiles.csv")
+_PRESSURE_CSV = route("GET", "/api/v1/jobs/{id}/pressure.csv")
 
 #: Attempts in a row to follow a job's events again after the stream broke (a dropped
 #: connection, a server restarting: it serves its jobs' events again once up), and the
@@ -160,15 +162,27 @@ class Job:
             self._http.send(_DELETE, id=self.id)
 
     @_RESULT.implements
-    def result(self) -> Result:
+    def result(self, compact: bool = False) -> Result:
         """The result of an ended job (`ConflictError` before it ends). A failed or cancelled
-        job's result has ``complete`` False and the cycles solved before the stop."""
-        return Result(self._http.json(_RESULT, id=self.id))
+        job's result has ``complete`` False and the cycles solved before the stop.
+        `compact` leaves the pressure maps out (a big grid's are most of the result)."""
+        params = {"compact": "true"} if compact else None
+        return Result(self._http.json(_RESULT, params=params, id=self.id))
 
     @_RESULT_CSV.implements
     def result_csv(self) -> str:
         """The per-cycle table as CSV text, as the page downloads it."""
         return self._http.send(_RESULT_CSV, id=self.id).text
+
+    @_PROFILES_CSV.implements
+    def profiles_csv(self) -> str:
+        """The depth profiles as CSV text, a row per point: ``cycle,y_um,depth_um``."""
+        return self._http.send(_PROFILES_CSV, id=self.id).text
+
+    @_PRESSURE_CSV.implements
+    def pressure_csv(self) -> str:
+        """The pressure maps as CSV text, a row per cell: ``cycle,x_um,y_um,pressure_mpa``."""
+        return self._http.send(_PRESSURE_CSV, id=self.id).text
 
     @_SCENE.implements
     def scene(self) -> dict[str, Any]:
