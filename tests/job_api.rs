@@ -204,6 +204,99 @@ async fn measurements_are_scored_against_the_result_in_json_and_csv() {
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn labels_are_set_at_submit_changed_after_kept_and_searched() {
+    let dir = TempDir::new("labels");
+    let client = reqwest::Client::new();
+    let mut server = ServerProcess::start(dir.path());
+    // The data directory, absolute, in the first words the server says.
+    let absolute = std::fs::canonicalize(dir.path()).expect("the data dir exists");
+    assert!(
+        server
+            .log()
+            .contains(&format!("with its data in {}", absolute.display())),
+        "{}",
+        server.log()
+    );
+    let response = client
+        .post(server.url("/api/v1/jobs?sample=S-12&note=first%20polish&tags=paper,5N"))
+        .json(&small_scene(2))
+        .send()
+        .await
+        .expect("submit");
+    assert_eq!(response.status(), 202);
+    let job: Value = response.json().await.expect("job");
+    assert_eq!(job["sample"], "S-12");
+    assert_eq!(job["note"], "first polish");
+    assert_eq!(job["tags"], json!(["paper", "5N"]));
+    let id = job["id"].as_str().expect("id").to_owned();
+    let other = submit(&client, &server.base, &small_scene(2)).await;
+    assert_eq!(other["sample"], Value::Null);
+    assert_eq!(other["tags"], json!([]));
+
+    let patch = |body: Value| {
+        let url = server.url(&format!("/api/v1/jobs/{id}"));
+        let client = client.clone();
+        async move {
+            let response = client.patch(url).json(&body).send().await.expect("PATCH");
+            let status = response.status().as_u16();
+            (status, response.json::<Value>().await.expect("JSON"))
+        }
+    };
+    wait_for_job(&client, &server.base, &id, is_final).await;
+    let (status, changed) = patch(json!({"note": "re-polished", "tags": ["paper", "wet"]})).await;
+    assert_eq!(status, 200, "{changed}");
+    assert_eq!(changed["sample"], "S-12", "a label left out stays");
+    assert_eq!(changed["note"], "re-polished");
+    assert_eq!(changed["status"], "succeeded");
+    // Refusals name the field and the bound; nothing changes.
+    let (status, refused) = patch(json!({"sample": "x".repeat(101)})).await;
+    assert_eq!(status, 422);
+    assert_eq!(refused["fields"][0]["path"], "sample");
+    assert!(
+        refused["error"]
+            .as_str()
+            .expect("message")
+            .contains("at most 100")
+    );
+    let (status, refused) = patch(json!({"colour": "red"})).await;
+    assert_eq!(
+        (status, refused["fields"][0]["path"].clone()),
+        (422, json!("colour"))
+    );
+    let response = client
+        .post(server.url("/api/v1/jobs?tags=a,b,c,d,e,f,g,h,i,j,k,l,m,n,o,p,q,r,s,t,u"))
+        .json(&small_scene(2))
+        .send()
+        .await
+        .expect("submit");
+    assert_eq!(response.status(), 422);
+
+    // Searched by any label; kept across a restart without a shutdown.
+    let ids = |list: Value| -> Vec<String> {
+        list.as_array()
+            .expect("a list")
+            .iter()
+            .map(|j| j["id"].as_str().expect("id").to_owned())
+            .collect()
+    };
+    for query in ["q=POLISHED", "q=s-12", "tag=wet", "tag=x,Paper"] {
+        let list = get_json(&client, &server.url(&format!("/api/v1/jobs?{query}"))).await;
+        assert_eq!(ids(list), [id.clone()], "{query}");
+    }
+    server.kill_9();
+    let server = ServerProcess::start(dir.path());
+    let job = get_job(&client, &server.base, &id).await;
+    assert_eq!(
+        (&job["sample"], &job["note"], &job["tags"]),
+        (
+            &json!("S-12"),
+            &json!("re-polished"),
+            &json!(["paper", "wet"])
+        )
+    );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_scene_as_run_has_every_default_and_runs_the_same_test() {
     let dir = TempDir::new("scene-as-run");
     let client = reqwest::Client::new();

@@ -13,9 +13,10 @@ use axum::routing::on;
 use serde::Deserialize;
 use serde_json::Value;
 
-use super::error::{DeleteError, JobError, PartialError, SubmitError};
+use super::error::{DeleteError, JobError, PartialError, RelabelError, SubmitError};
 use super::events::{self, Streams};
 use super::job::{FILTERS, JobRecord};
+use super::labels::LabelChange;
 use super::registry::{Deletion, Jobs};
 use crate::scene::{FieldError, Scene, SceneErrors};
 use crate::service::blocking::blocking;
@@ -40,6 +41,7 @@ where
         Endpoint::api(Verb::Get, "/api/v1/jobs", |f| on(f, list_jobs)),
         Endpoint::api(Verb::Get, "/api/v1/jobs/{id}", |f| on(f, get_job)),
         Endpoint::api(Verb::Delete, "/api/v1/jobs/{id}", |f| on(f, delete_job)),
+        Endpoint::api(Verb::Patch, "/api/v1/jobs/{id}", |f| on(f, patch_job)),
         Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/events", |f| on(f, job_events)),
         Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/result", |f| on(f, job_result)),
         Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/result.csv", |f| {
@@ -68,12 +70,28 @@ impl JsonRequest for Scene {
     }
 }
 
+/// The query of `POST /api/v1/jobs`: the job's labels.
+#[derive(Debug, Default, Deserialize)]
+struct SubmitQuery {
+    sample: Option<String>,
+    note: Option<String>,
+    /// Separated by commas.
+    tags: Option<String>,
+}
+
 /// `POST /api/v1/jobs`: 202 with the queued job and its `Location`.
 async fn submit_job(
     State(jobs): State<Arc<Jobs>>,
+    query: Result<Query<SubmitQuery>, QueryRejection>,
     JsonBody(scene): JsonBody<Scene>,
 ) -> Result<Response, ApiError> {
-    let record = blocking(move || jobs.submit(scene)).await?;
+    let Query(query) = query?;
+    let labels = LabelChange::from_query(
+        query.sample.as_deref(),
+        query.note.as_deref(),
+        query.tags.as_deref(),
+    )?;
+    let record = blocking(move || jobs.submit(scene, labels)).await?;
     let location = format!("/api/v1/jobs/{}", record.id);
     Ok(created(StatusCode::ACCEPTED, location, record))
 }
@@ -93,6 +111,32 @@ async fn get_job(
 ) -> Result<Json<JobRecord>, ApiError> {
     let job = jobs.find(id)?;
     Ok(Json(jobs.shown(&job)))
+}
+
+/// A PATCH's body: the labels to change.
+impl JsonRequest for LabelChange {
+    const NAME: &'static str = "job's labels";
+
+    fn from_json(document: Value, _text: &str) -> Result<Self, ApiError> {
+        Ok(LabelChange::from_json(&document)?)
+    }
+
+    fn duplicate_key(path: String, message: String) -> ApiError {
+        ApiError::unprocessable(
+            format!("invalid job labels: {message}"),
+            vec![FieldError::new(path, message)],
+        )
+    }
+}
+
+/// `PATCH /api/v1/jobs/{id}`: changes the job's `sample`, `note` or `tags`, at any status
+/// but damaged; the job as it is now.
+async fn patch_job(
+    State(jobs): State<Arc<Jobs>>,
+    JobId(id): JobId,
+    JsonBody(change): JsonBody<LabelChange>,
+) -> Result<Json<JobRecord>, ApiError> {
+    Ok(Json(blocking(move || jobs.relabel(id, change)).await?))
 }
 
 /// `DELETE /api/v1/jobs/{id}`: cancels a queued or running job, removes a finished one.
@@ -240,6 +284,18 @@ impl From<DeleteError> for ApiError {
             DeleteError::Unknown(id) => unknown(id),
             DeleteError::Storage(e) => {
                 Self::storage(&e, "the job was not changed", "deleting a job")
+            }
+        }
+    }
+}
+
+/// The job's own answers, 507 or 500 when the record could not be written.
+impl From<RelabelError> for ApiError {
+    fn from(error: RelabelError) -> Self {
+        match error {
+            RelabelError::Job(e) => e.into(),
+            RelabelError::Storage(e) => {
+                Self::storage(&e, "the labels were not changed", "changing a job's labels")
             }
         }
     }
