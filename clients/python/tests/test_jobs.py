@@ -250,3 +250,18 @@ def test_the_list_pages_and_filters(client: tribosim.Client, small_job: tribosim
     named = client.jobs.list(name="LIST other", status="succeeded,failed")
     assert [job.id for job in named] == [other.id]
     assert client.jobs.list(status="queued", name="pytest list other") == []
+
+
+def test_labels_at_submit_changed_after_and_searched(client: tribosim.Client) -> None:
+    job = client.jobs.submit(SMALL, name="pytest labels", sample="S-7", tags=["paper", "5N"])
+    assert (job.info.sample, job.info.note, job.info.tags) == ("S-7", None, ["paper", "5N"])
+    info = job.label(note="re-polished", tags=["wet"])
+    assert (info.sample, info.note, info.tags) == ("S-7", "re-polished", ["wet"])
+    assert job.label(sample=None).sample is None
+    assert [j.id for j in client.jobs.list(q="RE-POLISHED")] == [job.id]
+    assert [j.id for j in client.jobs.list(tag="wet")] == [job.id]
+    with pytest.raises(tribosim.ValidationError) as refused:
+        job.label(note="x" * 2001)
+    assert refused.value.fields[0].path == "note"
+    job.wait(progress=False)
+    job.delete()
