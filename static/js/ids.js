@@ -65,6 +65,16 @@ export const RUN = Object.freeze({
   summary: "run-summary",
 });
 
+/** The run panel's labels form. */
+export const LABELS = Object.freeze({
+  form: "labels-form",
+  sample: "labels-sample",
+  tags: "labels-tags",
+  note: "labels-note",
+  save: "labels-save",
+  status: "labels-status",
+});
+
 /** The run panel's figures. */
 export const RUN_PLOT = Object.freeze({
   volume: "plot-volume",

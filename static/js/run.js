@@ -4,7 +4,9 @@
 import { api, authHeaders, download } from "./api.js";
 import { $, reveal, sleep } from "./dom.js";
 import { RUN } from "./ids.js";
+import { setHash } from "./hash.js";
 import * as jobs from "./jobs.js";
+import * as labels from "./labels.js";
 import * as measurements from "./measurements.js";
 import * as scores from "./scores.js";
 import { drawPressure, resetPressure } from "./pressure.js";
@@ -66,6 +68,8 @@ function select(id, how = {}) {
   resetPressure();
   redrawSeries();
   if (how.scroll) reveal($(RUN.panel), how.focus);
+  setHash("run", id);
+  labels.load(id);
   loadScene(id);
   measurements.load(id);
   followEvents(id);
@@ -263,6 +267,7 @@ export function init() {
   }
   $(RUN.editAgain).addEventListener("click", () => editRequested.emit(scene));
   $(RUN.showTable3).addEventListener("change", redrawSeries);
+  labels.init(jobs.refresh);
   jobs.onView(select);
   jobs.onDeleted((id) => { if (id === selected) close(); });
   jobs.onListed(() => {

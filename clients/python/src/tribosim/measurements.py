@@ -32,8 +32,8 @@ class Measurements:
       ``potential_v``.
 
     Other units in a column's name are converted (``time_min``, ``potential_mv``,
-    ``volume_um3``, ``depth_nm``, ``y_um``, ...). A table the server cannot use raises `ValidationError` naming the column (and the row
-    in its message)."""
+    ``volume_um3``, ``depth_nm``, ``y_um``, ...). A table the server cannot use raises
+    `ValidationError` naming the column (and the row in its message)."""
 
     def __init__(self, http: Http, job_id: str) -> None:
         self._http = http
