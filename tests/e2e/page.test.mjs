@@ -45,7 +45,7 @@ try {
   page.on("response", (r) => { if (r.status() === 404 && !r.url().includes("/api/")) errors.push(`404 ${r.url()}`); });
   // What one step finds and a later one uses (the runs' ids, the run's length, ...).
   const found = {};
-  for (const scenario of [form, run, measurements, compare, access, study, views, calibration, listing, cancel, rough, ocp]) {
+  for (const scenario of [form, run, measurements, compare, access, study, calibration, listing, cancel, rough, ocp, views]) {
     await scenario(page, found);
   }
   assert.deepEqual(errors, [], "errors in the page");

@@ -19,7 +19,7 @@ from conftest import ENDLESS, REPO, SMALL, Server
 
 #: The cycle record's columns that are counts, not quantities with a unit.
 COUNTS = {"cycle", "iterations", "contact_islands"}
-UNIT = re.compile(r"_(s|mm3|mm2|um|mpa|v)$")
+UNIT = re.compile(r"_(s|mm3|mm2|um|mpa|v|ma|c)$")
 #: A job that sends an event for every cycle.
 EVERY_CYCLE = {
     "preset": "dalmau2018-316l",
