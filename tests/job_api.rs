@@ -281,7 +281,7 @@ async fn labels_are_set_at_submit_changed_after_kept_and_searched() {
     };
     for query in ["q=POLISHED", "q=s-12", "tag=wet", "tag=x,Paper"] {
         let list = get_json(&client, &server.url(&format!("/api/v1/jobs?{query}"))).await;
-        assert_eq!(ids(list), [id.clone()], "{query}");
+        assert_eq!(ids(list), std::slice::from_ref(&id), "{query}");
     }
     server.kill_9();
     let server = ServerProcess::start(dir.path());

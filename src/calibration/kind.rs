@@ -215,6 +215,15 @@ pub fn default_scene() -> Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use clap::ValueEnum;
+
+    #[test]
+    fn the_ocp_fit_is_also_called_potential_as_a_measurement_once_was() {
+        assert_eq!(FitKind::from_str("potential", false), Ok(FitKind::Ocp));
+        let kind: FitKind = serde_json::from_str("\"potential\"").expect("an alias");
+        assert_eq!(kind, FitKind::Ocp);
+        assert_eq!(serde_json::to_string(&kind).expect("serialises"), "\"ocp\"");
+    }
 
     #[test]
     fn a_last_point_past_the_cycle_limit_is_refused_before_any_run() {

@@ -96,10 +96,8 @@ impl Table {
                 number(name, i + 1, Some(v), &v.to_string())?;
             }
         }
-        Self::checked(
-            columns.iter().map(|(n, _)| (*n).to_owned()).collect(),
-            columns.iter().map(|(_, v)| v.to_vec()).collect(),
-        )
+        let names: Vec<String> = columns.iter().map(|(n, _)| (*n).to_owned()).collect();
+        Self::checked(&names, columns.iter().map(|(_, v)| v.to_vec()).collect())
     }
 
     /// Reads CSV text: a header row, then one row per point, delimited by `,` or `;`.
@@ -132,7 +130,7 @@ impl Table {
                 column.push(number(name, row, decimal.parse().ok(), &text)?);
             }
         }
-        Self::checked(names, columns)
+        Self::checked(&names, columns)
     }
 
     /// Reads a JSON table: an array of row objects, or an object of column arrays.
@@ -151,7 +149,7 @@ impl Table {
                         column.push(number(name, index + 1, cell.as_f64(), &cell.to_string())?);
                     }
                 }
-                Self::checked(names, columns)
+                Self::checked(&names, columns)
             }
             Value::Object(map) => {
                 let mut names = Vec::new();
@@ -168,7 +166,7 @@ impl Table {
                     names.push(name.clone());
                     columns.push(column);
                 }
-                Self::checked(names, columns)
+                Self::checked(&names, columns)
             }
             other => Err(TableError::JsonShape(format!("got {other}"))),
         }
@@ -176,7 +174,7 @@ impl Table {
 
     /// Refuses a table without rows, with columns of different lengths or with a column
     /// named twice (once its name is in the fits' unit); converts the columns in other units.
-    fn checked(names: Vec<String>, mut columns: Vec<Vec<f64>>) -> Result<Self, TableError> {
+    fn checked(names: &[String], mut columns: Vec<Vec<f64>>) -> Result<Self, TableError> {
         let mut names: Vec<String> = names.iter().map(|n| n.trim().to_lowercase()).collect();
         for (name, column) in names.iter_mut().zip(&mut columns) {
             if let Some(&(_, fits, factor)) = UNITS.iter().find(|(other, ..)| other == name) {

@@ -26,14 +26,13 @@ impl Curve {
         if !(first..=last).contains(&x) {
             return None;
         }
-        // The first point at or beyond x; x lies in [x[i-1], x[i]].
-        let i = self.x.partition_point(|&v| v < x);
-        if self.x[i] == x {
-            let last_equal = i + self.x[i..].partition_point(|&v| v == x) - 1;
-            return Some(self.y[last_equal]);
-        }
-        let (x0, x1) = (self.x[i - 1], self.x[i]);
-        let (y0, y1) = (self.y[i - 1], self.y[i]);
+        // The last point at or before x (at a jump, the later of the two); x is below the
+        // next one, so the segment has a length.
+        let k = self.x.partition_point(|&v| v <= x) - 1;
+        let Some((&x1, &y1)) = self.x.get(k + 1).zip(self.y.get(k + 1)) else {
+            return Some(self.y[k]);
+        };
+        let (x0, y0) = (self.x[k], self.y[k]);
         Some(y0 + (y1 - y0) * (x - x0) / (x1 - x0))
     }
 }
