@@ -208,15 +208,17 @@ async fn labels_are_set_at_submit_changed_after_kept_and_searched() {
     let dir = TempDir::new("labels");
     let client = reqwest::Client::new();
     let mut server = ServerProcess::start(dir.path());
-    // The data directory, absolute, in the first words the server says.
+    // The data directory, absolute, in the line that announces the address (which the log
+    // keeps just after the address is read from it, so it is awaited).
     let absolute = std::fs::canonicalize(dir.path()).expect("the data dir exists");
-    assert!(
-        server
-            .log()
-            .contains(&format!("with its data in {}", absolute.display())),
-        "{}",
-        server.log()
-    );
+    let said = format!("with its data in {}", absolute.display());
+    for _ in 0..100 {
+        if server.log().contains(&said) {
+            break;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    }
+    assert!(server.log().contains(&said), "{}", server.log());
     let response = client
         .post(server.url("/api/v1/jobs?sample=S-12&note=first%20polish&tags=paper,5N"))
         .json(&small_scene(2))
