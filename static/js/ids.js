@@ -11,6 +11,8 @@ export const FORM = Object.freeze({
   preset: "preset",
   presetDescription: "preset-description",
   name: "f-name",
+  sample: "f-sample",
+  tags: "f-tags",
   mainFields: "main-fields",
   surfaceFile: "surface-file",
   surfacePixel: "surface-pixel",

@@ -344,6 +344,13 @@ mod tests {
         }
         let error = refused(Ocp, "time_s,potential_v\n2,-0.2\n1,-0.3\n");
         assert!(error.to_string().contains("row 2"), "{error}");
+        // A unit not known is named with every spelling the column takes.
+        let error = refused(WearVolume, "cycles,volume_cm3\n1,0\n");
+        assert_eq!(error.column(), "volume_cm3");
+        assert!(
+            error.to_string().contains("`volume_mm3`, `volume_um3`"),
+            "{error}"
+        );
     }
 
     #[test]

@@ -2,8 +2,8 @@
 // study reopened from their hash and scrolled into place; a run's labels edited and found.
 import assert from "node:assert/strict";
 
-import { COMPARE, JOBS, LABELS, RUN, STUDY } from "../../../static/js/ids.js";
-import { openPage, sel, step } from "../lib.mjs";
+import { COMPARE, FORM, JOBS, LABELS, RUN, STUDY, fieldId } from "../../../static/js/ids.js";
+import { GRID, openPage, sel, step } from "../lib.mjs";
 
 // The top of the panel `id` in the viewport: in place when it is near the top.
 const topOf = (page, id) => page.$eval(sel(id), (el) => el.getBoundingClientRect().top);
@@ -56,6 +56,17 @@ export async function views(page, found) {
   assert.match(row[1], /S-e2e-10N #ten #e2e/);
   await page.fill(sel(JOBS.name), "");
   await page.waitForFunction((table) => document.querySelectorAll(`#${table} tbody tr`).length > 1, JOBS.table);
+
+  step("a sample and tags given with a new run reach its record");
+  await page.fill(sel(fieldId("numerics.grid")), GRID);
+  await page.fill(sel(fieldId("test.cycles")), "3");
+  await page.fill(sel(FORM.sample), "S-form");
+  await page.fill(sel(FORM.tags), "from-form, e2e");
+  await page.click(sel(FORM.submit));
+  await page.waitForFunction((id) => e2e.run.selectedId() && e2e.run.selectedId() !== id, found.tenRun);
+  const submitted = await page.evaluate(async () => (await e2e.api.api(`/api/v1/jobs/${e2e.run.selectedId()}`)).body);
+  assert.deepEqual([submitted.sample, submitted.tags], ["S-form", ["from-form", "e2e"]]);
+  await page.waitForFunction((id) => document.getElementById(id).value === "S-form", LABELS.sample);
 
   step("the icon is inline: the page asks for no /favicon.ico");
   const icon = await page.$eval('link[rel="icon"]', (link) => link.getAttribute("href"));
