@@ -43,7 +43,11 @@ export async function rough(page) {
   await page.fill(sel(fieldId("test.cycles")), "3");
   const surfaceInScene = JSON.parse(await page.inputValue(sel(FORM.sceneJson))).overrides.disc.surface;
   assert.equal(surfaceInScene.kind, "measured");
+  // The page opened the newest run on load: its status and maps are the old run's until
+  // the new one is shown.
+  const before = await page.evaluate(() => e2e.run.selectedId());
   await page.click(sel(FORM.submit));
+  await page.waitForFunction((id) => e2e.run.selectedId() !== id, before);
   await waitForStatus(page, RUN.status, "succeeded");
   await page.waitForFunction((id) => Number(document.getElementById(id).dataset.points) > 0, RUN_PLOT.pressure);
   const roughMaps = await drawnMaps(page);
