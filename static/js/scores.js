@@ -7,8 +7,6 @@ import { RUN_PLOT } from "./ids.js";
 
 const FIGURE = { wear_volume: RUN_PLOT.volume, profile: RUN_PLOT.profile, ocp: RUN_PLOT.potential };
 
-let shown = null; // the job whose scores are drawn
-
 const fmt = (v) => (v == null ? "—" : Number(v).toPrecision(4));
 
 // The scores box of figure `id`, made on first use under its chart.
@@ -25,7 +23,6 @@ function box(id) {
 
 /** Removes every scores table (another run is shown, or its measurements changed). */
 export function clear() {
-  shown = null;
   for (const id of Object.values(FIGURE)) {
     const div = $(id).querySelector(".scores");
     if (div) div.replaceChildren();
@@ -60,7 +57,6 @@ export async function show(id, current) {
   if (!current()) return;
   clear();
   if (!r.ok || !r.body) return;
-  shown = id;
   for (const [kind, figure] of Object.entries(FIGURE)) {
     const score = r.body[kind];
     const div = box(figure);
@@ -70,6 +66,3 @@ export async function show(id, current) {
     div.replaceChildren(table(score), csv);
   }
 }
-
-/** The job whose scores are drawn, or null (the e2e test reads it). */
-export const shownFor = () => shown;

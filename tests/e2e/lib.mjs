@@ -43,7 +43,7 @@ export async function openPage(page, hash = "") {
   await page.waitForSelector("body[data-ready=true]");
   await page.evaluate(async () => {
     const modules = {};
-    for (const name of ["api", "plots", "run", "jobs", "compare", "calibration", "scores"]) modules[name] = await import(`/static/js/${name}.js`);
+    for (const name of ["api", "plots", "run", "jobs", "compare", "calibration"]) modules[name] = await import(`/static/js/${name}.js`);
     window.e2e = modules;
   });
 }
