@@ -43,7 +43,7 @@ async fn measurements_round_trip_survive_a_restart_and_go_with_their_job() {
     let empty = get_json(&client, &url("/measurements")).await;
     assert_eq!(
         empty,
-        json!({"wear_volume": null, "profile": null, "potential": null})
+        json!({"wear_volume": null, "profile": null, "ocp": null})
     );
     let csv =
         "# Table 3, 5 N\ntime_s,volume_mm3,spread_mm3\n600,0.0042,0.0005\n3600,0.0118,0.0011\n";
@@ -77,11 +77,7 @@ async fn measurements_round_trip_survive_a_restart_and_go_with_their_job() {
             "time_s,volume_mm3\n600,0.004\n3600,-0.01\n",
             "volume_mm3",
         ),
-        (
-            "potential",
-            "time_s,potential_v\n10,-0.2\n5,-0.3\n",
-            "time_s",
-        ),
+        ("ocp", "time_s,potential_v\n10,-0.2\n5,-0.3\n", "time_s"),
         ("potential", "time_s\n10\n", "potential_v"),
         ("profile", "y_mm,depth_um\n0,1\n0.1,inf\n", "depth_um"),
     ];
@@ -103,7 +99,7 @@ async fn measurements_round_trip_survive_a_restart_and_go_with_their_job() {
     assert_eq!(status, 415);
     let kept = get_json(&client, &url("/measurements")).await;
     assert_eq!(kept["wear_volume"], wear);
-    assert_eq!(kept["potential"], Value::Null);
+    assert_eq!(kept["ocp"], Value::Null);
 
     // Kept across a restart, even one without a shutdown.
     wait_for_job(&client, &server.base, &id, is_final).await;
@@ -128,6 +124,178 @@ async fn measurements_round_trip_survive_a_restart_and_go_with_their_job() {
     assert!(!dir.path().join("jobs").join(&id).exists());
     let response = client.get(url("/measurements")).send().await.expect("GET");
     assert_eq!(response.status(), 404);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn measurements_are_scored_against_the_result_in_json_and_csv() {
+    let dir = TempDir::new("scores");
+    let client = reqwest::Client::new();
+    let server = ServerProcess::start(dir.path());
+    let job = submit(&client, &server.base, &small_scene(5)).await;
+    let id = job["id"].as_str().expect("id").to_owned();
+    let url = |path: &str| server.url(&format!("/api/v1/jobs/{id}{path}"));
+    let response = client.get(url("/scores")).send().await.expect("GET");
+    assert!([200, 409].contains(&response.status().as_u16()));
+    wait_for_job(&client, &server.base, &id, is_final).await;
+    let result = get_json(&client, &url("/result")).await;
+    let cycles = result["cycles"].as_array().expect("cycles");
+    let (first, last) = (&cycles[0], &cycles[cycles.len() - 1]);
+    // What a profilometer measures: the total volume when the run has corrosion.
+    let quantity = if first.get("total_volume_mm3").is_some() {
+        "total_volume_mm3"
+    } else {
+        "wear_volume_mm3"
+    };
+    let volume = |c: &Value| c[quantity].as_f64().expect("volume");
+    let cycle = |c: &Value| c["cycle"].as_f64().expect("cycle");
+    // At solved cycles the model is the record's own volume; past the run there is none.
+    let csv = format!(
+        "cycles;volume_um3;spread_um3\n{};{};{}\n{};{};0\n{};1;1\n",
+        cycle(first),
+        2e9 * volume(first),
+        1e9 * volume(first),
+        cycle(last),
+        0.5e9 * volume(last),
+        cycle(last) + 10.0,
+    );
+    let (status, answer) =
+        put_table(&client, &url("/measurements/wear_volume"), "text/csv", &csv).await;
+    assert_eq!(status, 200, "{answer}");
+    let (status, answer) = put_table(
+        &client,
+        &url("/measurements/potential"),
+        "text/csv",
+        "time_s,potential_mv\n0,-200\n",
+    )
+    .await;
+    assert_eq!(status, 200, "{answer}");
+    assert_eq!(answer["ocp"]["potential_v"], json!([-0.2]));
+    let scores = get_json(&client, &url("/scores")).await;
+    let wear = &scores["wear_volume"];
+    assert_eq!(wear["x_column"], "cycles");
+    assert_eq!(wear["model_column"], quantity);
+    let points = wear["points"].as_array().expect("points");
+    let close = |a: &Value, b: f64| (a.as_f64().expect("number") - b).abs() <= 1e-12 * b.abs();
+    // The um^3 columns are converted by 1e-9: 2 V measured against V is a residual of V and
+    // a z-score of 1 against a spread of V.
+    assert!(close(&points[0]["model"], volume(first)), "{wear}");
+    assert!(close(&points[0]["residual"], volume(first)), "{wear}");
+    assert!(close(&points[0]["z_score"], 1.0), "{wear}");
+    assert!(close(&points[1]["residual"], -0.5 * volume(last)), "{wear}");
+    assert_eq!(points[1]["z_score"], Value::Null, "a zero spread");
+    assert_eq!(points[2]["model"], Value::Null, "past the run");
+    assert_eq!(scores["ocp"]["column"], "potential_v");
+    assert_eq!(scores["profile"], Value::Null);
+
+    let response = client.get(url("/scores.csv")).send().await.expect("GET");
+    assert_eq!(response.status(), 200);
+    let text = response.text().await.expect("text");
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines[0],
+        "kind,x_column,x,column,measured,model,residual,z_score,model_column"
+    );
+    assert_eq!(lines.len(), 1 + 3 + 1, "{text}");
+    assert!(lines[1].starts_with("wear_volume,cycles,"), "{text}");
+    assert!(
+        lines[4].starts_with("ocp,time_s,0,potential_v,-0.2,"),
+        "{text}"
+    );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn labels_are_set_at_submit_changed_after_kept_and_searched() {
+    let dir = TempDir::new("labels");
+    let client = reqwest::Client::new();
+    let mut server = ServerProcess::start(dir.path());
+    // The data directory, absolute, in the line that announces the address (which the log
+    // keeps just after the address is read from it, so it is awaited).
+    let absolute = std::fs::canonicalize(dir.path()).expect("the data dir exists");
+    let said = format!("with its data in {}", absolute.display());
+    for _ in 0..100 {
+        if server.log().contains(&said) {
+            break;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    }
+    assert!(server.log().contains(&said), "{}", server.log());
+    let response = client
+        .post(server.url("/api/v1/jobs?sample=S-12&note=first%20polish&tags=paper,5N"))
+        .json(&small_scene(2))
+        .send()
+        .await
+        .expect("submit");
+    assert_eq!(response.status(), 202);
+    let job: Value = response.json().await.expect("job");
+    assert_eq!(job["sample"], "S-12");
+    assert_eq!(job["note"], "first polish");
+    assert_eq!(job["tags"], json!(["paper", "5N"]));
+    let id = job["id"].as_str().expect("id").to_owned();
+    let other = submit(&client, &server.base, &small_scene(2)).await;
+    assert_eq!(other["sample"], Value::Null);
+    assert_eq!(other["tags"], json!([]));
+
+    let patch = |body: Value| {
+        let url = server.url(&format!("/api/v1/jobs/{id}"));
+        let client = client.clone();
+        async move {
+            let response = client.patch(url).json(&body).send().await.expect("PATCH");
+            let status = response.status().as_u16();
+            (status, response.json::<Value>().await.expect("JSON"))
+        }
+    };
+    wait_for_job(&client, &server.base, &id, is_final).await;
+    let (status, changed) = patch(json!({"note": "re-polished", "tags": ["paper", "wet"]})).await;
+    assert_eq!(status, 200, "{changed}");
+    assert_eq!(changed["sample"], "S-12", "a label left out stays");
+    assert_eq!(changed["note"], "re-polished");
+    assert_eq!(changed["status"], "succeeded");
+    // Refusals name the field and the bound; nothing changes.
+    let (status, refused) = patch(json!({"sample": "x".repeat(101)})).await;
+    assert_eq!(status, 422);
+    assert_eq!(refused["fields"][0]["path"], "sample");
+    assert!(
+        refused["error"]
+            .as_str()
+            .expect("message")
+            .contains("at most 100")
+    );
+    let (status, refused) = patch(json!({"colour": "red"})).await;
+    assert_eq!(
+        (status, refused["fields"][0]["path"].clone()),
+        (422, json!("colour"))
+    );
+    let response = client
+        .post(server.url("/api/v1/jobs?tags=a,b,c,d,e,f,g,h,i,j,k,l,m,n,o,p,q,r,s,t,u"))
+        .json(&small_scene(2))
+        .send()
+        .await
+        .expect("submit");
+    assert_eq!(response.status(), 422);
+
+    // Searched by any label; kept across a restart without a shutdown.
+    let ids = |list: Value| -> Vec<String> {
+        list.as_array()
+            .expect("a list")
+            .iter()
+            .map(|j| j["id"].as_str().expect("id").to_owned())
+            .collect()
+    };
+    for query in ["q=POLISHED", "q=s-12", "tag=wet", "tag=x,Paper"] {
+        let list = get_json(&client, &server.url(&format!("/api/v1/jobs?{query}"))).await;
+        assert_eq!(ids(list), std::slice::from_ref(&id), "{query}");
+    }
+    server.kill_9();
+    let server = ServerProcess::start(dir.path());
+    let job = get_job(&client, &server.base, &id).await;
+    assert_eq!(
+        (&job["sample"], &job["note"], &job["tags"]),
+        (
+            &json!("S-12"),
+            &json!("re-polished"),
+            &json!(["paper", "wet"])
+        )
+    );
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

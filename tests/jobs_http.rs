@@ -66,9 +66,10 @@ async fn a_streamed_and_downloaded_run_equals_the_library_run() {
     let disposition = response.headers()["content-disposition"]
         .to_str()
         .expect("ascii");
+    // Named after the run ("small, 20 cycles"), not its id.
     assert_eq!(
         disposition,
-        format!("attachment; filename=\"tribosim-{id}.json\"")
+        "attachment; filename=\"small-20-cycles.result.json\""
     );
     let downloaded: Value = response.json().await.expect("result JSON");
 
@@ -146,10 +147,87 @@ async fn a_streamed_and_downloaded_run_equals_the_library_run() {
             .expect("ascii")
             .starts_with("text/csv")
     );
+    assert!(
+        response.headers()["content-disposition"]
+            .to_str()
+            .expect("ascii")
+            .contains("small-20-cycles.result.csv")
+    );
     let csv = response.text().await.expect("csv text");
     let rows: Vec<&str> = csv.lines().collect();
     assert!(rows[0].starts_with("cycle,time_s,wear_volume_mm3,max_depth_um"));
     assert_eq!(rows.len(), streamed.len() + 1);
+
+    // The profiles and the pressure maps as CSV, one row per point of the JSON's.
+    let points = |key: &str, values: &str| -> usize {
+        downloaded[key]
+            .as_array()
+            .expect("an array")
+            .iter()
+            .map(|item| match &item[values] {
+                Value::Array(rows) if rows.first().is_some_and(Value::is_array) => rows
+                    .iter()
+                    .map(|row| row.as_array().map_or(0, Vec::len))
+                    .sum(),
+                Value::Array(values) => values.len(),
+                _ => 0,
+            })
+            .sum()
+    };
+    for (route, header, key, values) in [
+        (
+            "profiles.csv",
+            "cycle,y_um,depth_um",
+            "profiles",
+            "depth_um",
+        ),
+        (
+            "pressure.csv",
+            "cycle,x_um,y_um,pressure_mpa",
+            "pressure_maps",
+            "pressure_mpa",
+        ),
+    ] {
+        let response = client
+            .get(server.url(&format!("{location}/{route}")))
+            .send()
+            .await
+            .expect("csv");
+        assert_eq!(response.status(), 200, "{route}");
+        let disposition = response.headers()["content-disposition"]
+            .to_str()
+            .expect("ascii")
+            .to_owned();
+        assert!(disposition.contains(&format!("small-20-cycles.{route}")));
+        let csv = response.text().await.expect("csv text");
+        let rows: Vec<&str> = csv.lines().collect();
+        assert_eq!(rows[0], header);
+        let expected = points(key, values);
+        assert!(expected > 0, "{key}");
+        assert_eq!(rows.len(), expected + 1, "{route}");
+    }
+    // Compact: the same result without its pressure maps, and smaller.
+    let response = client
+        .get(server.url(&format!("{location}/result?compact=true")))
+        .send()
+        .await
+        .expect("compact");
+    assert!(
+        response.headers()["content-disposition"]
+            .to_str()
+            .expect("ascii")
+            .contains("small-20-cycles.result.compact.json")
+    );
+    let compact: Value = response.json().await.expect("JSON");
+    let mut expected = downloaded.clone();
+    expected["pressure_maps"] = Value::Array(Vec::new());
+    assert_eq!(compact, expected);
+    let response = client
+        .get(server.url(&format!("{location}/result?compact=maybe")))
+        .send()
+        .await
+        .expect("bad compact");
+    assert_eq!(response.status(), 400);
 
     let listed: Value = get_json(&client, &server.url("/api/v1/jobs")).await;
     assert_eq!(listed[0]["id"], id.as_str());

@@ -56,7 +56,7 @@ fn a_run_report_holds_every_figure_its_tables_the_methods_and_the_provenance() {
     std::fs::write(dir.path().join("scene.json"), SCENE).expect("scene");
     tribosim(dir.path(), &["run", "scene.json", "-o", "result.json"]);
     let measured = r#"{"wear_volume": {"cycles": [5, 10], "volume_mm3": [1e-4, 2e-4],
-        "spread_mm3": [1e-5, 1e-5]}, "profile": null, "potential": null}"#;
+        "spread_mm3": [1e-5, 1e-5]}, "profile": null, "ocp": null}"#;
     std::fs::write(dir.path().join("m.json"), measured).expect("measurements");
     tribosim(
         dir.path(),

@@ -548,3 +548,38 @@ async fn uploads_are_bounded_before_they_are_read_and_every_accepted_map_reads_b
         assert_eq!(&text, surface);
     }
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn heights_in_um_or_nm_are_read_in_their_unit() {
+    let dir = TempDir::new("surface-units");
+    let client = reqwest::Client::new();
+    let server = ServerProcess::start(dir.path());
+    let base = server.base.clone();
+    let (status, in_m) = upload(&client, &base, "?pixel_um=4", "text/plain", matrix().into()).await;
+    assert_eq!(status, 201, "{in_m}");
+    let in_nm: String = matrix()
+        .lines()
+        .skip(1)
+        .map(|row| {
+            let cells: Vec<String> = row
+                .split('\t')
+                .map(|h| format!("{:e}", h.parse::<f64>().expect("a height") * 1e9))
+                .collect();
+            cells.join("\t") + "\n"
+        })
+        .collect();
+    let query = "?pixel_um=4&height_unit=nm";
+    let (status, from_nm) = upload(&client, &base, query, "text/plain", in_nm.into()).await;
+    assert_eq!(status, 201, "{from_nm}");
+    // Two roundings of each height (times 1e9, then 1e-9) and the statistics' sums: far
+    // within 1e-12 of the rms.
+    assert!((rms_height(&from_nm) / rms_height(&in_m) - 1.0).abs() < 1e-12);
+    for (query, body) in [
+        ("?pixel_um=4&height_unit=ft", matrix().into_bytes()),
+        ("?height_unit=um", gsf()),
+    ] {
+        let (status, answer) = upload(&client, &base, query, "text/plain", body).await;
+        assert_eq!(status, 422, "{answer}");
+        assert_eq!(answer["fields"][0]["path"], "height_unit", "{answer}");
+    }
+}

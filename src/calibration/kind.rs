@@ -24,7 +24,10 @@ pub enum FitKind {
     Hardness,
     /// a_c, b_c from `potential_v` and `current_density_a_cm2` (or `_a_m2`).
     Tafel,
-    /// The depassivation model's parameter from `time_s` and `potential_v`.
+    /// The depassivation model's parameter from `time_s` and `potential_v`: the OCP, which
+    /// a job's measurements call `ocp` too (`potential` is accepted for it in both).
+    #[value(alias = "potential")]
+    #[serde(alias = "potential")]
     Ocp,
     /// Archard's k from `time_s` (or `cycles`), `volume_mm3` and optional `spread_mm3`.
     Archard,
@@ -212,6 +215,15 @@ pub fn default_scene() -> Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use clap::ValueEnum;
+
+    #[test]
+    fn the_ocp_fit_is_also_called_potential_as_a_measurement_once_was() {
+        assert_eq!(FitKind::from_str("potential", false), Ok(FitKind::Ocp));
+        let kind: FitKind = serde_json::from_str("\"potential\"").expect("an alias");
+        assert_eq!(kind, FitKind::Ocp);
+        assert_eq!(serde_json::to_string(&kind).expect("serialises"), "\"ocp\"");
+    }
 
     #[test]
     fn a_last_point_past_the_cycle_limit_is_refused_before_any_run() {

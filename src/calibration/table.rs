@@ -1,6 +1,17 @@
 //! A measurement table: named numeric columns, read from CSV (a header row, then one row
 //! per point; blank lines and lines starting with `#` skipped) or JSON (an array of row
-//! objects, or an object of equal-length column arrays). Units live in the column names.
+//! objects, or an object of equal-length column arrays). The one reader of every table a
+//! lab sends: the calibration's and the measurements attached to a job.
+//!
+//! Units live in the column names, in lower case (a header's `Potential_mV` is
+//! `potential_mv`); a name in another unit of a known quantity ([`UNITS`]: `time_min`,
+//! `potential_mv`, `volume_um3`, ...) is converted to the unit the fits use (`time_s`,
+//! `potential_v`, `volume_mm3`, ...).
+//!
+//! A CSV's delimiter is `;` when its header holds one, `,` otherwise: European spreadsheets
+//! save `;` because their decimal mark is the comma, so with `;` a decimal comma is read as
+//! a decimal point (`0,5` is 0.5). Cells may be quoted (`"time_s"`), a quote inside written
+//! twice.
 
 use serde_json::Value;
 use thiserror::Error;
@@ -12,7 +23,9 @@ pub enum TableError {
     #[error("the table is empty: it needs a header row and at least one data row")]
     Empty,
     /// A CSV row with a different number of fields than the header.
-    #[error("row {row} has {got} fields, the header has {expected}")]
+    #[error("row {row} has {got} fields, the header has {expected} (fields separated by {}){}",
+        delimiter_name(*delimiter),
+        if *delimiter == ',' { "; a decimal comma needs `;` between the fields" } else { "" })]
     Ragged {
         /// The data row, from 1.
         row: usize,
@@ -20,6 +33,14 @@ pub enum TableError {
         expected: usize,
         /// Fields in the row.
         got: usize,
+        /// The delimiter the header showed.
+        delimiter: char,
+    },
+    /// A quote opened in a CSV cell and not closed on its line.
+    #[error("row {row}: a quote is not closed")]
+    Unclosed {
+        /// The row, from 0 for the header.
+        row: usize,
     },
     /// A cell that is not a finite number.
     #[error("column `{column}`: row {row} is `{text}`, not a finite number")]
@@ -75,49 +96,41 @@ impl Table {
                 number(name, i + 1, Some(v), &v.to_string())?;
             }
         }
-        Self::checked(
-            columns.iter().map(|(n, _)| (*n).to_owned()).collect(),
-            columns.iter().map(|(_, v)| v.to_vec()).collect(),
-        )
+        let names: Vec<String> = columns.iter().map(|(n, _)| (*n).to_owned()).collect();
+        Self::checked(&names, columns.iter().map(|(_, v)| v.to_vec()).collect())
     }
 
-    /// Reads CSV text: a header row, then one row per point.
+    /// Reads CSV text: a header row, then one row per point, delimited by `,` or `;`.
     pub fn from_csv(text: &str) -> Result<Self, TableError> {
         let mut lines = text
             .lines()
             .map(str::trim)
             .filter(|l| !l.is_empty() && !l.starts_with('#'));
-        let names: Vec<String> = lines
-            .next()
-            .ok_or(TableError::Empty)?
-            .split(',')
-            .map(|n| n.trim().to_owned())
-            .collect();
-        let mut repeated: Vec<String> = Vec::new();
-        for (i, name) in names.iter().enumerate() {
-            if names[..i].contains(name) && !repeated.contains(name) {
-                repeated.push(name.clone());
-            }
-        }
-        if !repeated.is_empty() {
-            return Err(TableError::DuplicateColumns(repeated));
-        }
+        let header = lines.next().ok_or(TableError::Empty)?;
+        let delimiter = if header.contains(';') { ';' } else { ',' };
+        let names = fields(header, delimiter).ok_or(TableError::Unclosed { row: 0 })?;
         let mut columns = vec![Vec::new(); names.len()];
         for (index, line) in lines.enumerate() {
             let row = index + 1;
-            let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+            let fields = fields(line, delimiter).ok_or(TableError::Unclosed { row })?;
             if fields.len() != names.len() {
                 return Err(TableError::Ragged {
                     row,
                     expected: names.len(),
                     got: fields.len(),
+                    delimiter,
                 });
             }
             for ((column, name), text) in columns.iter_mut().zip(&names).zip(fields) {
-                column.push(number(name, row, text.parse().ok(), text)?);
+                let decimal = if delimiter == ';' {
+                    text.replace(',', ".")
+                } else {
+                    text.clone()
+                };
+                column.push(number(name, row, decimal.parse().ok(), &text)?);
             }
         }
-        Self::checked(names, columns)
+        Self::checked(&names, columns)
     }
 
     /// Reads a JSON table: an array of row objects, or an object of column arrays.
@@ -136,7 +149,7 @@ impl Table {
                         column.push(number(name, index + 1, cell.as_f64(), &cell.to_string())?);
                     }
                 }
-                Self::checked(names, columns)
+                Self::checked(&names, columns)
             }
             Value::Object(map) => {
                 let mut names = Vec::new();
@@ -153,14 +166,31 @@ impl Table {
                     names.push(name.clone());
                     columns.push(column);
                 }
-                Self::checked(names, columns)
+                Self::checked(&names, columns)
             }
             other => Err(TableError::JsonShape(format!("got {other}"))),
         }
     }
 
-    /// Refuses a table without rows or with columns of different lengths.
-    fn checked(names: Vec<String>, columns: Vec<Vec<f64>>) -> Result<Self, TableError> {
+    /// Refuses a table without rows, with columns of different lengths or with a column
+    /// named twice (once its name is in the fits' unit); converts the columns in other units.
+    fn checked(names: &[String], mut columns: Vec<Vec<f64>>) -> Result<Self, TableError> {
+        let mut names: Vec<String> = names.iter().map(|n| n.trim().to_lowercase()).collect();
+        for (name, column) in names.iter_mut().zip(&mut columns) {
+            if let Some(&(_, fits, factor)) = UNITS.iter().find(|(other, ..)| other == name) {
+                *name = fits.to_owned();
+                column.iter_mut().for_each(|v| *v *= factor);
+            }
+        }
+        let mut repeated: Vec<String> = Vec::new();
+        for (i, name) in names.iter().enumerate() {
+            if names[..i].contains(name) && !repeated.contains(name) {
+                repeated.push(name.clone());
+            }
+        }
+        if !repeated.is_empty() {
+            return Err(TableError::DuplicateColumns(repeated));
+        }
         let rows = columns.first().map_or(0, Vec::len);
         if rows == 0 {
             return Err(TableError::Empty);
@@ -202,6 +232,73 @@ impl Table {
             found: self.names.clone(),
         }
     }
+}
+
+/// Column names in another unit of a quantity the fits read: the name, the fits' name, and
+/// the factor from the one to the other.
+pub const UNITS: &[(&str, &str, f64)] = &[
+    ("time_ms", "time_s", 1e-3),
+    ("time_min", "time_s", 60.0),
+    ("time_h", "time_s", 3600.0),
+    ("potential_mv", "potential_v", 1e-3),
+    ("volume_um3", "volume_mm3", 1e-9),
+    ("spread_um3", "spread_mm3", 1e-9),
+    ("depth_nm", "depth_um", 1e-3),
+    ("depth_mm", "depth_um", 1e3),
+    ("y_um", "y_mm", 1e-3),
+    ("hardness_gpa", "hardness_mpa", 1e3),
+];
+
+/// Every accepted spelling of the column `name` of the fits (`volume_mm3`: `volume_mm3`,
+/// `volume_um3`), for an error to list.
+pub fn spellings(name: &str) -> Vec<String> {
+    std::iter::once(name.to_owned())
+        .chain(
+            UNITS
+                .iter()
+                .filter(|(_, fits, _)| *fits == name)
+                .map(|(other, ..)| (*other).to_owned()),
+        )
+        .collect()
+}
+
+/// A delimiter in words, for an error.
+fn delimiter_name(delimiter: char) -> &'static str {
+    match delimiter {
+        ';' => "`;`, as the header has one",
+        _ => "`,`, as the header has no `;`",
+    }
+}
+
+/// The fields of one CSV line split at `delimiter`, each trimmed and unquoted; `None` when
+/// a quote is not closed.
+fn fields(line: &str, delimiter: char) -> Option<Vec<String>> {
+    let mut fields = Vec::new();
+    let mut field = String::new();
+    let mut quoted = false;
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '"' if quoted && chars.peek() == Some(&'"') => {
+                field.push('"');
+                chars.next();
+            }
+            '"' if quoted => quoted = false,
+            '"' if field.trim().is_empty() => {
+                field.clear();
+                quoted = true;
+            }
+            c if c == delimiter && !quoted => {
+                fields.push(field.trim().to_owned());
+                field.clear();
+            }
+            c => field.push(c),
+        }
+    }
+    (!quoted).then(|| {
+        fields.push(field.trim().to_owned());
+        fields
+    })
 }
 
 /// A cell's number, refused when absent or not finite.
@@ -254,5 +351,49 @@ mod tests {
         assert!(Table::parse(r#"[{"a": 1}, {"a": null}]"#).is_err());
         assert!(Table::from_columns(&[("a", &[1.0, 2.0]), ("b", &[1.0])]).is_err());
         assert!(Table::from_columns(&[("a", &[f64::NAN])]).is_err());
+        let err = Table::parse("time_s,potential_v\n1,0,5\n").expect_err("ragged");
+        assert!(err.to_string().contains("`,`"), "{err}");
+        assert!(err.to_string().contains("decimal comma"), "{err}");
+        let err = Table::parse("time_s;potential_v\n1;0;5\n").expect_err("ragged");
+        assert!(err.to_string().contains("`;`"), "{err}");
+        let err = Table::parse("\"time_s,potential_v\n1,2\n").expect_err("unclosed");
+        assert!(matches!(err, TableError::Unclosed { row: 0 }), "{err}");
+        let err = Table::parse("time_s,time_min\n1,2\n").expect_err("time twice");
+        assert!(err.to_string().contains("`time_s`"), "{err}");
+    }
+
+    #[test]
+    fn european_excel_quoted_headers_and_units_in_the_names_read_the_same_table() {
+        let plain = Table::parse("time_s,potential_v,volume_mm3\n60,-0.3,0.002\n120,-0.35,0.004\n")
+            .expect("valid");
+        let european =
+            "\"Time_min\";\"Potential_mV\";\"volume_um3\"\n1;-300;2000000\n2;-350;4000000\n";
+        let hours = r#"{"time_h": [0.016666666666666666, 0.03333333333333333],
+                        "potential_mv": [-300, -350], "volume_mm3": [0.002, 0.004]}"#;
+        for text in [european, hours] {
+            let table = Table::parse(text).expect("valid");
+            let mut names = table.names().to_vec();
+            names.sort();
+            assert_eq!(names, ["potential_v", "time_s", "volume_mm3"], "{text}");
+            for name in plain.names() {
+                let (got, want) = (
+                    table.column(name).expect("present"),
+                    plain.column(name).expect("present"),
+                );
+                for (g, w) in got.iter().zip(want) {
+                    // One multiplication by the factor: within one rounding of the value.
+                    assert!(
+                        (g - w).abs() <= f64::EPSILON * w.abs(),
+                        "{name}: {g} vs {w}"
+                    );
+                }
+            }
+        }
+        let decimal = Table::parse("time_s;potential_v\n1,5;-0,25\n").expect("valid");
+        assert_eq!(decimal.column("time_s").expect("present"), &[1.5]);
+        assert_eq!(decimal.column("potential_v").expect("present"), &[-0.25]);
+        let quoted = Table::parse("\"a, b\",c\n1,\"2\"\n").expect("valid");
+        assert_eq!(quoted.names(), ["a, b", "c"]);
+        assert_eq!(spellings("volume_mm3"), ["volume_mm3", "volume_um3"]);
     }
 }

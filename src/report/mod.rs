@@ -15,6 +15,6 @@ mod study;
 
 pub use compare::{Labelled, comparison_report};
 pub use figure::FigureError;
-pub use residuals::{Columns, Measured, Residual, interpolate, residuals, rms};
+pub use residuals::{Columns, Measured, Residual, residuals};
 pub use run::run_report;
 pub use study::study_report;

@@ -2,12 +2,12 @@
 //! warnings, the summary, the figures, the measurements against the model, the methods and
 //! the provenance.
 
-use crate::simulation::{SimulationResult, Summary};
+use crate::simulation::{SimulationResult, Summary, rms_residual};
 
 use super::figure::FigureError;
 use super::html::{Cell, escape, heading, number, page, paragraph, sized_table, table};
 use super::methods::{methods, report_provenance, run_provenance};
-use super::residuals::{Measured, Residual, column, residuals, rms};
+use super::residuals::{Measured, Residual, column, residuals};
 use super::run_figures::{measured_volumes, model_potential, model_volume, run_figures};
 use super::scene::{closest_preset, flatten, shown};
 
@@ -131,15 +131,15 @@ fn residual_table(caption: &str, at: &str, unit: &str, points: &[Residual]) -> S
         .iter()
         .map(|p| {
             vec![
-                Cell::number(p.at),
+                Cell::number(p.x),
                 Cell::number(p.measured),
                 Cell::optional(p.model),
                 Cell::optional(p.residual),
-                Cell::optional(p.z),
+                Cell::optional(p.z_score),
             ]
         })
         .collect();
-    let rms = rms(points).map_or_else(
+    let rms = rms_residual(points).map_or_else(
         || "no point within the run".to_owned(),
         |r| format!("{} {unit}", number(r)),
     );
@@ -204,7 +204,7 @@ fn measurements_section(result: &SimulationResult, measured: &Measured) -> Strin
             &residuals(&curve, &at),
         ));
     }
-    if let Some(table_of) = &measured.potential {
+    if let Some(table_of) = &measured.ocp {
         let at: Vec<(f64, f64, Option<f64>)> = column(table_of, "time_s")
             .iter()
             .zip(column(table_of, "potential_v"))

@@ -200,7 +200,7 @@ fn potential(result: &SimulationResult, measured: &Measured) -> LineFigure {
             Style::Reference,
         ));
     }
-    if let Some(table) = &measured.potential {
+    if let Some(table) = &measured.ocp {
         let points = column(table, "time_s")
             .iter()
             .zip(column(table, "potential_v"));

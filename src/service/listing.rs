@@ -42,6 +42,11 @@ pub(crate) enum Filter<T> {
     /// `?{name}=text`: items whose field contains the text, case-insensitively (compared
     /// in Unicode lowercase).
     Contains(&'static str, fn(&T) -> &str),
+    /// `?{name}=text`: items one of whose fields contains the text, case-insensitively.
+    AnyContains(&'static str, fn(&T) -> Vec<&str>),
+    /// `?{name}=a,b`: items one of whose fields equals one of the values,
+    /// case-insensitively.
+    AnyEqual(&'static str, fn(&T) -> Vec<&str>),
     /// `?{name}=a,b`: items whose field is one of the values, each one of `allowed`.
     OneOf(
         &'static str,
@@ -53,7 +58,10 @@ pub(crate) enum Filter<T> {
 impl<T> Filter<T> {
     fn name(&self) -> &'static str {
         match self {
-            Self::Contains(name, _) | Self::OneOf(name, ..) => name,
+            Self::Contains(name, _)
+            | Self::AnyContains(name, _)
+            | Self::AnyEqual(name, _)
+            | Self::OneOf(name, ..) => name,
         }
     }
 
@@ -64,6 +72,23 @@ impl<T> Filter<T> {
                 let wanted = wanted.to_lowercase();
                 Ok(Box::new(move |item| {
                     field(item).to_lowercase().contains(&wanted)
+                }))
+            }
+            Self::AnyContains(_, fields) => {
+                let wanted = wanted.to_lowercase();
+                Ok(Box::new(move |item| {
+                    fields(item)
+                        .iter()
+                        .any(|f| f.to_lowercase().contains(&wanted))
+                }))
+            }
+            Self::AnyEqual(_, fields) => {
+                let values: Vec<String> =
+                    wanted.split(',').map(|v| v.trim().to_lowercase()).collect();
+                Ok(Box::new(move |item| {
+                    fields(item)
+                        .iter()
+                        .any(|f| values.contains(&f.to_lowercase()))
                 }))
             }
             Self::OneOf(name, allowed, field) => {

@@ -277,12 +277,17 @@ pub async fn serve_on(
             shutdown: stopped.clone(),
         },
     };
+    // Absolute, so that whoever started the server from some folder sees where it writes.
+    let data_dir = std::fs::canonicalize(&args.data_dir)
+        .or_else(|_| std::path::absolute(&args.data_dir))
+        .unwrap_or_else(|_| args.data_dir.clone());
     tracing::info!(
         %addr,
         workers = args.workers.get(),
-        data_dir = %args.data_dir.display(),
+        data_dir = %data_dir.display(),
         max_connections = limits.max_connections,
-        "tribosim serving on http://{addr}"
+        "tribosim serving on http://{addr} with its data in {}",
+        data_dir.display()
     );
     let signal = tokio::spawn(async move {
         shutdown.await;
@@ -386,7 +391,13 @@ fn cors_layer(origins: &[String]) -> Result<Option<CorsLayer>, ServeError> {
     Ok(Some(
         CorsLayer::new()
             .allow_origin(origins)
-            .allow_methods([Method::GET, Method::POST, Method::PUT, Method::DELETE])
+            .allow_methods([
+                Method::GET,
+                Method::POST,
+                Method::PUT,
+                Method::PATCH,
+                Method::DELETE,
+            ])
             .allow_headers([
                 header::AUTHORIZATION,
                 header::CONTENT_TYPE,

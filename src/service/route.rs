@@ -15,6 +15,8 @@ pub enum Verb {
     Put,
     /// DELETE.
     Delete,
+    /// PATCH.
+    Patch,
 }
 
 impl Verb {
@@ -25,6 +27,7 @@ impl Verb {
             Self::Post => "post",
             Self::Put => "put",
             Self::Delete => "delete",
+            Self::Patch => "patch",
         }
     }
 
@@ -34,6 +37,7 @@ impl Verb {
             Self::Post => MethodFilter::POST,
             Self::Put => MethodFilter::PUT,
             Self::Delete => MethodFilter::DELETE,
+            Self::Patch => MethodFilter::PATCH,
         }
     }
 }

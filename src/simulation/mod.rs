@@ -18,6 +18,7 @@ mod provenance;
 mod result;
 mod roughness;
 mod run;
+mod score;
 mod setup;
 mod sizing;
 mod stepping;
@@ -46,6 +47,10 @@ pub use result::{
 };
 pub use roughness::{CELLS_PER_SHORT_WAVELENGTH, DiscSurface};
 pub use run::{run, run_setup, run_with};
+pub use score::{
+    Curve, PointScore, VolumeAbscissa, depth_curve, potential_curve, rms_residual, score_points,
+    volume_curve,
+};
 pub use setup::{COUPLING_SENSITIVITY, RunOptions, Setup};
 pub use sizing::{CELLS_PER_CONTACT_RADIUS, DOMAIN_PER_CONTACT_RADIUS};
 pub use stepping::MAX_STEP;

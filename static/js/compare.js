@@ -3,6 +3,7 @@
 // in its colour, its legend naming what differs between the scenes ("load 10 N").
 import { api, download } from "./api.js";
 import { $, reveal } from "./dom.js";
+import { setHash } from "./hash.js";
 import { COMPARE, COMPARE_PLOT, COMPARE_X, JOBS } from "./ids.js";
 import * as jobs from "./jobs.js";
 import { COLORS, joinTables, linePlot, lineSeries } from "./plots.js";
@@ -64,6 +65,7 @@ export async function open() {
   fillCycles(runs);
   $(COMPARE.panel).hidden = false;
   draw();
+  setHash("compare", jobs.tickedIds().join(","));
   reveal($(COMPARE.panel), true);
 }
 

@@ -229,7 +229,11 @@ async function submitRun(event) {
   if (!scene) return;
   $(FORM.submit).disabled = true;
   try {
-    const r = await postJson("/api/v1/jobs", scene);
+    // The lab's labels go in the query: the body is the scene alone.
+    const labels = new URLSearchParams();
+    if ($(FORM.sample).value.trim()) labels.set("sample", $(FORM.sample).value.trim());
+    if ($(FORM.tags).value.trim()) labels.set("tags", $(FORM.tags).value.trim());
+    const r = await postJson(`/api/v1/jobs${labels.size ? "?" + labels : ""}`, scene);
     if (!r.ok) {
       if (r.status === 429) r.body.error += " Try again in a moment.";
       showErrors(r.body || {}, fromJson);

@@ -11,6 +11,8 @@ export const FORM = Object.freeze({
   preset: "preset",
   presetDescription: "preset-description",
   name: "f-name",
+  sample: "f-sample",
+  tags: "f-tags",
   mainFields: "main-fields",
   surfaceFile: "surface-file",
   surfacePixel: "surface-pixel",
@@ -52,6 +54,9 @@ export const RUN = Object.freeze({
   downloadJson: "download-json",
   downloadCsv: "download-csv",
   downloadReport: "download-report",
+  downloadCompact: "download-compact",
+  downloadProfiles: "download-profiles",
+  downloadPressure: "download-pressure",
   editAgain: "edit-again",
   showTable3: "show-table3",
   table3Note: "table3-note",
@@ -61,6 +66,16 @@ export const RUN = Object.freeze({
   paramsJson: "params-json",
   models: "run-models",
   summary: "run-summary",
+});
+
+/** The run panel's labels form. */
+export const LABELS = Object.freeze({
+  form: "labels-form",
+  sample: "labels-sample",
+  tags: "labels-tags",
+  note: "labels-note",
+  save: "labels-save",
+  status: "labels-status",
 });
 
 /** The run panel's figures. */

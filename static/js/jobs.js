@@ -32,6 +32,12 @@ export const onDeleted = deleted.on;
 /** Listens for the list drawn anew: (jobs). */
 export const onListed = listed.on;
 
+/** Shows job `id` in the run panel: (id, { scroll, focus }). */
+export const view = (id, how = {}) => viewed.emit(id, how);
+
+/** The newest job listed, or null. */
+export const newest = () => jobs[0] || null;
+
 /** The job of this id, as last listed. */
 export const find = (id) => jobs.find((j) => j.id === id);
 
@@ -53,7 +59,7 @@ export async function refresh() {
   try {
     const query = new URLSearchParams({ limit: String(wanted) });
     if ($(JOBS.status).value) query.set("status", $(JOBS.status).value);
-    if ($(JOBS.name).value.trim()) query.set("name", $(JOBS.name).value.trim());
+    if ($(JOBS.name).value.trim()) query.set("q", $(JOBS.name).value.trim());
     const r = await api("/api/v1/jobs?" + query);
     if (r.ok) {
       jobs = r.body;
@@ -149,7 +155,8 @@ function row(job) {
       <td class="actions"></td>`;
   comparePick(tr, job);
   tr.querySelector(".name").textContent = job.name;
-  tr.querySelector("td .muted").textContent = created;
+  const labels = [job.sample, ...(job.tags || []).map((t) => `#${t}`)].filter(Boolean);
+  tr.querySelector("td .muted").textContent = labels.length ? `${created} · ${labels.join(" ")}` : created;
   tr.querySelector(".status").textContent = job.status;
   tr.querySelector(".reason").textContent = jobReason(job);
   tr.querySelector(".progress .muted").textContent = progressText(job);

@@ -4,8 +4,8 @@
 // The modules, each importing only modules listed above it, so that no two import each
 // other (in brackets, the page's own modules each one imports):
 //   ids          the element ids, for the modules and the e2e test
-//   dom, words, svg, sse, topic   helpers: the document, values in words, SVG text,
-//                server-sent events, listeners
+//   dom, words, svg, sse, topic, hash   helpers: the document, values in words, SVG
+//                text, server-sent events, listeners, the view in the address's hash
 //   uplot        the vendored uPlot's global, as an import
 //   api          the API, with the token (dom, ids)
 //   plots        the uPlot charts by box id, and the SVG figures (uplot, dom)
@@ -13,12 +13,15 @@
 //   export       each figure as SVG and PNG (plots, svg)
 //   pressure     the run's pressure maps (plots, svg)
 //   measurements the tables attached to the run shown (api, topic)
+//   scores       the attached tables scored against the run shown (api)
 //   jobs         the job list (api, topic)
+//   labels       the sample, tags and note of the run shown (api)
 //   run-figures  the run's line figures (plots, measurements, scenes)
-//   run          the run panel (jobs, measurements, pressure, run-figures, scenes, sse, topic)
+//   run          the run panel (jobs, labels, measurements, scores, pressure, run-figures,
+//                scenes, sse, topic, hash)
 //   form         the new-run form (run, scenes)
-//   compare      the comparison of runs (jobs, plots)
-//   studies      the studies (form, jobs, compare, plots)
+//   compare      the comparison of runs (jobs, plots, hash)
+//   studies      the studies (form, jobs, compare, plots, hash)
 //   calibration  the fits (form, run, plots)
 //   main         this file
 // A module tells the modules above it what happened through a topic they listen to (jobs:
@@ -28,6 +31,7 @@ import * as compare from "./compare.js";
 import { $ } from "./dom.js";
 import { addExportButtons } from "./export.js";
 import * as form from "./form.js";
+import { readHash } from "./hash.js";
 import { TOKEN } from "./ids.js";
 import * as jobs from "./jobs.js";
 import * as measurements from "./measurements.js";
@@ -52,6 +56,23 @@ function followResize() {
   });
 }
 
+// Opens the view the address asks for (scrolled into place), else the newest run (where it
+// is, so the page does not jump); true when something was opened.
+async function openAsked() {
+  const asked = readHash();
+  if (asked && asked.kind === "run") { jobs.view(asked.value, { scroll: true }); return true; }
+  if (asked && asked.kind === "compare") {
+    jobs.tick(asked.value.split(","));
+    await jobs.refresh();
+    await compare.open();
+    return true;
+  }
+  if (asked && asked.kind === "study") { await studies.select(asked.value, { scroll: true }); return true; }
+  const newest = jobs.newest();
+  if (newest) jobs.view(newest.id);
+  return Boolean(newest);
+}
+
 async function start() {
   form.init();
   jobs.init();
@@ -64,8 +85,9 @@ async function start() {
   $(TOKEN.form).addEventListener("submit", useToken);
   followResize();
   await form.loadPresets();
-  jobs.refresh();
-  studies.refresh();
+  await Promise.all([jobs.refresh(), studies.refresh()]);
+  await openAsked();
+  window.addEventListener("hashchange", openAsked);
 }
 
 start();

@@ -6,7 +6,7 @@ import { MEASURE } from "./ids.js";
 import { topic } from "./topic.js";
 import { readable } from "./words.js";
 
-const NAMES = { wear_volume: "wear volume", profile: "groove profile", potential: "potential (OCP)" };
+const NAMES = { wear_volume: "wear volume", profile: "groove profile", ocp: "open-circuit potential (OCP)" };
 
 let jobId = null;
 let tables = null;

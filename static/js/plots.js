@@ -83,14 +83,30 @@ function shade(band) {
   };
 }
 
+/**
+ * An axis's tick labels, each with the digits its step needs: uPlot's own keep at most
+ * three decimals, so ticks 0.0001 apart (a rough run's WAC volume) all read "0". Steps
+ * under 0.001 are written as powers of ten, with as many digits as tell them apart.
+ */
+export function tickLabels(_u, splits, _axis, _space, incr) {
+  const step = Math.abs(incr) || 1;
+  const biggest = Math.max(0, ...splits.map((v) => Math.abs(v || 0)));
+  if (step >= 1e-3 && biggest < 1e6) {
+    const decimals = Math.max(0, Math.ceil(-Math.log10(step) - 1e-9));
+    return splits.map((v) => (v == null ? "" : v.toFixed(decimals)));
+  }
+  const digits = Math.max(0, Math.floor(Math.log10(biggest || step)) - Math.floor(Math.log10(step) + 1e-9));
+  return splits.map((v) => (v == null ? "" : v === 0 ? "0" : v.toExponential(digits)));
+}
+
 function chartOptions(plotId, series, xLabel, yLabel, extra) {
   return {
     width: chartWidth(plotId),
     height: HEIGHT,
     scales: { x: { time: false }, ...(extra.scales || {}) },
     axes: [
-      { label: xLabel, stroke: "#1b1f24", grid: { stroke: "#eee" }, incrs: ROUND_STEPS, space: 45 },
-      { label: yLabel, stroke: "#1b1f24", grid: { stroke: "#eee" }, size: 60, incrs: ROUND_STEPS, space: 20 },
+      { label: xLabel, stroke: "#1b1f24", grid: { stroke: "#eee" }, incrs: ROUND_STEPS, space: 45, values: tickLabels },
+      { label: yLabel, stroke: "#1b1f24", grid: { stroke: "#eee" }, size: 60, incrs: ROUND_STEPS, space: 20, values: tickLabels },
     ],
     series: [{ label: xLabel, value: legendValue }, ...series.map((s) => ({ value: legendValue, ...s }))],
     legend: { live: true },

@@ -19,25 +19,39 @@ const TABLE3_CONDITIONS = ["test.load_n", "test.speed_rpm", "test.track_radius_m
 const CYCLES_LABEL = "cycles (passes of the ball)";
 const WAITING = "Shown after the run ends.";
 
-// Table 3 belongs beside a run whose scene has the conditions it was measured under.
-function table3Applies(scene) {
+// The conditions in words; the ball and the disc are named by the part that differs.
+const CONDITION_WORDS = { "test.load_n": "load", "test.speed_rpm": "speed", "test.track_radius_mm": "track radius" };
+
+// What of Table 3's conditions the scene does not share, in words ([] when it shares all);
+// null when the preset or the scene is not known.
+function table3Differences(scene) {
   const preset = presetNamed(TABLE3_PRESET);
-  if (!preset || !scene) return false;
+  if (!preset || !scene) return null;
   const same = (path) => JSON.stringify(getPath(scene, path)) === JSON.stringify(getPath(preset.scene, path));
-  return TABLE3_CONDITIONS.every(same);
+  const words = [];
+  for (const path of TABLE3_CONDITIONS.filter((p) => !same(p))) {
+    if (CONDITION_WORDS[path]) { words.push(CONDITION_WORDS[path]); continue; }
+    const keys = new Set([...Object.keys(getPath(scene, path) || {}), ...Object.keys(getPath(preset.scene, path) || {})]);
+    for (const key of [...keys].filter((k) => !same(`${path}.${k}`))) words.push(`${path}'s ${key.replace(/_/g, " ")}`);
+  }
+  return words;
 }
+
+// "a", "a and b", "a, b and c".
+const listed = (words) => (words.length < 2 ? words.join("") : `${words.slice(0, -1).join(", ")} and ${words[words.length - 1]}`);
 
 /**
  * Enables the Table 3 checkbox only for a run whose scene matches, and says why when it
  * does not. True when the volume figure is drawn already (and should be drawn again).
  */
 export function updateTable3Choice(scene) {
-  const applies = table3Applies(scene);
+  const differences = table3Differences(scene);
+  const applies = Boolean(differences) && !differences.length;
   const box = $(RUN.showTable3);
   if (box.disabled === applies) box.checked = applies;
   box.disabled = !applies;
   $(RUN.table3Note).textContent = applies ? ""
-    : scene ? "Table 3 is not shown: this run's load, speed, track radius or materials differ from the measured test's."
+    : differences ? `Table 3 is not shown: this run's ${listed(differences)} ${differences.length > 1 ? "differ" : "differs"} from the measured test's.`
       : "Table 3 is shown once the run's scene is known and matches the measured test.";
   return Boolean(chart(RUN_PLOT.volume));
 }
@@ -97,7 +111,7 @@ function drawPotential(cycles, scene, trace) {
     series.push({ label: "E_corr, free corrosion potential", stroke: "#444", width: 1.5, dash: [6, 4], spanGaps: true, points: { show: false } });
   }
   const parts = [cols];
-  const attached = attachedPoints("potential", (tb, i) => tb.time_s[i], (tb, i) => tb.potential_v[i]);
+  const attached = attachedPoints("ocp", (tb, i) => tb.time_s[i], (tb, i) => tb.potential_v[i]);
   box.dataset.attached = String(attached.length);
   if (attached.length) {
     parts.push([attached.map((p) => p[0]), attached.map((p) => p[1])]);

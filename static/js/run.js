@@ -4,8 +4,11 @@
 import { api, authHeaders, download } from "./api.js";
 import { $, reveal, sleep } from "./dom.js";
 import { RUN } from "./ids.js";
+import { setHash } from "./hash.js";
 import * as jobs from "./jobs.js";
+import * as labels from "./labels.js";
 import * as measurements from "./measurements.js";
+import * as scores from "./scores.js";
 import { drawPressure, resetPressure } from "./pressure.js";
 import { drawProfiles, drawSeries, resetProfiles, updateTable3Choice } from "./run-figures.js";
 import { closestPreset, remember, submittedScene } from "./scenes.js";
@@ -51,8 +54,9 @@ function select(id, how = {}) {
   result = null;
   scene = submittedScene(id);
   measurements.forget();
+  scores.clear();
   $(RUN.panel).hidden = false;
-  for (const b of [RUN.downloadJson, RUN.downloadCsv, RUN.downloadReport, RUN.editAgain]) $(b).disabled = true;
+  for (const b of [...DOWNLOADS.map((d) => d[0]), RUN.editAgain]) $(b).disabled = true;
   for (const d of [RUN.models, RUN.params, RUN.summary, RUN.warnings]) $(d).hidden = true;
   $(RUN.partial).textContent = "";
   jobs.highlight(id);
@@ -64,6 +68,8 @@ function select(id, how = {}) {
   resetPressure();
   redrawSeries();
   if (how.scroll) reveal($(RUN.panel), how.focus);
+  setHash("run", id);
+  labels.load(id);
   loadScene(id);
   measurements.load(id);
   followEvents(id);
@@ -176,9 +182,7 @@ async function loadResult(id) {
   cycles = r.body.cycles;
   if (r.body.scene) scene = r.body.scene;
   $(RUN.partial).textContent = partialNote(r.body);
-  $(RUN.downloadJson).disabled = false;
-  $(RUN.downloadCsv).disabled = false;
-  $(RUN.downloadReport).disabled = false;
+  for (const [button] of DOWNLOADS) $(button).disabled = false;
   renderWarnings(r.body.warnings || []);
   renderModels(r.body.models || []);
   renderSummary(r.body);
@@ -187,6 +191,7 @@ async function loadResult(id) {
   redrawSeries();
   drawProfiles(result);
   drawPressure(result);
+  scores.show(id, () => selected === id);
 }
 
 // The scene as run, from the service (any status), else from the result or the form.
@@ -246,18 +251,24 @@ function renderSummary(res) {
   $(RUN.summary).hidden = !rows.length;
 }
 
-// What each download asks the job for.
-const DOWNLOADS = { json: "result", csv: "result.csv", html: "report" };
-
-const downloadOf = (kind) => download(`/api/v1/jobs/${selected}/${DOWNLOADS[kind]}`, `tribosim-${selected}.${kind}`);
+// The run's downloads: the button's id, the route under the job, the name without a server's.
+const DOWNLOADS = [
+  [RUN.downloadJson, "result", "result.json"],
+  [RUN.downloadCompact, "result?compact=true", "result.compact.json"],
+  [RUN.downloadCsv, "result.csv", "result.csv"],
+  [RUN.downloadProfiles, "profiles.csv", "profiles.csv"],
+  [RUN.downloadPressure, "pressure.csv", "pressure.csv"],
+  [RUN.downloadReport, "report", "report.html"],
+];
 
 /** Wires the panel's buttons, and follows the job list and the attached measurements. */
 export function init() {
-  $(RUN.downloadJson).addEventListener("click", () => downloadOf("json"));
-  $(RUN.downloadCsv).addEventListener("click", () => downloadOf("csv"));
-  $(RUN.downloadReport).addEventListener("click", () => downloadOf("html"));
+  for (const [button, route, name] of DOWNLOADS) {
+    $(button).addEventListener("click", () => download(`/api/v1/jobs/${selected}/${route}`, `tribosim-${selected}.${name}`));
+  }
   $(RUN.editAgain).addEventListener("click", () => editRequested.emit(scene));
   $(RUN.showTable3).addEventListener("change", redrawSeries);
+  labels.init(jobs.refresh);
   jobs.onView(select);
   jobs.onDeleted((id) => { if (id === selected) close(); });
   jobs.onListed(() => {
@@ -269,5 +280,7 @@ export function init() {
       redrawSeries();
       if (result) drawProfiles(result);
     }
+    const id = selected;
+    if (result && id) scores.show(id, () => selected === id);
   });
 }

@@ -5,6 +5,7 @@ import { api, download, errorText, postJson } from "./api.js";
 import { $, button, reveal } from "./dom.js";
 import * as compare from "./compare.js";
 import * as form from "./form.js";
+import { setHash } from "./hash.js";
 import { STUDY, STUDY_PLOT } from "./ids.js";
 import * as jobs from "./jobs.js";
 import { COLORS, joinTables, linePlot } from "./plots.js";
@@ -109,9 +110,11 @@ function renderList() {
   $(STUDY.table).querySelector("tbody").replaceChildren(...studies.map(listRow));
 }
 
-async function select(id, how = {}) {
+/** Shows study `id` (one of those listed): (id, { scroll, focus }). */
+export async function select(id, how = {}) {
   study = studies.find((s) => s.id === id) || null;
   if (!study) return;
+  setHash("study", id);
   picks = new Set();
   $(STUDY.panel).hidden = false;
   const numeric = study.axes.filter((a) => a.values.every((v) => typeof v === "number"));

@@ -36,8 +36,10 @@ export const sel = (id) => `#${id}`;
  * again in the page gives the instance the page runs, so the test reads the charts and the
  * records the page holds, through the functions each module exports.
  */
-export async function openPage(page) {
-  await page.goto(base);
+export async function openPage(page, hash = "") {
+  // From another document, so that an address differing only in its hash loads the page anew.
+  if (hash) await page.goto("about:blank");
+  await page.goto(base + hash);
   await page.waitForSelector("body[data-ready=true]");
   await page.evaluate(async () => {
     const modules = {};

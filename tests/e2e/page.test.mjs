@@ -21,6 +21,7 @@ import { report } from "./steps/report.mjs";
 import { rough } from "./steps/rough.mjs";
 import { run } from "./steps/run.mjs";
 import { study } from "./steps/study.mjs";
+import { views } from "./steps/views.mjs";
 
 const profile = fs.mkdtempSync(path.join(os.tmpdir(), "tribosim-chromium-"));
 // A fresh, empty profile directory (Playwright's way of passing --user-data-dir).
@@ -41,9 +42,11 @@ try {
   page.setDefaultTimeout(LONG);
   const errors = [];
   page.on("pageerror", (e) => errors.push(String(e)));
+  // Nothing the page asks for is missing (a browser asks for /favicon.ico without an icon).
+  page.on("response", (r) => { if (r.status() === 404 && !r.url().includes("/api/")) errors.push(`404 ${r.url()}`); });
   // What one step finds and a later one uses (the runs' ids, the run's length, ...).
   const found = {};
-  for (const scenario of [form, run, measurements, report, compare, access, study, calibration, listing, cancel, rough, ocp]) {
+  for (const scenario of [form, run, measurements, report, compare, access, study, calibration, listing, cancel, rough, ocp, views]) {
     await scenario(page, found);
   }
   assert.deepEqual(errors, [], "errors in the page");

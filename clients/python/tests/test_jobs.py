@@ -76,6 +76,17 @@ def test_result_csv_is_the_cycles_table(small_job: tribosim.Job) -> None:
     assert "cycles_stepped_over" in rows[0]
 
 
+def test_profiles_and_pressure_as_csv_and_a_compact_result(small_job: tribosim.Job) -> None:
+    result = small_job.result()
+    profiles = list(csv.DictReader(io.StringIO(small_job.profiles_csv())))
+    assert len(profiles) == len(result.profiles)
+    pressure = list(csv.DictReader(io.StringIO(small_job.pressure_csv())))
+    assert len(pressure) == sum(m.pressure_mpa.size for m in result.pressure_maps)
+    assert float(pressure[0]["pressure_mpa"]) == result.pressure_maps[0].pressure_mpa[0][0]
+    compact = small_job.result(compact=True)
+    assert compact.pressure_maps == [] and len(compact.profiles) == len(profiles)
+
+
 def test_scene_as_run(small_job: tribosim.Job) -> None:
     scene = small_job.scene()
     assert scene["name"] == "pytest small"
@@ -256,3 +267,18 @@ def test_report_of_a_run_and_of_two(
     assert "pytest small" in compared and "pytest other" in compared
     with pytest.raises(tribosim.ApiError):
         client.jobs.report([small_job])
+
+
+def test_labels_at_submit_changed_after_and_searched(client: tribosim.Client) -> None:
+    job = client.jobs.submit(SMALL, name="pytest labels", sample="S-7", tags=["paper", "5N"])
+    assert (job.info.sample, job.info.note, job.info.tags) == ("S-7", None, ["paper", "5N"])
+    info = job.label(note="re-polished", tags=["wet"])
+    assert (info.sample, info.note, info.tags) == ("S-7", "re-polished", ["wet"])
+    assert job.label(sample=None).sample is None
+    assert [j.id for j in client.jobs.list(q="RE-POLISHED")] == [job.id]
+    assert [j.id for j in client.jobs.list(tag="wet")] == [job.id]
+    with pytest.raises(tribosim.ValidationError) as refused:
+        job.label(note="x" * 2001)
+    assert refused.value.fields[0].path == "note"
+    job.wait(progress=False)
+    job.delete()

@@ -20,7 +20,7 @@ def test_put_get_delete(small_job: tribosim.Job, tmp_path: Path) -> None:
     pd.testing.assert_frame_equal(
         tables["wear_volume"][list(wear.columns)], wear, check_dtype=False
     )
-    assert tables["profile"] is None and tables["potential"] is None
+    assert tables["profile"] is None and tables["ocp"] is None
 
     small_job.measurements.put("profile", "y_mm,depth_um\n-0.1,0\n0,0.2\n0.1,0\n")
     potential = tmp_path / "potential.csv"
@@ -29,7 +29,7 @@ def test_put_get_delete(small_job: tribosim.Job, tmp_path: Path) -> None:
 
     tables = small_job.measurements.get()
     assert tables["profile"] is not None and tables["profile"]["depth_um"].tolist() == [0, 0.2, 0]
-    assert tables["potential"] is not None and tables["potential"]["potential_v"].tolist() == [
+    assert tables["ocp"] is not None and tables["ocp"]["potential_v"].tolist() == [
         -0.30,
         -0.35,
     ]
@@ -57,7 +57,7 @@ def test_columns_and_rows(small_job: tribosim.Job) -> None:
 
 def test_a_bad_table_names_its_column(small_job: tribosim.Job) -> None:
     with pytest.raises(tribosim.ValidationError) as refused:
-        small_job.measurements.put("potential", "time_s,potential_v\n1,-0.3\n0,-0.2\n")
+        small_job.measurements.put("ocp", "time_s,potential_v\n1,-0.3\n0,-0.2\n")
     assert refused.value.fields[0].path == "time_s"
     assert "row 2" in refused.value.fields[0].message
 
@@ -71,3 +71,18 @@ def test_an_unknown_kind_is_refused(small_job: tribosim.Job) -> None:
 def test_a_file_name_is_not_a_table(small_job: tribosim.Job) -> None:
     with pytest.raises(TypeError, match="pathlib.Path"):
         small_job.measurements.put("wear_volume", str(TABLE3_WEAR))
+
+
+def test_scores_against_the_finished_run(small_job: tribosim.Job) -> None:
+    small_job.measurements.put("wear_volume", "cycles;volume_um3;spread_um3\n1;1000;500\n")
+    scores = small_job.measurements.scores()
+    wear = scores["wear_volume"]
+    assert wear["x_column"] == "cycles" and wear["column"] == "volume_mm3"
+    point = wear["points"][0]
+    assert point["measured"] == pytest.approx(1e-6)
+    assert point["residual"] == pytest.approx(point["measured"] - point["model"])
+    assert point["z_score"] == pytest.approx(point["residual"] / 5e-7)
+    assert scores["profile"] is None
+    csv = small_job.measurements.scores_csv().splitlines()
+    assert csv[0].startswith("kind,x_column,x,column,measured,model,residual,z_score")
+    assert csv[1].startswith("wear_volume,cycles,1,volume_mm3,")

@@ -43,6 +43,19 @@ def test_upload_a_file(client: tribosim.Client, tmp_path: Path) -> None:
     client.surfaces.delete(surface.id)
 
 
+def test_a_file_in_nm(client: tribosim.Client, tmp_path: Path) -> None:
+    h = heights(32, 40)
+    in_m, in_nm = tmp_path / "m.txt", tmp_path / "nm.txt"
+    np.savetxt(in_m, h)
+    np.savetxt(in_nm, h * 1e9)
+    from_m = client.surfaces.upload_file(in_m, pixel_um=1.0)
+    from_nm = client.surfaces.upload_file(in_nm, pixel_um=1.0, height_unit="nm")
+    # savetxt's 18 digits, then one multiplication each way: the same rms to 1e-12.
+    assert from_nm.statistics["rms_height_um"] == pytest.approx(
+        from_m.statistics["rms_height_um"], rel=1e-12
+    )
+
+
 def test_a_map_that_cannot_be_read(client: tribosim.Client, tmp_path: Path) -> None:
     path = tmp_path / "disc.txt"
     np.savetxt(path, heights(32, 40))

@@ -43,6 +43,21 @@ pub enum DeleteError {
     Storage(io::Error),
 }
 
+/// Why a job's labels were not changed.
+#[derive(Debug)]
+pub enum RelabelError {
+    /// The job is unknown, or damaged.
+    Job(JobError),
+    /// The record could not be written; the labels are as they were.
+    Storage(io::Error),
+}
+
+impl From<JobError> for RelabelError {
+    fn from(error: JobError) -> Self {
+        Self::Job(error)
+    }
+}
+
 /// Why a job's record, scene, result or files could not be given.
 #[derive(Debug)]
 pub enum JobError {

@@ -1,10 +1,12 @@
-//! The per-cycle table of a result as CSV, for spreadsheet users.
+//! A result's tables as CSV, for spreadsheet users: the cycles, the profiles, the pressure
+//! maps; and the result without its pressure maps, for big grids.
 
 use serde::Deserialize;
+use serde_json::Value;
 
 use time::format_description::well_known::Rfc3339;
 
-use crate::simulation::{CycleRecord, Provenance};
+use crate::simulation::{CycleRecord, PressureMap, Profile, Provenance};
 
 /// The CSV columns: the cycle record's with its names (units in the names), the later
 /// corrosion fields and the loaded depth after the first three so that earlier columns keep
@@ -91,6 +93,63 @@ pub fn cycles_csv(result_json: &[u8]) -> Result<String, serde_json::Error> {
     Ok(csv)
 }
 
+/// Only the profiles of a result.
+#[derive(Deserialize)]
+struct Profiles {
+    profiles: Vec<Profile>,
+}
+
+/// Only the pressure maps of a result.
+#[derive(Deserialize)]
+struct PressureMaps {
+    pressure_maps: Vec<PressureMap>,
+}
+
+/// The `profiles` of a result JSON as CSV in long form, one row per point:
+/// `cycle,y_um,depth_um`.
+pub fn profiles_csv(result_json: &[u8]) -> Result<String, serde_json::Error> {
+    let Profiles { profiles } = serde_json::from_slice(result_json)?;
+    let mut csv = crate::csv::line(&["cycle", "y_um", "depth_um"], "\r\n");
+    for p in &profiles {
+        for (y, depth) in p.y_um.iter().zip(&p.depth_um) {
+            let cells = [p.cycle.to_string(), y.to_string(), depth.to_string()];
+            csv.push_str(&crate::csv::line(&cells, "\r\n"));
+        }
+    }
+    Ok(csv)
+}
+
+/// The `pressure_maps` of a result JSON as CSV in long form, one row per cell:
+/// `cycle,x_um,y_um,pressure_mpa`.
+pub fn pressure_csv(result_json: &[u8]) -> Result<String, serde_json::Error> {
+    let PressureMaps { pressure_maps } = serde_json::from_slice(result_json)?;
+    let mut csv = crate::csv::line(&["cycle", "x_um", "y_um", "pressure_mpa"], "\r\n");
+    for map in &pressure_maps {
+        for (y, row) in map.y_um.iter().zip(&map.pressure_mpa) {
+            for (x, p) in map.x_um.iter().zip(row) {
+                let cells = [
+                    map.cycle.to_string(),
+                    x.to_string(),
+                    y.to_string(),
+                    p.to_string(),
+                ];
+                csv.push_str(&crate::csv::line(&cells, "\r\n"));
+            }
+        }
+    }
+    Ok(csv)
+}
+
+/// A result JSON with `pressure_maps` empty: the one part of a result that grows with the
+/// square of the grid (`pressure.csv` gives them apart).
+pub fn compact(result_json: &[u8]) -> Result<Vec<u8>, serde_json::Error> {
+    let mut result: Value = serde_json::from_slice(result_json)?;
+    if let Some(maps) = result.get_mut("pressure_maps") {
+        *maps = Value::Array(Vec::new());
+    }
+    serde_json::to_vec(&result)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -140,5 +199,28 @@ mod tests {
             "{}",
             lines[1]
         );
+    }
+
+    #[test]
+    fn profiles_and_maps_are_one_row_per_point_and_compact_drops_the_maps() {
+        let json = br#"{"complete": true, "cycles": [],
+            "profiles": [{"cycle": 1, "y_um": [-1.5, 0.0], "depth_um": [0.0, 0.25]},
+                         {"cycle": 3, "y_um": [0.0], "depth_um": [0.5]}],
+            "pressure_maps": [{"cycle": 3, "x_um": [-1.0, 1.0], "y_um": [0.0],
+                               "pressure_mpa": [[900.0, -0.0]]}]}"#;
+        let profiles = profiles_csv(json).expect("valid");
+        assert_eq!(
+            profiles,
+            "cycle,y_um,depth_um\r\n1,-1.5,0\r\n1,0,0.25\r\n3,0,0.5\r\n"
+        );
+        let pressure = pressure_csv(json).expect("valid");
+        assert_eq!(
+            pressure,
+            "cycle,x_um,y_um,pressure_mpa\r\n3,-1,0,900\r\n3,1,0,-0\r\n"
+        );
+        let compact: Value = serde_json::from_slice(&compact(json).expect("valid")).expect("JSON");
+        assert_eq!(compact["pressure_maps"], serde_json::json!([]));
+        assert_eq!(compact["profiles"][1]["cycle"], 3);
+        assert_eq!(compact["complete"], true);
     }
 }

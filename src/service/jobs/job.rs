@@ -71,6 +71,15 @@ pub struct JobRecord {
     pub id: Uuid,
     /// The scene's name.
     pub name: String,
+    /// The sample the run stands for (a lab's specimen id); null when not given.
+    #[serde(default)]
+    pub sample: Option<String>,
+    /// A note on the run; null when not given.
+    #[serde(default)]
+    pub note: Option<String>,
+    /// Tags to find the run by; empty when not given.
+    #[serde(default)]
+    pub tags: Vec<String>,
     /// Where the job is in its life.
     pub status: JobStatus,
     /// The last solved cycle (the total once succeeded).
@@ -113,6 +122,16 @@ impl Listed for JobRecord {
 pub(super) const FILTERS: &[Filter<JobRecord>] = &[
     Filter::OneOf("status", JobStatus::NAMES, |j| j.status.name()),
     Filter::Contains("name", |j| &j.name),
+    Filter::AnyContains("q", |j| {
+        let labels = [j.sample.as_deref(), j.note.as_deref()]
+            .into_iter()
+            .flatten();
+        std::iter::once(j.name.as_str())
+            .chain(labels)
+            .chain(j.tags.iter().map(String::as_str))
+            .collect()
+    }),
+    Filter::AnyEqual("tag", |j| j.tags.iter().map(String::as_str).collect()),
 ];
 
 impl JobRecord {
@@ -121,6 +140,9 @@ impl JobRecord {
         Self {
             id: Uuid::new_v4(),
             name: scene.name.clone(),
+            sample: None,
+            note: None,
+            tags: Vec::new(),
             status: JobStatus::Queued,
             cycles_done: 0,
             cycles_total: scene.test.cycles,

@@ -10,6 +10,7 @@ mod error;
 mod events;
 mod export;
 mod job;
+mod labels;
 mod queue;
 mod registry;
 mod results;

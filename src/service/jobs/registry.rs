@@ -15,8 +15,9 @@ use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use time::OffsetDateTime;
 use uuid::Uuid;
 
-use super::error::{DeleteError, JobError, SubmitError};
+use super::error::{DeleteError, JobError, RelabelError, SubmitError};
 use super::job::{Job, JobRecord, JobStatus};
+use super::labels::LabelChange;
 use super::queue::Queue;
 use super::store::{Store, StoredJob};
 use crate::scene::Scene;
@@ -201,7 +202,7 @@ impl Jobs {
 
     /// Accepts a validated scene that the service can run (its surface, if it names one, is
     /// stored): makes it durable, then queues it. Blocking (file writes).
-    pub fn submit(&self, scene: Scene) -> Result<JobRecord, SubmitError> {
+    pub fn submit(&self, scene: Scene, labels: LabelChange) -> Result<JobRecord, SubmitError> {
         // Only a scene naming a stored surface waits for (and holds off) its deletion.
         let _hold = surface_id(&scene).map(|_| self.surfaces.hold());
         servable(&scene, &self.surfaces).map_err(SubmitError::Unservable)?;
@@ -212,7 +213,8 @@ impl Jobs {
                 retry_after_s: self.retry_after_s(),
             });
         }
-        let record = JobRecord::queued(&scene);
+        let mut record = JobRecord::queued(&scene);
+        labels.apply(&mut record);
         if let Err(e) = self.store.create(&record, &scene) {
             self.queue.release();
             return Err(if is_disk_full(&e) {
@@ -389,6 +391,31 @@ impl Jobs {
             .map_err(DeleteError::Storage)
     }
 
+    /// Changes job `id`'s labels, on disk (its `status.json`, replaced atomically under the
+    /// job's disk lock, so that the worker's writes of the record keep them) and then in
+    /// memory; the record as shown. Blocking (a file write).
+    pub fn relabel(&self, id: Uuid, change: LabelChange) -> Result<JobRecord, RelabelError> {
+        let job = self.find(id)?;
+        let _disk = job.disk();
+        if !self.get(id).is_some_and(|known| Arc::ptr_eq(&known, &job)) {
+            return Err(JobError::Unknown(id).into());
+        }
+        let mut record = job.record();
+        if record.status == JobStatus::Damaged {
+            return Err(JobError::Damaged(record.error.unwrap_or_default()).into());
+        }
+        change.apply(&mut record);
+        self.store
+            .write_status(&record)
+            .map_err(RelabelError::Storage)?;
+        job.update(|state| {
+            state.record.sample = record.sample.clone();
+            state.record.note = record.note.clone();
+            state.record.tags = record.tags.clone();
+        });
+        Ok(self.shown(&job))
+    }
+
     /// Runs `act` on the directory of job `id` under the job's disk lock, so that a DELETE of
     /// the job cannot remove the directory meanwhile. Refused for an unknown job (or one
     /// deleted first) and for a damaged one: nothing is attached to a job that cannot run.
@@ -459,6 +486,9 @@ fn placeholder(id: Uuid, created_at: OffsetDateTime) -> JobRecord {
     JobRecord {
         id,
         name: String::new(),
+        sample: None,
+        note: None,
+        tags: Vec::new(),
         status: JobStatus::Damaged,
         cycles_done: 0,
         cycles_total: 0,

@@ -79,6 +79,24 @@ impl Jobs {
         export::cycles_csv(&self.result_json(id)?).map_err(JobError::Export)
     }
 
+    /// The profiles of a finished job's result as CSV ([`export::profiles_csv`]). Blocking
+    /// (files).
+    pub fn profiles_csv(&self, id: Uuid) -> Result<String, JobError> {
+        export::profiles_csv(&self.result_json(id)?).map_err(JobError::Export)
+    }
+
+    /// The pressure maps of a finished job's result as CSV ([`export::pressure_csv`]).
+    /// Blocking (files).
+    pub fn pressure_csv(&self, id: Uuid) -> Result<String, JobError> {
+        export::pressure_csv(&self.result_json(id)?).map_err(JobError::Export)
+    }
+
+    /// A finished job's result without its pressure maps ([`export::compact`]). Blocking
+    /// (files).
+    pub fn compact_result_json(&self, id: Uuid) -> Result<Vec<u8>, JobError> {
+        export::compact(&self.result_json(id)?).map_err(JobError::Export)
+    }
+
     /// The partial result of a failed or cancelled `job`, as JSON. Blocking (files).
     fn partial_result(&self, job: &Job) -> Result<Vec<u8>, PartialError> {
         let record = job.record();

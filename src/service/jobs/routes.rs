@@ -5,22 +5,25 @@
 use std::sync::Arc;
 
 use axum::Json;
-use axum::extract::{FromRef, State};
+use axum::extract::rejection::QueryRejection;
+use axum::extract::{FromRef, Query, State};
 use axum::http::{HeaderMap, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::on;
+use serde::Deserialize;
 use serde_json::Value;
 
-use super::error::{DeleteError, JobError, PartialError, SubmitError};
+use super::error::{DeleteError, JobError, PartialError, RelabelError, SubmitError};
 use super::events::{self, Streams};
 use super::job::{FILTERS, JobRecord};
+use super::labels::LabelChange;
 use super::registry::{Deletion, Jobs};
 use crate::scene::{FieldError, Scene, SceneErrors};
 use crate::service::blocking::blocking;
 use crate::service::error::ApiError;
 use crate::service::extract::{BodyTimeout, JobId, JsonBody, JsonRequest};
 use crate::service::listing::{ListQuery, Page};
-use crate::service::reply::{attachment, created};
+use crate::service::reply::{attachment, created, download_name};
 use crate::service::route::{Endpoint, Verb};
 use crate::simulation::parse_scene;
 
@@ -38,10 +41,17 @@ where
         Endpoint::api(Verb::Get, "/api/v1/jobs", |f| on(f, list_jobs)),
         Endpoint::api(Verb::Get, "/api/v1/jobs/{id}", |f| on(f, get_job)),
         Endpoint::api(Verb::Delete, "/api/v1/jobs/{id}", |f| on(f, delete_job)),
+        Endpoint::api(Verb::Patch, "/api/v1/jobs/{id}", |f| on(f, patch_job)),
         Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/events", |f| on(f, job_events)),
         Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/result", |f| on(f, job_result)),
         Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/result.csv", |f| {
             on(f, job_result_csv)
+        }),
+        Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/profiles.csv", |f| {
+            on(f, job_profiles_csv)
+        }),
+        Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/pressure.csv", |f| {
+            on(f, job_pressure_csv)
         }),
         Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/scene", |f| on(f, job_scene)),
     ]
@@ -60,12 +70,28 @@ impl JsonRequest for Scene {
     }
 }
 
+/// The query of `POST /api/v1/jobs`: the job's labels.
+#[derive(Debug, Default, Deserialize)]
+struct SubmitQuery {
+    sample: Option<String>,
+    note: Option<String>,
+    /// Separated by commas.
+    tags: Option<String>,
+}
+
 /// `POST /api/v1/jobs`: 202 with the queued job and its `Location`.
 async fn submit_job(
     State(jobs): State<Arc<Jobs>>,
+    query: Result<Query<SubmitQuery>, QueryRejection>,
     JsonBody(scene): JsonBody<Scene>,
 ) -> Result<Response, ApiError> {
-    let record = blocking(move || jobs.submit(scene)).await?;
+    let Query(query) = query?;
+    let labels = LabelChange::from_query(
+        query.sample.as_deref(),
+        query.note.as_deref(),
+        query.tags.as_deref(),
+    )?;
+    let record = blocking(move || jobs.submit(scene, labels)).await?;
     let location = format!("/api/v1/jobs/{}", record.id);
     Ok(created(StatusCode::ACCEPTED, location, record))
 }
@@ -85,6 +111,32 @@ async fn get_job(
 ) -> Result<Json<JobRecord>, ApiError> {
     let job = jobs.find(id)?;
     Ok(Json(jobs.shown(&job)))
+}
+
+/// A PATCH's body: the labels to change.
+impl JsonRequest for LabelChange {
+    const NAME: &'static str = "job's labels";
+
+    fn from_json(document: Value, _text: &str) -> Result<Self, ApiError> {
+        Ok(LabelChange::from_json(&document)?)
+    }
+
+    fn duplicate_key(path: String, message: String) -> ApiError {
+        ApiError::unprocessable(
+            format!("invalid job labels: {message}"),
+            vec![FieldError::new(path, message)],
+        )
+    }
+}
+
+/// `PATCH /api/v1/jobs/{id}`: changes the job's `sample`, `note` or `tags`, at any status
+/// but damaged; the job as it is now.
+async fn patch_job(
+    State(jobs): State<Arc<Jobs>>,
+    JobId(id): JobId,
+    JsonBody(change): JsonBody<LabelChange>,
+) -> Result<Json<JobRecord>, ApiError> {
+    Ok(Json(blocking(move || jobs.relabel(id, change)).await?))
 }
 
 /// `DELETE /api/v1/jobs/{id}`: cancels a queued or running job, removes a finished one.
@@ -110,11 +162,52 @@ async fn job_events(
     Ok(events::response(jobs, job, after, &streams))
 }
 
-/// `GET /api/v1/jobs/{id}/result`: the result JSON, as a download.
-async fn job_result(State(jobs): State<Arc<Jobs>>, JobId(id): JobId) -> Result<Response, ApiError> {
-    let bytes = blocking(move || jobs.result_json(id)).await?;
-    let filename = format!("tribosim-{id}.json");
+/// The query of `GET /api/v1/jobs/{id}/result`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ResultQuery {
+    /// Leave the pressure maps out.
+    #[serde(default)]
+    compact: bool,
+}
+
+/// `GET /api/v1/jobs/{id}/result`: the result JSON, as a download; `?compact=true` without
+/// its pressure maps.
+async fn job_result(
+    State(jobs): State<Arc<Jobs>>,
+    JobId(id): JobId,
+    query: Result<Query<ResultQuery>, QueryRejection>,
+) -> Result<Response, ApiError> {
+    let Query(ResultQuery { compact }) = query?;
+    let name = jobs.find(id)?.record().name;
+    let bytes = blocking(move || {
+        if compact {
+            jobs.compact_result_json(id)
+        } else {
+            jobs.result_json(id)
+        }
+    })
+    .await?;
+    let suffix = if compact {
+        "result.compact.json"
+    } else {
+        "result.json"
+    };
+    let filename = download_name(&name, id, suffix);
     Ok(attachment("application/json", &filename, bytes))
+}
+
+/// A CSV download of job `id` called `<name>.<suffix>`, made by `csv` on the blocking pool.
+async fn csv_download(
+    jobs: Arc<Jobs>,
+    id: uuid::Uuid,
+    suffix: &str,
+    csv: fn(&Jobs, uuid::Uuid) -> Result<String, JobError>,
+) -> Result<Response, ApiError> {
+    let name = jobs.find(id)?.record().name;
+    let body = blocking(move || csv(&jobs, id)).await?;
+    let filename = download_name(&name, id, suffix);
+    Ok(attachment("text/csv; charset=utf-8", &filename, body))
 }
 
 /// `GET /api/v1/jobs/{id}/result.csv`: the result's cycles as CSV, as a download.
@@ -122,9 +215,23 @@ async fn job_result_csv(
     State(jobs): State<Arc<Jobs>>,
     JobId(id): JobId,
 ) -> Result<Response, ApiError> {
-    let csv = blocking(move || jobs.result_csv(id)).await?;
-    let filename = format!("tribosim-{id}.csv");
-    Ok(attachment("text/csv; charset=utf-8", &filename, csv))
+    csv_download(jobs, id, "result.csv", Jobs::result_csv).await
+}
+
+/// `GET /api/v1/jobs/{id}/profiles.csv`: the result's profiles as CSV, as a download.
+async fn job_profiles_csv(
+    State(jobs): State<Arc<Jobs>>,
+    JobId(id): JobId,
+) -> Result<Response, ApiError> {
+    csv_download(jobs, id, "profiles.csv", Jobs::profiles_csv).await
+}
+
+/// `GET /api/v1/jobs/{id}/pressure.csv`: the result's pressure maps as CSV, as a download.
+async fn job_pressure_csv(
+    State(jobs): State<Arc<Jobs>>,
+    JobId(id): JobId,
+) -> Result<Response, ApiError> {
+    csv_download(jobs, id, "pressure.csv", Jobs::pressure_csv).await
 }
 
 /// `GET /api/v1/jobs/{id}/scene`: the scene as run, every default filled in.
@@ -177,6 +284,18 @@ impl From<DeleteError> for ApiError {
             DeleteError::Unknown(id) => unknown(id),
             DeleteError::Storage(e) => {
                 Self::storage(&e, "the job was not changed", "deleting a job")
+            }
+        }
+    }
+}
+
+/// The job's own answers, 507 or 500 when the record could not be written.
+impl From<RelabelError> for ApiError {
+    fn from(error: RelabelError) -> Self {
+        match error {
+            RelabelError::Job(e) => e.into(),
+            RelabelError::Storage(e) => {
+                Self::storage(&e, "the labels were not changed", "changing a job's labels")
             }
         }
     }

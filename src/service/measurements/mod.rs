@@ -1,8 +1,10 @@
 //! Measured points a lab attaches to a job, to draw beside the model: the kinds and their
 //! tables, read and checked as the calibration checks its own (`table.rs`), their files in
-//! the job's directory (`store.rs`) and their routes (`routes.rs`).
+//! the job's directory (`store.rs`), their scores against the job's result (`score.rs`) and
+//! their routes (`routes.rs`).
 
 mod routes;
+mod score;
 mod store;
 mod table;
 

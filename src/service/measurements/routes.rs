@@ -11,14 +11,17 @@ use axum::http::request::Parts;
 use axum::routing::on;
 use uuid::Uuid;
 
+use super::score::{Scores, scores, scores_csv};
 use super::store::{self, MeasuredError};
 use super::table::{self, Format, InvalidTable, MeasurementKind, Measurements};
 use crate::scene::FieldError;
 use crate::service::blocking::blocking;
 use crate::service::error::ApiError;
 use crate::service::extract::{Body, BodyTimeout, JobId, cut, essence, is_json, parse_id};
-use crate::service::jobs::Jobs;
+use crate::service::jobs::{JobError, Jobs};
+use crate::service::reply::{attachment, download_name};
 use crate::service::route::{Endpoint, Verb};
+use crate::simulation::SimulationResult;
 
 /// The routes, on any state that provides the jobs and the body timeout.
 pub(crate) fn endpoints<S>() -> Vec<Endpoint<S>>
@@ -33,6 +36,10 @@ where
             on(f, get_measurements)
         }),
         Endpoint::api(Verb::Put, table, |f| on(f, put_measurement)),
+        Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/scores", |f| on(f, get_scores)),
+        Endpoint::api(Verb::Get, "/api/v1/jobs/{id}/scores.csv", |f| {
+            on(f, get_scores_csv)
+        }),
         Endpoint::api(Verb::Delete, table, |f| on(f, delete_measurement)),
     ]
 }
@@ -112,6 +119,33 @@ async fn get_measurements(
     Ok(Json(
         blocking(move || store::measured(&jobs, id, unchanged)).await?,
     ))
+}
+
+/// Job `id`'s measurements scored against its result. Blocking (files).
+fn scored(jobs: &Jobs, id: Uuid) -> Result<Scores, ApiError> {
+    let measurements = store::measured(jobs, id, |_| Ok(()))?;
+    let json = jobs.result_json(id)?;
+    let result: SimulationResult = serde_json::from_slice(&json).map_err(JobError::Export)?;
+    Ok(scores(&result, &measurements))
+}
+
+/// `GET /api/v1/jobs/{id}/scores`: each attached table against the job's result.
+async fn get_scores(
+    State(jobs): State<Arc<Jobs>>,
+    JobId(id): JobId,
+) -> Result<Json<Scores>, ApiError> {
+    Ok(Json(blocking(move || scored(&jobs, id)).await?))
+}
+
+/// `GET /api/v1/jobs/{id}/scores.csv`: the scores as CSV, one row per measured point.
+async fn get_scores_csv(
+    State(jobs): State<Arc<Jobs>>,
+    JobId(id): JobId,
+) -> Result<axum::response::Response, ApiError> {
+    let name = jobs.find(id)?.record().name;
+    let csv = blocking(move || scored(&jobs, id).map(|s| scores_csv(&s))).await?;
+    let filename = download_name(&name, id, "scores.csv");
+    Ok(attachment("text/csv; charset=utf-8", &filename, csv))
 }
 
 /// `DELETE /api/v1/jobs/{id}/measurements/{kind}`: removes a table (if there is one);

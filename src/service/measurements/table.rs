@@ -1,5 +1,5 @@
 //! Measured points a lab attaches to a job, to draw beside the model: a wear volume against
-//! time or cycles, a groove profile across the track, a potential against time. Each is a
+//! time or cycles, a groove profile across the track, an open-circuit potential against time. Each is a
 //! small table (CSV or JSON, units in the column names) read by the calibration's table
 //! parser and checked as the calibration checks its own tables: every cell a finite number,
 //! times and positions strictly increasing, volumes not negative.
@@ -10,7 +10,7 @@ use serde::Serialize;
 use thiserror::Error;
 
 use crate::calibration::{
-    CalibrationError, Table, TableError, require_at_least, require_increasing,
+    CalibrationError, Table, TableError, require_at_least, require_increasing, spellings,
 };
 use crate::json::{self, JsonError};
 
@@ -25,8 +25,9 @@ pub enum MeasurementKind {
     WearVolume,
     /// The groove's depth across the track (Fig. 12's quantity).
     Profile,
-    /// The open-circuit potential against time (Fig. 6's quantity).
-    Potential,
+    /// The open-circuit potential (OCP) against time (Fig. 6's quantity), as the calibration
+    /// names it; `potential` is accepted for it.
+    Ocp,
 }
 
 /// Whether a column must be present.
@@ -84,28 +85,32 @@ const POTENTIAL: &[Column] = &[
 
 impl MeasurementKind {
     /// Every kind, in the order of the API's answer.
-    pub const ALL: [Self; 3] = [Self::WearVolume, Self::Profile, Self::Potential];
+    pub const ALL: [Self; 3] = [Self::WearVolume, Self::Profile, Self::Ocp];
 
     /// The kind as the API spells it.
     pub fn name(self) -> &'static str {
         match self {
             Self::WearVolume => "wear_volume",
             Self::Profile => "profile",
-            Self::Potential => "potential",
+            Self::Ocp => "ocp",
         }
     }
 
-    /// The kind called `name`.
+    /// The kind called `name`, or `potential`: the OCP's other name.
     pub fn from_name(name: &str) -> Option<Self> {
+        if name == "potential" {
+            return Some(Self::Ocp);
+        }
         Self::ALL.into_iter().find(|kind| kind.name() == name)
     }
 
-    /// The file that holds it in the job's directory.
+    /// The file that holds it in the job's directory (the OCP's under its other name, so
+    /// that tables stored under it stay readable).
     pub fn file(self) -> &'static str {
         match self {
             Self::WearVolume => "measured_wear_volume.json",
             Self::Profile => "measured_profile.json",
-            Self::Potential => "measured_potential.json",
+            Self::Ocp => "measured_potential.json",
         }
     }
 
@@ -113,7 +118,7 @@ impl MeasurementKind {
         match self {
             Self::WearVolume => WEAR_VOLUME,
             Self::Profile => PROFILE,
-            Self::Potential => POTENTIAL,
+            Self::Ocp => POTENTIAL,
         }
     }
 }
@@ -126,8 +131,8 @@ pub struct Measurements {
     pub wear_volume: Option<Columns>,
     /// The profile table.
     pub profile: Option<Columns>,
-    /// The potential table.
-    pub potential: Option<Columns>,
+    /// The open-circuit potential table.
+    pub ocp: Option<Columns>,
 }
 
 impl Measurements {
@@ -136,7 +141,7 @@ impl Measurements {
         match kind {
             MeasurementKind::WearVolume => &mut self.wear_volume,
             MeasurementKind::Profile => &mut self.profile,
-            MeasurementKind::Potential => &mut self.potential,
+            MeasurementKind::Ocp => &mut self.ocp,
         }
     }
 }
@@ -176,7 +181,7 @@ pub enum MeasurementError {
     },
     /// A column this kind does not know (a misspelt unit, say).
     #[error(
-        "unknown column `{column}`; a {kind} table has {}",
+        "unknown column `{column}`; a {kind} table takes {} (units in the name)",
         quoted(allowed, ", ")
     )]
     UnknownColumn {
@@ -184,7 +189,7 @@ pub enum MeasurementError {
         column: String,
         /// The kind.
         kind: &'static str,
-        /// The columns it may have.
+        /// The columns it may have, in every unit accepted.
         allowed: Vec<String>,
     },
     /// A value the calibration would refuse too: a time not increasing, a negative volume.
@@ -252,7 +257,7 @@ fn check(kind: MeasurementKind, table: &Table) -> Result<Columns, MeasurementErr
         return Err(MeasurementError::UnknownColumn {
             column: unknown.clone(),
             kind: kind.name(),
-            allowed: spec.iter().map(|c| c.name.to_owned()).collect(),
+            allowed: spec.iter().flat_map(|c| spellings(c.name)).collect(),
         });
     }
     let missing = |wanted: Vec<String>| MeasurementError::MissingColumn {
@@ -313,7 +318,7 @@ mod tests {
 
     #[test]
     fn each_refusal_names_its_column() {
-        use MeasurementKind::{Potential, Profile, WearVolume};
+        use MeasurementKind::{Ocp, Profile, WearVolume};
         let cases = [
             (WearVolume, "volume_mm3\n0.1\n", "time_s or cycles"),
             (
@@ -329,7 +334,7 @@ mod tests {
             ),
             (Profile, "y_mm,depth_um\n0,1\n0.1,NaN\n", "depth_um"),
             (Profile, "y_mm\n0\n", "depth_um"),
-            (Potential, "time_s,potential_v\n2,-0.2\n1,-0.3\n", "time_s"),
+            (Ocp, "time_s,potential_v\n2,-0.2\n1,-0.3\n", "time_s"),
         ];
         for (kind, csv, column) in cases {
             let error = refused(kind, csv);
@@ -337,8 +342,15 @@ mod tests {
             let first = column.split(' ').next().unwrap_or(column);
             assert!(error.to_string().contains(first), "{error}");
         }
-        let error = refused(Potential, "time_s,potential_v\n2,-0.2\n1,-0.3\n");
+        let error = refused(Ocp, "time_s,potential_v\n2,-0.2\n1,-0.3\n");
         assert!(error.to_string().contains("row 2"), "{error}");
+        // A unit not known is named with every spelling the column takes.
+        let error = refused(WearVolume, "cycles,volume_cm3\n1,0\n");
+        assert_eq!(error.column(), "volume_cm3");
+        assert!(
+            error.to_string().contains("`volume_mm3`, `volume_um3`"),
+            "{error}"
+        );
     }
 
     #[test]
@@ -349,5 +361,9 @@ mod tests {
             assert_eq!(MeasurementKind::from_name(kind.name()), Some(kind));
         }
         assert_eq!(MeasurementKind::from_name("Profile"), None);
+        assert_eq!(
+            MeasurementKind::from_name("potential"),
+            Some(MeasurementKind::Ocp)
+        );
     }
 }

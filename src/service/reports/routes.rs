@@ -55,7 +55,7 @@ fn measured_of(jobs: &Jobs, id: Uuid) -> Result<Measured, ApiError> {
     Ok(Measured {
         wear_volume: tables.wear_volume,
         profile: tables.profile,
-        potential: tables.potential,
+        ocp: tables.ocp,
     })
 }
 

@@ -21,13 +21,20 @@ const MAX_NAME_CHARS: usize = 200;
 pub(super) struct UploadQuery {
     format: Option<String>,
     pixel_um: Option<String>,
+    height_unit: Option<String>,
     name: Option<String>,
 }
 
-/// The format, pixel size and name an upload's query gives, checked.
+/// The units a text map's heights may be written in, and each one's size in m: a profiler's
+/// export is often in um or nm, which read as m would be a million times too rough.
+const HEIGHT_UNITS: [(&str, f64); 3] = [("m", 1.0), ("um", 1e-6), ("nm", 1e-9)];
+
+/// The format, pixel size, height unit and name an upload's query gives, checked.
 pub(super) struct UploadOptions {
     format: Option<Format>,
     pixel_m: Option<f64>,
+    /// The size of the heights' unit, m; `None` for heights in m as the file has them.
+    height_unit_m: Option<f64>,
     name: String,
 }
 
@@ -84,6 +91,21 @@ impl UploadQuery {
                 }
             },
         };
+        let height_unit_m = match self.height_unit.as_deref() {
+            None => None,
+            Some(text) => Some(
+                HEIGHT_UNITS
+                    .iter()
+                    .find(|(unit, _)| *unit == text.trim())
+                    .map(|&(_, size)| size)
+                    .ok_or_else(|| {
+                        invalid(
+                            "height_unit",
+                            format!("{:?} is not a unit of height (m, um, nm)", cut(text)),
+                        )
+                    })?,
+            ),
+        };
         let name = self.name.unwrap_or_default();
         if name.chars().count() > MAX_NAME_CHARS {
             return Err(invalid(
@@ -94,6 +116,7 @@ impl UploadQuery {
         Ok(UploadOptions {
             format,
             pixel_m,
+            height_unit_m,
             name,
         })
     }
@@ -115,7 +138,7 @@ pub(super) fn store(
              (--max-surface-pixels)"
         )));
     }
-    let (map, format, statistics) = parse(bytes, options.format, options.pixel_m)?;
+    let (map, format, statistics) = parse(bytes, &options)?;
     surfaces
         .create(options.name, format, &map, statistics)
         .map_err(|e| match e {
@@ -132,10 +155,18 @@ pub(super) fn store(
 /// small or too flat to have them gives a run nothing to report.
 fn parse(
     bytes: &[u8],
-    format: Option<Format>,
-    pixel_m: Option<f64>,
+    options: &UploadOptions,
 ) -> Result<(HeightMap, Format, Statistics), UploadError> {
-    let (map, format) = read_map(bytes, format, pixel_m)?;
+    let (mut map, format) = read_map(bytes, options.format, options.pixel_m)?;
+    if let Some(unit_m) = options.height_unit_m {
+        if format == Format::Gsf {
+            return Err(invalid(
+                "height_unit",
+                "a .gsf file states its own units (in m); height_unit is for text maps".into(),
+            ));
+        }
+        map.heights_m.iter_mut().for_each(|h| *h *= unit_m);
+    }
     let statistics = Statistics::of_measured(&map);
     let numbers = [
         ("rms_height_um", statistics.rms_height_um),

@@ -24,7 +24,7 @@ export async function measurements(page) {
   await attachedOn(page, RUN_PLOT.volume, 3);
   await attach("profile", "y_mm,depth_um\n-0.1,0.4\n0,3.1\n0.1,0.4\n", false);
   await attachedOn(page, RUN_PLOT.profile, 3);
-  await attach("potential", "time_s,potential_v\n100,-0.30\n1000,-0.35\n", false);
+  await attach("ocp", "time_s,potential_v\n100,-0.30\n1000,-0.35\n", false);
   await attachedOn(page, RUN_PLOT.potential, 2);
   assert.equal(await page.textContent(sel(MEASURE.errors)), "");
   const figures = [RUN_PLOT.volume, RUN_PLOT.profile, RUN_PLOT.potential];
@@ -38,4 +38,19 @@ export async function measurements(page) {
   // Stored with the job: the API returns them.
   const stored = await page.evaluate(async () => (await e2e.api.api(`/api/v1/jobs/${e2e.run.selectedId()}/measurements`)).body);
   assert.deepEqual(stored.wear_volume.cycles, [10, 60, 300]);
+
+  step("each kind scored under its figure: the model at the measured points, the residual, the z-score");
+  const scoreRows = (id) => page.$$eval(`#${id} .scores tbody tr`, (rows) => rows.map((tr) => [...tr.cells].map((td) => td.textContent)));
+  await page.waitForFunction((id) => document.querySelectorAll(`#${id} .scores tbody tr`).length === 3, RUN_PLOT.volume);
+  const volumeRows = await scoreRows(RUN_PLOT.volume);
+  console.log(`   volume scores: ${JSON.stringify(volumeRows)}`);
+  const scores = await page.evaluate(async () => (await e2e.api.api(`/api/v1/jobs/${e2e.run.selectedId()}/scores`)).body);
+  scores.wear_volume.points.forEach((p, i) => {
+    assert.equal(volumeRows[i][1], p.measured.toPrecision(4));
+    assert.equal(volumeRows[i][2], p.model.toPrecision(4));
+    // The residual is the difference of what the rows show, to their 4 digits.
+    assert.ok(Math.abs(p.residual - (p.measured - p.model)) <= 1e-12 * Math.abs(p.measured));
+  });
+  assert.equal((await scoreRows(RUN_PLOT.profile)).length, 3);
+  assert.equal((await scoreRows(RUN_PLOT.potential)).length, 2);
 }

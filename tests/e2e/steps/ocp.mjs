@@ -52,7 +52,7 @@ export async function ocp(page) {
 
   step("a measured potential on the record's clock lies on it; the warnings name the excess");
   await page.click(`${sel(MEASURE.box)} summary`);
-  await page.selectOption(sel(MEASURE.kind), "potential");
+  await page.selectOption(sel(MEASURE.kind), "ocp");
   await page.fill(sel(MEASURE.text), "time_s,potential_v\n300,-0.1\n2400,-1.3\n4400,-0.1\n");
   await page.click(sel(MEASURE.attach));
   await page.waitForFunction((id) => document.getElementById(id).dataset.attached === "3", RUN_PLOT.potential);

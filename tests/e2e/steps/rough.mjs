@@ -43,7 +43,11 @@ export async function rough(page) {
   await page.fill(sel(fieldId("test.cycles")), "3");
   const surfaceInScene = JSON.parse(await page.inputValue(sel(FORM.sceneJson))).overrides.disc.surface;
   assert.equal(surfaceInScene.kind, "measured");
+  // The page opened the newest run on load: its status and maps are the old run's until
+  // the new one is shown.
+  const before = await page.evaluate(() => e2e.run.selectedId());
   await page.click(sel(FORM.submit));
+  await page.waitForFunction((id) => e2e.run.selectedId() !== id, before);
   await waitForStatus(page, RUN.status, "succeeded");
   await page.waitForFunction((id) => Number(document.getElementById(id).dataset.points) > 0, RUN_PLOT.pressure);
   const roughMaps = await drawnMaps(page);
@@ -58,4 +62,20 @@ export async function rough(page) {
     assert.deepEqual(m.pixels, m.cells, `map ${m.cycle}: the image is not one pixel per cell`);
     assert.ok(m.contact > 0 && m.drawn === m.contact, `map ${m.cycle}: ${m.drawn} pixels drawn for ${m.contact} contact cells`);
   }
+
+  step("every axis of the rough run's figures has distinct tick labels; Table 3's reason names the surface");
+  const repeated = await page.evaluate((ids) => ids.flatMap((id) => {
+    const u = e2e.plots.chart(id);
+    if (!u) return [];
+    return u.axes.map((axis, k) => [id, k, axis._values || []])
+      .filter(([, , labels]) => new Set(labels.filter((l) => l !== "")).size !== labels.filter((l) => l !== "").length);
+  }), [RUN_PLOT.volume, RUN_PLOT.depth, RUN_PLOT.potential, RUN_PLOT.wac]);
+  const wac = await page.evaluate((id) => { const u = e2e.plots.chart(id); return u ? u.axes[1]._values : null; }, RUN_PLOT.wac);
+  console.log(`   WAC axis: ${JSON.stringify(wac)}`);
+  assert.ok(wac && wac.length > 1, "the WAC figure has y ticks");
+  assert.deepEqual(repeated, [], "an axis repeats a tick label");
+  const reason = await page.textContent(sel(RUN.table3Note));
+  console.log(`   ${reason}`);
+  assert.match(reason, /disc's surface differs/);
+  assert.doesNotMatch(reason, /load|speed|material/);
 }

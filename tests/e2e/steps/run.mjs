@@ -136,6 +136,24 @@ async function downloads(page, found) {
   assert.equal(csv.length, result.cycles.length + 1);
   assert.ok(csv[0].trim().split(",").includes("cycles_stepped_over"), `the CSV does not say which cycles were stepped over: ${csv[0]}`);
   console.log(`   ${csvDownload.suggestedFilename()}: ${csv.length - 1} rows`);
+  // Named after the run, not its id.
+  for (const d of [download, csvDownload]) assert.doesNotMatch(d.suggestedFilename(), /^tribosim-[0-9a-f-]{36}/);
+  assert.match(download.suggestedFilename(), /\.result\.json$/);
+
+  step("the profiles, the pressure maps and the result without its maps");
+  const fetched = async (button) => {
+    const [d] = await Promise.all([page.waitForEvent("download"), page.click(sel(button))]);
+    return [d.suggestedFilename(), fs.readFileSync(await d.path(), "utf8")];
+  };
+  const [profilesName, profiles] = await fetched(RUN.downloadProfiles);
+  const profileRows = result.profiles.reduce((n, p) => n + p.y_um.length, 0);
+  assert.equal(profiles.trim().split("\n").length, profileRows + 1, profilesName);
+  const [pressureName, pressure] = await fetched(RUN.downloadPressure);
+  const cells = result.pressure_maps.reduce((n, m) => n + m.x_um.length * m.y_um.length, 0);
+  assert.equal(pressure.trim().split("\n").length, cells + 1, pressureName);
+  const [compactName, compact] = await fetched(RUN.downloadCompact);
+  assert.deepEqual(JSON.parse(compact).pressure_maps, []);
+  console.log(`   ${profilesName}: ${profileRows} rows; ${pressureName}: ${cells} rows; ${compactName}: ${compact.length} of ${JSON.stringify(result).length} bytes`);
 }
 
 export async function run(page, found) {

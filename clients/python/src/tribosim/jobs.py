@@ -7,7 +7,7 @@ import copy
 import json
 import os
 import time
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any, Union
 
@@ -29,18 +29,28 @@ _SUBMIT = route("POST", "/api/v1/jobs")
 _LIST = route("GET", "/api/v1/jobs")
 _GET = route("GET", "/api/v1/jobs/{id}")
 _DELETE = route("DELETE", "/api/v1/jobs/{id}")
+_PATCH = route("PATCH", "/api/v1/jobs/{id}")
 _EVENTS = route("GET", "/api/v1/jobs/{id}/events")
 _RESULT = route("GET", "/api/v1/jobs/{id}/result")
 _RESULT_CSV = route("GET", "/api/v1/jobs/{id}/result.csv")
 _SCENE = route("GET", "/api/v1/jobs/{id}/scene")
 _REPORT = route("GET", "/api/v1/jobs/{id}/report")
 _COMPARISON = route("GET", "/api/v1/report")
+_PROFILES_CSV = route("GET", "/api/v1/jobs/{id}/profiles.csv")
+_PRESSURE_CSV = route("GET", "/api/v1/jobs/{id}/pressure.csv")
 
 #: Attempts in a row to follow a job's events again after the stream broke (a dropped
 #: connection, a server restarting: it serves its jobs' events again once up), and the
 #: seconds between them.
 MAX_RECONNECTS = 3
 RECONNECT_DELAY_S = 1.0
+
+
+class _Unset:
+    """A label not given to `Job.label` (None clears it)."""
+
+
+UNSET = _Unset()
 
 
 class Jobs:
@@ -50,30 +60,46 @@ class Jobs:
         self._http = http
 
     @_SUBMIT.implements
-    def submit(self, scene: SceneInput, name: str | None = None) -> Job:
+    def submit(
+        self,
+        scene: SceneInput,
+        name: str | None = None,
+        *,
+        sample: str | None = None,
+        note: str | None = None,
+        tags: Sequence[str] = (),
+    ) -> Job:
         """Queues `scene` (a mapping, or a JSON file's path; ``{}`` is the paper's test,
         ``{"preset": ..., "overrides": {...}}`` starts from a preset) under `name` (the
-        scene's own name otherwise). An invalid scene raises `ValidationError` naming every
-        bad field; a full queue `RateLimitedError`.
+        scene's own name otherwise), labelled with `sample`, `note` and `tags`. An invalid
+        scene (or a label past its bound) raises `ValidationError` naming every bad field; a
+        full queue `RateLimitedError`.
 
         A file is sent as it is when no `name` is given, so the server refuses a key given
         twice in it as it would from curl."""
         body = _scene_body(scene, name)
-        return Job(
-            self._http,
-            JobInfo.from_json(
-                self._http.json(_SUBMIT, content=body, content_type="application/json")
-            ),
+        labels = {"sample": sample, "note": note, "tags": ",".join(tags) if tags else None}
+        params = {key: value for key, value in labels.items() if value is not None}
+        answer = self._http.json(
+            _SUBMIT, params=params, content=body, content_type="application/json"
         )
+        return Job(self._http, JobInfo.from_json(answer))
 
     @_LIST.implements
     def list(
-        self, *, status: str | None = None, name: str | None = None, page_size: int = 100
+        self,
+        *,
+        status: str | None = None,
+        name: str | None = None,
+        q: str | None = None,
+        tag: str | None = None,
+        page_size: int = 100,
     ) -> builtins.list[Job]:
         """Every job, newest first, or those with `status` (one, or several
-        comma-separated) whose name contains `name` (case-insensitively); read a page of
-        `page_size` at a time."""
-        params = list_params(page_size, status=status, name=name)
+        comma-separated) whose name contains `name`, whose name, sample, note or a tag
+        contains `q`, with one of the tags `tag` (comma-separated), each case-insensitively;
+        read a page of `page_size` at a time."""
+        params = list_params(page_size, status=status, name=name, q=q, tag=tag)
         return [Job(self._http, JobInfo.from_json(raw)) for raw in self._http.pages(_LIST, params)]
 
     @_GET.implements
@@ -159,6 +185,25 @@ class Job:
             self.info = JobInfo.from_json(answer.json())
         return self.info
 
+    @_PATCH.implements
+    def label(
+        self,
+        *,
+        sample: str | None | _Unset = UNSET,
+        note: str | None | _Unset = UNSET,
+        tags: Sequence[str] | None | _Unset = UNSET,
+    ) -> JobInfo:
+        """Changes the labels given (None clears one; one not given stays as it is) and
+        returns the record; a label past its bound raises `ValidationError` naming it."""
+        given = {"sample": sample, "note": note, "tags": tags}
+        body = {
+            key: (list(value) if key == "tags" and value is not None else value)
+            for key, value in given.items()
+            if not isinstance(value, _Unset)
+        }
+        self.info = JobInfo.from_json(self._http.json(_PATCH, json=body, id=self.id))
+        return self.info
+
     @_DELETE.implements
     def delete(self) -> None:
         """Deletes the job and its files; one that has not ended is cancelled first and
@@ -170,15 +215,27 @@ class Job:
             self._http.send(_DELETE, id=self.id)
 
     @_RESULT.implements
-    def result(self) -> Result:
+    def result(self, compact: bool = False) -> Result:
         """The result of an ended job (`ConflictError` before it ends). A failed or cancelled
-        job's result has ``complete`` False and the cycles solved before the stop."""
-        return Result(self._http.json(_RESULT, id=self.id))
+        job's result has ``complete`` False and the cycles solved before the stop.
+        `compact` leaves the pressure maps out (a big grid's are most of the result)."""
+        params = {"compact": "true"} if compact else None
+        return Result(self._http.json(_RESULT, params=params, id=self.id))
 
     @_RESULT_CSV.implements
     def result_csv(self) -> str:
         """The per-cycle table as CSV text, as the page downloads it."""
         return self._http.send(_RESULT_CSV, id=self.id).text
+
+    @_PROFILES_CSV.implements
+    def profiles_csv(self) -> str:
+        """The depth profiles as CSV text, a row per point: ``cycle,y_um,depth_um``."""
+        return self._http.send(_PROFILES_CSV, id=self.id).text
+
+    @_PRESSURE_CSV.implements
+    def pressure_csv(self) -> str:
+        """The pressure maps as CSV text, a row per cell: ``cycle,x_um,y_um,pressure_mpa``."""
+        return self._http.send(_PRESSURE_CSV, id=self.id).text
 
     @_SCENE.implements
     def scene(self) -> dict[str, Any]:

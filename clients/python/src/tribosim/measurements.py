@@ -1,5 +1,5 @@
-"""Measured points attached to a job (``wear_volume``, ``profile``, ``potential``), drawn
-by the page beside the run's own curves."""
+"""Measured points attached to a job (``wear_volume``, ``profile``, ``ocp``), drawn by the
+page beside the run's own curves and scored against them."""
 
 from __future__ import annotations
 
@@ -15,6 +15,8 @@ if TYPE_CHECKING:
 _GET = route("GET", "/api/v1/jobs/{id}/measurements")
 _PUT = route("PUT", "/api/v1/jobs/{id}/measurements/{kind}")
 _DELETE = route("DELETE", "/api/v1/jobs/{id}/measurements/{kind}")
+_SCORES = route("GET", "/api/v1/jobs/{id}/scores")
+_SCORES_CSV = route("GET", "/api/v1/jobs/{id}/scores.csv")
 
 #: Each kind's table (or None), as DataFrames.
 Tables = dict[str, Optional["pandas.DataFrame"]]
@@ -26,10 +28,12 @@ class Measurements:
     - ``wear_volume``: ``time_s`` or ``cycles`` (or both), ``volume_mm3``, optionally
       ``spread_mm3``;
     - ``profile``: ``y_mm`` (across the track), ``depth_um`` (positive into the disc);
-    - ``potential``: ``time_s``, ``potential_v``.
+    - ``ocp`` (the open-circuit potential; ``potential`` is accepted for it): ``time_s``,
+      ``potential_v``.
 
-    A table the server cannot use raises `ValidationError` naming the column (and the row
-    in its message)."""
+    Other units in a column's name are converted (``time_min``, ``potential_mv``,
+    ``volume_um3``, ``depth_nm``, ``y_um``, ...). A table the server cannot use raises
+    `ValidationError` naming the column (and the row in its message)."""
 
     def __init__(self, http: Http, job_id: str) -> None:
         self._http = http
@@ -54,6 +58,19 @@ class Measurements:
     def delete(self, kind: str) -> Tables:
         """Removes the job's `kind` table (none there is no error); returns the tables left."""
         return _tables(self._http.json(_DELETE, id=self._job_id, kind=kind))
+
+    @_SCORES.implements
+    def scores(self) -> dict[str, Any]:
+        """Each attached table against the finished job's result: per kind (None without a
+        table) the columns compared, ``rms_residual`` and ``points``, each with ``x``,
+        ``measured``, ``model``, ``residual`` and ``z_score`` (None where there is none)."""
+        scores: dict[str, Any] = self._http.json(_SCORES, id=self._job_id)
+        return scores
+
+    @_SCORES_CSV.implements
+    def scores_csv(self) -> str:
+        """The scores as CSV text, one row per measured point, as the page downloads it."""
+        return self._http.send(_SCORES_CSV, id=self._job_id).text
 
 
 def _tables(answer: dict[str, Any]) -> Tables:

@@ -31,6 +31,9 @@ class JobInfo(Record):
 
     id: str
     name: str
+    sample: str | None
+    note: str | None
+    tags: list[str] | None
     status: str
     cycles_done: int
     cycles_total: int

@@ -55,14 +55,16 @@ class Surfaces:
         pixel_um: float | None = None,
         name: str | None = None,
         format: str | None = None,
+        height_unit: str | None = None,
     ) -> Surface:
         """Stores the map file at `path` as ``tribosim run --surface`` reads it: Gwyddion's
         ``.gsf``, three columns ``x y z`` in m, or a text matrix of heights in m (with its
         `pixel_um`); `format` (``gsf``, ``matrix``, ``xyz``) when the content should not
-        decide. `name` defaults to the file's name."""
+        decide; `height_unit` (``m``, ``um``, ``nm``) for a text map whose heights are not
+        in m. `name` defaults to the file's name."""
         body = Path(path).read_bytes()
         name = Path(path).name if name is None else name
-        return self._upload(body, "application/octet-stream", pixel_um, name, format)
+        return self._upload(body, "application/octet-stream", pixel_um, name, format, height_unit)
 
     def _upload(
         self,
@@ -71,12 +73,15 @@ class Surfaces:
         pixel_um: float | None,
         name: str | None,
         format: str | None,
+        height_unit: str | None = None,
     ) -> Surface:
-        query = {
-            key: value
-            for key, value in [("pixel_um", pixel_um), ("name", name), ("format", format)]
-            if value is not None
-        }
+        given = [
+            ("pixel_um", pixel_um),
+            ("name", name),
+            ("format", format),
+            ("height_unit", height_unit),
+        ]
+        query = {key: value for key, value in given if value is not None}
         raw = self._http.json(_UPLOAD, params=query, content=body, content_type=content_type)
         return Surface.from_json(raw)
 
