@@ -8,6 +8,7 @@ use std::sync::atomic::AtomicBool;
 use serde::Serialize;
 
 use crate::contact::Grid;
+use crate::scene::PAPER_TABLE3;
 use crate::scene::{
     CycleStep, DALMAU2018_316L, DomainSize, GridSize, Scene, TestConditions, dalmau2018_316l,
 };
@@ -37,13 +38,15 @@ pub const PAPER_NUMERICS: (usize, f64) = (256, 256.0);
 
 /// The paper's Table 3: test time (s; one cycle per second at 60 rpm) and measured wear
 /// volume (mm^3). The last point calibrates Archard's k.
-pub const TABLE3: [(u64, f64); 5] = [
-    (10, 0.97e-3),
-    (60, 1.09e-3),
-    (300, 1.18e-3),
-    (1800, 5.33e-3),
-    (3600, 11.72e-3),
-];
+pub const TABLE3: [(u64, f64); 5] = {
+    let mut table = [(0, 0.0); 5];
+    let mut i = 0;
+    while i < table.len() {
+        table[i] = (PAPER_TABLE3[i].time_s, PAPER_TABLE3[i].wear_volume_mm3);
+        i += 1;
+    }
+    table
+};
 
 /// Which study a wear row belongs to; serialised as the JSON `study` field.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

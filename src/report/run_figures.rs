@@ -2,20 +2,12 @@
 //! the measured test, and the attached volumes), deepest point, potential, WAC volume,
 //! profiles across the track (with the ball and an attached profile) and pressure maps.
 
+use crate::scene::PAPER_TABLE3;
 use crate::simulation::SimulationResult;
 
 use super::figure::{FigureError, LineFigure, Map, Series, Style, figure, pressure_svg};
 use super::residuals::{Measured, column};
 use super::scene::flatten;
-
-/// Table 3 of the paper: wear volume, 10^-3 mm^3, at rubbing time, s (5 N, 60 rpm).
-const TABLE3: [(f64, f64); 5] = [
-    (10.0, 0.97),
-    (60.0, 1.09),
-    (300.0, 1.18),
-    (1800.0, 5.33),
-    (3600.0, 11.72),
-];
 
 /// The fields Table 3 was measured under, as the paper's preset holds them: a run that
 /// differs in any is another experiment (the page's rule, `static/js/run-figures.js`).
@@ -126,9 +118,14 @@ fn volume(result: &SimulationResult, measured: &Measured) -> LineFigure {
     ));
     if table3_applies(result) {
         let last = result.scene.test.cycles as f64;
-        let points = TABLE3
+        let points = PAPER_TABLE3
             .iter()
-            .map(|(t, v)| (t * cycles_per_s(result), *v))
+            .map(|r| {
+                (
+                    r.time_s as f64 * cycles_per_s(result),
+                    r.wear_volume_mm3 * 1e3,
+                )
+            })
             .filter(|(n, _)| *n <= last);
         series.push(Series::new(
             "Table 3, measured",

@@ -10,29 +10,66 @@ use super::surface::SurfaceSpec;
 use crate::hardness::{HardnessError, HardnessLaw};
 use crate::wear::{Archard, ArchardK, ArchardRegimeChange, MeasuredPoint, VolumeBasis, WearLaw};
 
+/// One row of the paper's Table 3, measured at 5 N and 60 rpm on the 2.992 mm track.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Table3Row {
+    /// Rubbing time, s (cycles, at 60 rpm).
+    pub time_s: u64,
+    /// Hardness measured inside the wear track, MPa.
+    pub hardness_mpa: f64,
+    /// Wear volume a profilometer measured, mm^3.
+    pub wear_volume_mm3: f64,
+    /// Its spread as the table gives it, mm^3.
+    pub spread_mm3: f64,
+}
+
+/// The paper's Table 3: the one place its numbers are written; the hardness law's points,
+/// the calibration point, the page's overlay and the benchmarks read them from here.
+pub const PAPER_TABLE3: [Table3Row; 5] = [
+    row(10, 2551.0, 0.97e-3, 2.0e-3),
+    row(60, 2727.0, 1.09e-3, 0.1e-3),
+    row(300, 2854.0, 1.18e-3, 0.0),
+    row(1800, 2933.0, 5.33e-3, 0.7e-3),
+    row(3600, 2953.0, 11.72e-3, 0.2e-3),
+];
+
+const fn row(time_s: u64, hardness_mpa: f64, wear_volume_mm3: f64, spread_mm3: f64) -> Table3Row {
+    Table3Row {
+        time_s,
+        hardness_mpa,
+        wear_volume_mm3,
+        spread_mm3,
+    }
+}
+
 /// The calibration point when a scene gives neither `archard_k` nor `archard_calibration`:
 /// the paper's own rule (Section 4.5), k by eq. 14 from the final measured time and wear
 /// volume of Table 3 and the hardness measured there, k = V H / (F s) = 11.72e-3 mm^3 x
 /// 2953 MPa / (5 N x 3600 s x 18.8 mm/s) = 1.02e-4. The test's conditions are part of the
 /// point, so a scene at another load or speed keeps the paper's k.
-pub const PAPER_ARCHARD_CALIBRATION: ArchardCalibration = ArchardCalibration {
-    time_s: 3600.0,
-    wear_volume_mm3: 11.72e-3,
-    hardness_mpa: Some(2953.0),
-    load_n: Some(5.0),
-    speed_rpm: Some(60.0),
-    track_radius_mm: Some(2.992),
+pub const PAPER_ARCHARD_CALIBRATION: ArchardCalibration = {
+    let last = PAPER_TABLE3[PAPER_TABLE3.len() - 1];
+    ArchardCalibration {
+        time_s: last.time_s as f64,
+        wear_volume_mm3: last.wear_volume_mm3,
+        hardness_mpa: Some(last.hardness_mpa),
+        load_n: Some(5.0),
+        speed_rpm: Some(60.0),
+        track_radius_mm: Some(2.992),
+    }
 };
 
-/// The paper's Table 3: hardness measured inside the wear track, `(cycles, MPa)` at 60 rpm
-/// (cycles = seconds).
-pub const PAPER_HARDNESS_TABLE: [(f64, f64); 5] = [
-    (10.0, 2551.0),
-    (60.0, 2727.0),
-    (300.0, 2854.0),
-    (1800.0, 2933.0),
-    (3600.0, 2953.0),
-];
+/// The paper's Table 3 hardness inside the wear track, `(cycles, MPa)` at 60 rpm (cycles =
+/// seconds).
+pub const PAPER_HARDNESS_TABLE: [(f64, f64); 5] = {
+    let mut table = [(0.0, 0.0); 5];
+    let mut i = 0;
+    while i < table.len() {
+        table[i] = (PAPER_TABLE3[i].time_s as f64, PAPER_TABLE3[i].hardness_mpa);
+        i += 1;
+    }
+    table
+};
 
 /// The number of cycles of the paper's test: 3600 s at 60 rpm.
 pub const PAPER_CYCLES: u64 = 3600;

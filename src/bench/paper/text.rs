@@ -189,7 +189,7 @@ fn fig11(study: &PaperStudy, n: &PaperNumbers) -> String {
             };
             vec![
                 t.to_string(),
-                format!("{measured}"),
+                format!("{measured:.2}"),
                 pct(n.elastic_volume_mm3[i]),
                 pct(n.groove_volume_mm3[i]),
                 pct(n.elastic_loaded_volume_mm3[i]),
