@@ -49,9 +49,8 @@ fn tags<'a>(values: impl Iterator<Item = &'a str>, errors: &mut Vec<FieldError>)
         if value.contains(',') {
             errors.push(FieldError::new(&field, "a tag cannot hold a comma"));
         }
-        if let Some(tag) = text(&field, value, TAG_MAX_CHARS, errors)
-            && !tags.contains(&tag)
-        {
+        let tag = text(&field, value, TAG_MAX_CHARS, errors);
+        if let Some(tag) = tag.filter(|t| !tags.contains(t)) {
             tags.push(tag);
         }
     }
