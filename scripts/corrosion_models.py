@@ -100,7 +100,8 @@ def default_table():
     at = by_time(result)
     print(f"`{{}}` ({result['summary']['solves']} solves, {result['summary']['wall_s']:.1f} s):\n")
     print("| time (s) | paper's E (V) | model E (V) | A_a (mm^2) | F / H (mm^2) | A_a / (F/H) "
-          "| L (um) | I (uA) | charge (C) | WAC (1e-3 mm^3) | wear (1e-3 mm^3) | total (1e-3 mm^3) "
+          "| L (um) | I (uA) | charge (C) | WAC (1e-3 mm^3) | track = total (1e-3 mm^3) "
+          "| mechanical (1e-3 mm^3) "
           "| Table 3 total | WAC / Table 3 | WAC / model total |")
     print("|" + "---|" * 15)
     for t, (_, measured) in TABLE3.items():
@@ -110,7 +111,7 @@ def default_table():
               f"| {r['anodic_area_mm2']:.4f} | {real_mm2(r):.5f} "
               f"| {r['anodic_area_mm2'] / real_mm2(r):.1f} | {r['contact_chord_um']:.1f} "
               f"| {r['anodic_current_ma'] * 1e3:.2f} | {r['charge_c']:.4f} | {wac * 1e3:.3f} "
-              f"| {r['wear_volume_mm3'] * 1e3:.3f} | {r['total_volume_mm3'] * 1e3:.3f} "
+              f"| {r['total_volume_mm3'] * 1e3:.3f} | {r['mechanical_volume_mm3'] * 1e3:.3f} "
               f"| {measured * 1e3:.2f} | {wac / measured:.1%} | {wac / r['total_volume_mm3']:.1%} |")
     print()
 
