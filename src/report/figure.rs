@@ -291,9 +291,19 @@ pub fn pressure_svg(maps: &[Map<'_>]) -> Option<(String, String)> {
 }
 
 /// One map's cells at `scale` px per um, its corner at `origin`.
+/// Cells per side a map is drawn with at most: its square is 300 px wide, so finer cells
+/// cannot be seen, and a 2048-cell map would write millions of rectangles (about 90 bytes
+/// each) into a report the service builds in memory.
+const MAX_DRAWN_CELLS: usize = 150;
+
 fn draw_map(svg: &mut String, map: &Map<'_>, origin: (f64, f64), scale: f64, p_max: f64) {
+    let cells = map.x_um.len().max(map.y_um.len());
+    let stride = cells.div_ceil(MAX_DRAWN_CELLS).max(1);
     let step = |v: &[f64]| if v.len() > 1 { v[1] - v[0] } else { 1.0 };
-    let (dx, dy) = (step(map.x_um) * scale, step(map.y_um) * scale);
+    let (dx, dy) = (
+        step(map.x_um) * scale * stride as f64,
+        step(map.y_um) * scale * stride as f64,
+    );
     let (x0, y0) = (
         map.x_um.first().copied().unwrap_or(0.0),
         map.y_um.first().copied().unwrap_or(0.0),
@@ -303,8 +313,13 @@ fn draw_map(svg: &mut String, map: &Map<'_>, origin: (f64, f64), scale: f64, p_m
         "<rect x=\"{}\" y=\"{}\" width=\"300\" height=\"300\" fill=\"none\" stroke=\"#999\"/>",
         origin.0, origin.1
     );
-    for (iy, row) in map.pressure_mpa.iter().enumerate() {
-        for (ix, &p) in row.iter().enumerate().filter(|(_, p)| **p > 0.0) {
+    for (iy, row) in map.pressure_mpa.iter().enumerate().step_by(stride) {
+        for (ix, &p) in row
+            .iter()
+            .enumerate()
+            .step_by(stride)
+            .filter(|(_, p)| **p > 0.0)
+        {
             let x = origin.0 + (map.x_um[ix] - x0) * scale;
             let y = origin.1 + (map.y_um[iy] - y0) * scale;
             let _ = write!(
@@ -375,5 +390,22 @@ mod tests {
             "a frame and two loaded cells"
         );
         assert!(scales.contains("1000 MPa"), "{scales}");
+    }
+
+    #[test]
+    fn a_fine_map_is_drawn_with_at_most_the_cells_its_square_can_show() {
+        let n = 2048;
+        let axis: Vec<f64> = (0..n).map(|i| i as f64 * 0.125).collect();
+        let pressure = vec![vec![500.0; n]; n];
+        let map = Map {
+            cycle: 1,
+            x_um: &axis,
+            y_um: &axis,
+            pressure_mpa: &pressure,
+        };
+        let (svg, _) = pressure_svg(&[map]).expect("drawn");
+        // 2048 cells at a stride of 14: 147 per side, plus the frame.
+        let rects = svg.matches("<rect").count();
+        assert_eq!(rects, 147 * 147 + 1);
     }
 }
