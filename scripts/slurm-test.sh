@@ -123,10 +123,13 @@ python3 - "$work/slurm.json" "$work/local.json" <<'EOF'
 import json, sys
 
 def numbers(path):
-    """The summary without what depends on the machine: wall times and workers."""
+    """The summary without what depends on the machine and the moment: wall times,
+    workers, and the provenance's date and cores (its version and commit stay)."""
     summary = json.load(open(path))
     for key in ("wall_s", "workers"):
         summary.pop(key)
+    for key in ("computed_at", "cores"):
+        summary["provenance"].pop(key)
     for member in summary["members"]:
         member["summary"].pop("wall_s")
     return summary
