@@ -19,7 +19,9 @@ use std::path::Path;
 use std::time::Instant;
 
 pub use error::BenchError;
-pub use kappa::{KappaRow, MeasuredMap, generated_surface, kappa_rows, surface_rows};
+pub use kappa::{
+    KappaRow, MeasuredMap, REDUCED_PRESSURES, generated_surface, kappa_rows, surface_rows,
+};
 pub use paper::{
     COARSE_GRID, PAPER_GRID, PaperNumbers, PaperStudy, TABLE3, markdown as paper_markdown,
     write as write_paper,
