@@ -267,6 +267,24 @@ async fn the_page_presets_and_description_are_served() {
     assert_eq!(health, json!({"status": "ok"}));
     let presets: Value = get_json(&client, &server.url("/api/v1/presets")).await;
     assert_eq!(presets[0]["name"], "dalmau2018-316l");
+    // The page draws Table 3 from this answer, so it is the paper's table itself.
+    let measured: Vec<(u64, f64)> = presets[0]["measured"]
+        .as_array()
+        .expect("the preset's measured points")
+        .iter()
+        .map(|p| {
+            let time = p["time_s"].as_u64().expect("time_s");
+            (
+                time,
+                p["wear_volume_mm3"].as_f64().expect("wear_volume_mm3"),
+            )
+        })
+        .collect();
+    let table3: Vec<(u64, f64)> = tribosim::scene::PAPER_TABLE3
+        .iter()
+        .map(|r| (r.time_s, r.wear_volume_mm3))
+        .collect();
+    assert_eq!(measured, table3);
     let spec = client
         .get(server.url("/api/v1/openapi.yaml"))
         .send()

@@ -4,7 +4,7 @@ use serde::Serialize;
 use serde_json::{Map, Value};
 
 use super::corrosion::follow_reference;
-use super::{Corrosion, FieldError, Scene, SceneErrors};
+use super::{Corrosion, FieldError, PAPER_TABLE3, Scene, SceneErrors, Table3Row};
 
 /// Name of the paper's scene: AISI 316L against alumina, 5 N, 60 rpm, 3600 cycles.
 pub const DALMAU2018_316L: &str = "dalmau2018-316l";
@@ -18,6 +18,9 @@ pub struct Preset {
     pub description: &'static str,
     /// The full scene.
     pub scene: Scene,
+    /// What was measured on the test the scene describes (empty when nothing was), for a
+    /// client to draw beside a run of it: the paper's Table 3 for [`DALMAU2018_316L`].
+    pub measured: &'static [Table3Row],
 }
 
 /// Every built-in scene, for `tribosim presets` and `GET /presets`.
@@ -27,6 +30,7 @@ pub fn presets() -> Vec<Preset> {
         description: "Dalmau et al., Wear 394-395 (2018): AISI 316L against an alumina ball \
                       in 3% NaCl, Tables 2 and 3",
         scene: dalmau2018_316l(),
+        measured: &PAPER_TABLE3,
     }]
 }
 

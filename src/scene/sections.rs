@@ -11,7 +11,7 @@ use crate::hardness::{HardnessError, HardnessLaw};
 use crate::wear::{Archard, ArchardK, ArchardRegimeChange, MeasuredPoint, VolumeBasis, WearLaw};
 
 /// One row of the paper's Table 3, measured at 5 N and 60 rpm on the 2.992 mm track.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Table3Row {
     /// Rubbing time, s (cycles, at 60 rpm).
     pub time_s: u64,
@@ -24,7 +24,8 @@ pub struct Table3Row {
 }
 
 /// The paper's Table 3: the one place its numbers are written; the hardness law's points,
-/// the calibration point, the page's overlay and the benchmarks read them from here.
+/// the calibration point, the benchmarks and the page's overlay (through the preset's
+/// `measured` points, `GET /api/v1/presets`) read them from here.
 pub const PAPER_TABLE3: [Table3Row; 5] = [
     row(10, 2551.0, 0.97e-3, 2.0e-3),
     row(60, 2727.0, 1.09e-3, 0.1e-3),

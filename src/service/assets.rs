@@ -44,6 +44,7 @@ const ASSETS: &[Asset] = assets![
     "js/compare.js",
     "js/dom.js",
     "js/export.js",
+    "js/fig11.js",
     "js/form.js",
     "js/hash.js",
     "js/ids.js",

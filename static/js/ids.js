@@ -60,6 +60,8 @@ export const RUN = Object.freeze({
   editAgain: "edit-again",
   showTable3: "show-table3",
   table3Note: "table3-note",
+  showFig11: "show-fig11",
+  fig11Note: "fig11-note",
   params: "run-params",
   paramsDiff: "params-diff",
   paramsTable: "params-table",

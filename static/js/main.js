@@ -16,9 +16,10 @@
 //   scores       the attached tables scored against the run shown (api)
 //   jobs         the job list (api, topic)
 //   labels       the sample, tags and note of the run shown (api)
-//   run-figures  the run's line figures (plots, measurements, scenes)
-//   run          the run panel (jobs, labels, measurements, scores, pressure, run-figures,
-//                scenes, sse, topic, hash)
+//   fig11        the Fig. 11 view's curves and its companion runs (api, jobs)
+//   run-figures  the run's line figures (plots, measurements, scenes, fig11)
+//   run          the run panel (jobs, labels, measurements, scores, pressure, fig11,
+//                run-figures, scenes, sse, topic, hash)
 //   form         the new-run form (run, scenes)
 //   compare      the comparison of runs (jobs, plots, hash)
 //   studies      the studies (form, jobs, compare, plots, hash)

@@ -1,20 +1,22 @@
 // The run panel's line figures: volume, depth, potential and WAC from the cycle records
 // (live or final; the potential from the result's OCP trace once it has one), with the
-// paper's Table 3 and the attached measurements where they belong, and the groove's
-// profiles with the ball once the run has a result.
+// paper's Table 3 and the attached measurements where they belong, the paper's Fig. 11 view
+// of the volume, and the groove's profiles with the ball once the run has a result.
 import { $ } from "./dom.js";
+import { MATERIALS, fig11Note, fig11State } from "./fig11.js";
 import { RUN, RUN_PLOT } from "./ids.js";
 import { attachedPoints } from "./measurements.js";
 import { ATTACHED_COLOR, COLORS, MEASURED_COLOR, chart, dropChart, joinTables, linePlot, lineSeries, markerSeries } from "./plots.js";
 import { presetNamed } from "./scenes.js";
 import { getPath, referenceShort } from "./words.js";
 
-// The paper's Table 3: wear volume (1e-3 mm^3) at rubbing time (s); at 60 rpm cycle = s.
-const TABLE3 = [[10, 0.97], [60, 1.09], [300, 1.18], [1800, 5.33], [3600, 11.72]];
+// The preset whose `measured` points are the paper's Table 3 (GET /api/v1/presets).
 const TABLE3_PRESET = "dalmau2018-316l";
 // What Table 3 was measured under, as the preset's scene holds it: a run that differs in
 // any of these is another experiment, and the measured points do not belong beside it.
 const TABLE3_CONDITIONS = ["test.load_n", "test.speed_rpm", "test.track_radius_mm", "ball", "disc"];
+// Fig. 11's colours: elastic blue and EPP red, as the paper draws them.
+const FIG11_COLORS = { elastic: COLORS[0], epp: COLORS[1] };
 
 const CYCLES_LABEL = "cycles (passes of the ball)";
 const WAITING = "Shown after the run ends.";
@@ -41,8 +43,9 @@ function table3Differences(scene) {
 const listed = (words) => (words.length < 2 ? words.join("") : `${words.slice(0, -1).join(", ")} and ${words[words.length - 1]}`);
 
 /**
- * Enables the Table 3 checkbox only for a run whose scene matches, and says why when it
- * does not. True when the volume figure is drawn already (and should be drawn again).
+ * Enables the Table 3 checkbox and the Fig. 11 view only for a run whose scene matches, and
+ * says why when it does not. True when the volume figure is drawn already (and should be
+ * drawn again).
  */
 export function updateTable3Choice(scene) {
   const differences = table3Differences(scene);
@@ -50,19 +53,47 @@ export function updateTable3Choice(scene) {
   const box = $(RUN.showTable3);
   if (box.disabled === applies) box.checked = applies;
   box.disabled = !applies;
+  if (!applies) $(RUN.showFig11).checked = false;
+  $(RUN.showFig11).disabled = !applies;
   $(RUN.table3Note).textContent = applies ? ""
-    : differences ? `Table 3 is not shown: this run's ${listed(differences)} ${differences.length > 1 ? "differ" : "differs"} from the measured test's.`
-      : "Table 3 is shown once the run's scene is known and matches the measured test.";
+    : differences ? `Table 3 and the Fig. 11 view are not shown: this run's ${listed(differences)} ${differences.length > 1 ? "differ" : "differs"} from the measured test's.`
+      : "Table 3 and the Fig. 11 view are shown once the run's scene is known and matches the measured test.";
   return Boolean(chart(RUN_PLOT.volume));
 }
 
-// Wear volume against cycles, with Table 3 (when ticked) and attached wear volumes.
-function drawVolume(cycles, c, scene) {
-  const tables = [[c, cycles.map((r) => r.wear_volume_mm3 * 1e3)]];
-  const volSeries = [lineSeries("simulated", COLORS[0])];
-  // Only the measured points within the run's length, so the axis ends with the run.
-  const runCycles = getPath(scene, "test.cycles") || (c.length ? c[c.length - 1] : 0);
-  const measured = $(RUN.showTable3).checked ? TABLE3.filter((p) => p[0] <= runCycles) : [];
+// Table 3's wear volumes from the preset's `measured` points: [cycles, 1e-3 mm^3], its
+// seconds turned into cycles at the preset's speed.
+function table3Points() {
+  const preset = presetNamed(TABLE3_PRESET);
+  if (!preset) return [];
+  const rpm = getPath(preset.scene, "test.speed_rpm");
+  return (preset.measured || []).map((m) => [(m.time_s * rpm) / 60, m.wear_volume_mm3 * 1e3]);
+}
+
+const volumeTable = (records) => [records.map((r) => r.cycle), records.map((r) => r.wear_volume_mm3 * 1e3)];
+
+// The volume figure's curves and the cycle its measured points end at: the run's own, or
+// with the Fig. 11 view on, the EPP and elastic curves that have come over the view's cycles.
+function volumeCurves(cycles, c, scene, fig11) {
+  if (!fig11) {
+    const end = getPath(scene, "test.cycles") || (c.length ? c[c.length - 1] : 0);
+    return { tables: [volumeTable(cycles)], series: [lineSeries("simulated", COLORS[0])], end, points: c.length };
+  }
+  const drawn = fig11.curves.filter((curve) => curve.records && curve.records.length);
+  return {
+    tables: drawn.map((curve) => volumeTable(curve.records)),
+    series: drawn.map((curve) => lineSeries(MATERIALS[curve.material].label, FIG11_COLORS[curve.material])),
+    end: fig11.cycles,
+    points: drawn.reduce((n, curve) => n + curve.records.length, 0),
+  };
+}
+
+// Wear volume against cycles, with Table 3 (when ticked, and always in the Fig. 11 view
+// `fig11`) and attached wear volumes, each only within the cycles drawn.
+function drawVolume(cycles, c, scene, fig11) {
+  const box = $(RUN_PLOT.volume);
+  const { tables, series: volSeries, end, points } = volumeCurves(cycles, c, scene, fig11);
+  const measured = fig11 || $(RUN.showTable3).checked ? table3Points().filter((p) => p[0] <= end) : [];
   if (measured.length) {
     tables.push([measured.map((p) => p[0]), measured.map((p) => p[1])]);
     volSeries.push(markerSeries("Table 3, measured", MEASURED_COLOR));
@@ -70,14 +101,18 @@ function drawVolume(cycles, c, scene) {
   // Attached wear volumes: at their cycles, or at their times turned into cycles at the run's speed.
   const rpm = getPath(scene, "test.speed_rpm") || 60;
   const attachedVol = attachedPoints("wear_volume",
-    (tb, i) => (tb.cycles ? tb.cycles[i] : tb.time_s ? (tb.time_s[i] * rpm) / 60 : NaN), (tb, i) => tb.volume_mm3[i] * 1e3);
+    (tb, i) => (tb.cycles ? tb.cycles[i] : tb.time_s ? (tb.time_s[i] * rpm) / 60 : NaN), (tb, i) => tb.volume_mm3[i] * 1e3)
+    .filter((p) => !fig11 || p[0] <= end);
   if (attachedVol.length) {
     tables.push([attachedVol.map((p) => p[0]), attachedVol.map((p) => p[1])]);
     volSeries.push(markerSeries("attached measurement", ATTACHED_COLOR));
   }
-  $(RUN_PLOT.volume).dataset.measured = String(measured.length);
-  $(RUN_PLOT.volume).dataset.attached = String(attachedVol.length);
-  linePlot(RUN_PLOT.volume, joinTables(tables), volSeries, CYCLES_LABEL, "wear volume (10⁻³ mm³)", c.length);
+  box.dataset.measured = String(measured.length);
+  box.dataset.attached = String(attachedVol.length);
+  box.dataset.fig11 = fig11 ? fig11State(fig11) : "";
+  $(RUN.fig11Note).textContent = fig11 ? fig11Note(fig11) : "";
+  if (!tables.length) { dropChart(RUN_PLOT.volume); box.dataset.points = "0"; return; }
+  linePlot(RUN_PLOT.volume, joinTables(tables), volSeries, CYCLES_LABEL, "wear volume (10⁻³ mm³)", points);
 }
 
 // The rubbing on the record's clock: from `test.ocp_before_s` for the run's cycles.
@@ -136,11 +171,12 @@ function drawWac(cycles) {
 
 /**
  * Volume, depth, potential and WAC from the cycle records of a run of this scene; the
- * potential from the result's OCP `trace` once it has one.
+ * potential from the result's OCP `trace` once it has one; the volume as the Fig. 11 view
+ * `fig11` (fig11.js's `fig11Curves`) when it is on.
  */
-export function drawSeries(cycles, scene, trace) {
+export function drawSeries(cycles, scene, trace, fig11) {
   const c = cycles.map((r) => r.cycle);
-  drawVolume(cycles, c, scene);
+  drawVolume(cycles, c, scene, fig11);
   linePlot(RUN_PLOT.depth, [c, cycles.map((r) => r.max_depth_um)],
     [{ label: "maximum depth", stroke: COLORS[2], width: 2, points: { show: false } }],
     CYCLES_LABEL, "maximum wear depth (µm)", c.length);

@@ -9,6 +9,7 @@ import * as jobs from "./jobs.js";
 import * as labels from "./labels.js";
 import * as measurements from "./measurements.js";
 import * as scores from "./scores.js";
+import { fig11Curves, forgetFailed } from "./fig11.js";
 import { drawPressure, resetPressure } from "./pressure.js";
 import { drawProfiles, drawSeries, resetProfiles, updateTable3Choice } from "./run-figures.js";
 import { closestPreset, remember, submittedScene } from "./scenes.js";
@@ -21,6 +22,7 @@ let follow = null;   // AbortController of the event stream being read
 let cycles = [];     // its cycle records, in order
 let result = null;   // its result (complete or partial), once it has one
 let scene = null;    // its scene as run, once known
+let sceneAsRun = false; // whether `scene` is the server's (the Fig. 11 companion copies it)
 const editRequested = topic();
 
 /** The id of the job shown, or null (the e2e test reads it). */
@@ -30,7 +32,16 @@ export const currentResult = () => result;
 /** Listens for "Edit and run again": (the scene as run). */
 export const onEditAgain = editRequested.on;
 
-const redrawSeries = () => drawSeries(cycles, scene, result && result.ocp_trace);
+// The Fig. 11 view's curves when it is on and the scene as run is known, else null.
+function fig11View() {
+  if (!$(RUN.showFig11).checked || !sceneAsRun) return null;
+  const id = selected;
+  return fig11Curves(id, scene, cycles, Boolean(result), () => { if (selected === id) redrawSeries(); });
+}
+
+function redrawSeries() {
+  drawSeries(cycles, scene, result && result.ocp_trace, fig11View());
+}
 
 // The Table 3 choice for the scene known now, and the volume figure again if drawn.
 function table3() {
@@ -53,6 +64,8 @@ function select(id, how = {}) {
   cycles = [];
   result = null;
   scene = submittedScene(id);
+  sceneAsRun = false;
+  $(RUN.showFig11).checked = false;
   measurements.forget();
   scores.clear();
   $(RUN.panel).hidden = false;
@@ -180,7 +193,7 @@ async function loadResult(id) {
   if (!r.ok || selected !== id || !r.body || !Array.isArray(r.body.cycles)) return;
   result = r.body;
   cycles = r.body.cycles;
-  if (r.body.scene) scene = r.body.scene;
+  if (r.body.scene) { scene = r.body.scene; sceneAsRun = true; }
   $(RUN.partial).textContent = partialNote(r.body);
   for (const [button] of DOWNLOADS) $(button).disabled = false;
   renderWarnings(r.body.warnings || []);
@@ -198,7 +211,7 @@ async function loadResult(id) {
 async function loadScene(id) {
   const r = await api(`/api/v1/jobs/${id}/scene`);
   if (selected !== id) return;
-  if (r.ok && r.body && typeof r.body === "object") scene = r.body;
+  if (r.ok && r.body && typeof r.body === "object") { scene = r.body; sceneAsRun = true; }
   renderParams();
   table3();
 }
@@ -268,6 +281,10 @@ export function init() {
   }
   $(RUN.editAgain).addEventListener("click", () => editRequested.emit(scene));
   $(RUN.showTable3).addEventListener("change", redrawSeries);
+  $(RUN.showFig11).addEventListener("change", () => {
+    if ($(RUN.showFig11).checked) forgetFailed();
+    redrawSeries();
+  });
   labels.init(jobs.refresh);
   jobs.onView(select);
   jobs.onDeleted((id) => { if (id === selected) close(); });

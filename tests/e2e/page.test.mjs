@@ -13,6 +13,7 @@ import { access } from "./steps/access.mjs";
 import { calibration } from "./steps/calibration.mjs";
 import { cancel } from "./steps/cancel.mjs";
 import { compare } from "./steps/compare.mjs";
+import { fig11 } from "./steps/fig11.mjs";
 import { form } from "./steps/form.mjs";
 import { listing } from "./steps/listing.mjs";
 import { measurements } from "./steps/measurements.mjs";
@@ -46,7 +47,7 @@ try {
   page.on("response", (r) => { if (r.status() === 404 && !r.url().includes("/api/")) errors.push(`404 ${r.url()}`); });
   // What one step finds and a later one uses (the runs' ids, the run's length, ...).
   const found = {};
-  for (const scenario of [form, run, measurements, report, compare, access, study, calibration, listing, cancel, rough, ocp, views]) {
+  for (const scenario of [form, run, measurements, report, compare, access, study, calibration, listing, cancel, rough, ocp, views, fig11]) {
     await scenario(page, found);
   }
   assert.deepEqual(errors, [], "errors in the page");
