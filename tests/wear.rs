@@ -451,6 +451,7 @@ fn yielding_cuts_each_row_to_its_lowest_pressed_level_and_removes_what_it_cut() 
         operator_applies: 0,
         residual: 0.0,
         preconditioner_fallbacks: 0,
+        uniform_restarts: 0,
     };
     assert!(groove.yield_under(&grid, &solution, &separation, cap));
     // Row 2 is cut to 0.3 um, the pressed level of its most-pressed cell; row 3 to the pit's

@@ -38,7 +38,9 @@
 //! 2000 iterations; on the whole grid it converges in 46. So a solve that stops making
 //! progress (`progress`) drops the correction and goes on on the whole grid: that solve
 //! converged in 57 iterations, the fallback after the 11th. The fallbacks are counted in
-//! [`ContactSolution::preconditioner_fallbacks`].
+//! [`ContactSolution::preconditioner_fallbacks`]. A warm start that stalls on the whole grid
+//! too begins again from the uniform pressure (`progress`), counted in
+//! [`ContactSolution::uniform_restarts`].
 //!
 //! # Cost: one operator apply per iteration
 //! The displacement `u = K p` is updated as `u - tau K t`, reusing the `K t` that the step

@@ -45,8 +45,8 @@ pub(super) fn rescale_to_load(pressure: &mut [f64], cap: f64, target: f64, raw_g
         let mut clipped = false;
         for p in pressure.iter_mut().filter(|p| **p > 0.0 && **p < cap) {
             let shifted = *p + shift;
+            clipped |= !(0.0..=cap).contains(&shifted);
             *p = shifted.clamp(0.0, cap);
-            clipped |= *p != shifted;
         }
         if !clipped {
             return;
