@@ -183,7 +183,14 @@ fn corrosion_follows_eq18_and_faraday_in_the_users_units() {
     let wac = last.wac_volume_mm3.expect("on");
     assert_eq!(last.total_volume_mm3, Some(last.wear_volume_mm3));
     let mechanical = (last.wear_volume_mm3 - wac).max(0.0);
-    assert_eq!(last.mechanical_volume_mm3, Some(mechanical));
+    // The run subtracts in m^3 and converts; here the converted volumes are subtracted: the
+    // two differ by the roundings of the conversions, a few ulps of the wear volume.
+    let split_roundoff = 4.0 * f64::EPSILON * last.wear_volume_mm3;
+    let reported = last.mechanical_volume_mm3.expect("on");
+    assert!(
+        (reported - mechanical).abs() <= split_roundoff,
+        "{reported} against {mechanical}"
+    );
     // k fitted on the mechanical loss: the corrosion adds to the track.
     let mechanical_basis = scene(
         r#"{"preset": "dalmau2018-316l", "overrides": {
