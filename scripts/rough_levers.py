@@ -33,7 +33,7 @@ SURFACE = {
 # references, the smooth auto run the time baseline.
 RUNS = [
     ("smooth, auto (baseline)", False, {}),
-    ("smooth, every cycle", False, {"cycle_step": 1}),
+    ("smooth, every cycle (reference)", False, {"cycle_step": 1}),
     ("rough, every cycle (reference)", True, {"cycle_step": 1}),
     ("rough, auto, bound 0.01 (default)", True, {}),
     ("rough, auto, bound 0.02", True, {"cycle_step_bound": 0.02}),
