@@ -268,3 +268,30 @@ fn seed_3_cut_off_4_um_rms_0_1_um() {
     }
     .run();
 }
+
+/// A rough disc under long cycle steps, where warm starts are far from the solution: the 4
+/// um cut-off disc of `docs/accuracy.md` (seed 2, rms 0.1 um) at `cycle_step_bound` 0.1. Its
+/// 27th cycle's warm start cycled on the whole grid for 2000 iterations (residual 0.29)
+/// until a stalled warm start began again from the uniform pressure
+/// (`src/contact/solver/progress.rs`).
+#[test]
+fn long_steps_on_a_rough_disc_converge_from_their_warm_starts() {
+    run_checked(
+        r#"{"disc": {"surface": {"kind": "synthetic", "rms_height_um": 0.1, "hurst": 0.8,
+                "short_cutoff_um": 4, "long_cutoff_um": 50, "seed": 2}},
+            "test": {"cycles": 30}, "numerics": {"cycle_step_bound": 0.1}}"#,
+    );
+}
+
+/// The same disc with seed 1 at `cycle_step_bound` 0.05 over 492 cycles: its last solve,
+/// warm-started after a 5-cycle step, cycled between 250 and 18,000 capped cells for 2000
+/// iterations while the load was restored by scaling; it converges with the shift of
+/// `rescale_to_load` (`src/contact/solver/bounds.rs`). About 17 s in release.
+#[test]
+fn a_late_warm_start_under_the_cap_converges() {
+    run_checked(
+        r#"{"disc": {"surface": {"kind": "synthetic", "rms_height_um": 0.1, "hurst": 0.8,
+                "short_cutoff_um": 4, "long_cutoff_um": 50, "seed": 1}},
+            "test": {"cycles": 492}, "numerics": {"cycle_step_bound": 0.05}}"#,
+    );
+}

@@ -183,7 +183,14 @@ fn corrosion_follows_eq18_and_faraday_in_the_users_units() {
     let wac = last.wac_volume_mm3.expect("on");
     assert_eq!(last.total_volume_mm3, Some(last.wear_volume_mm3));
     let mechanical = (last.wear_volume_mm3 - wac).max(0.0);
-    assert_eq!(last.mechanical_volume_mm3, Some(mechanical));
+    // The run subtracts in m^3 and converts; here the converted volumes are subtracted: the
+    // two differ by the roundings of the conversions, a few ulps of the wear volume.
+    let split_roundoff = 4.0 * f64::EPSILON * last.wear_volume_mm3;
+    let reported = last.mechanical_volume_mm3.expect("on");
+    assert!(
+        (reported - mechanical).abs() <= split_roundoff,
+        "{reported} against {mechanical}"
+    );
     // k fitted on the mechanical loss: the corrosion adds to the track.
     let mechanical_basis = scene(
         r#"{"preset": "dalmau2018-316l", "overrides": {
@@ -451,6 +458,7 @@ fn yielding_cuts_each_row_to_its_lowest_pressed_level_and_removes_what_it_cut() 
         operator_applies: 0,
         residual: 0.0,
         preconditioner_fallbacks: 0,
+        uniform_restarts: 0,
     };
     assert!(groove.yield_under(&grid, &solution, &separation, cap));
     // Row 2 is cut to 0.3 um, the pressed level of its most-pressed cell; row 3 to the pit's

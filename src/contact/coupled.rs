@@ -37,8 +37,8 @@ pub const INNER_FRACTION: f64 = 0.1;
 pub const INNER_FLOOR: f64 = 0.5;
 
 /// Solves the contact with the coupling term by the outer fixed point above. The reported
-/// `iterations`, `operator_applies` and `preconditioner_fallbacks` add up every inner solve
-/// (and the coupling applies).
+/// `iterations`, `operator_applies`, `preconditioner_fallbacks` and `uniform_restarts` add
+/// up every inner solve (and the coupling applies).
 pub fn solve_coupled(
     normal: &mut dyn Operator,
     coupling: &mut dyn Operator,
@@ -56,7 +56,7 @@ pub fn solve_coupled(
             shift_separation(&mut separation, problem.separation, &coupling_u);
         }
     }
-    let (mut iterations, mut applies, mut fallbacks) = (0, 0, 0);
+    let (mut iterations, mut applies, mut fallbacks, mut restarts) = (0, 0, 0, 0);
     let mut residual = f64::INFINITY;
     for _ in 0..MAX_OUTER_ITERATIONS {
         let inner = ContactProblem {
@@ -73,6 +73,7 @@ pub fn solve_coupled(
         iterations += solution.iterations;
         applies += solution.operator_applies + 1;
         fallbacks += solution.preconditioner_fallbacks;
+        restarts += solution.uniform_restarts;
         coupling.apply(&solution.pressure, &mut coupling_u);
 
         // The residual of this pressure on the full operator.
@@ -92,6 +93,7 @@ pub fn solve_coupled(
             solution.iterations = iterations;
             solution.operator_applies = applies;
             solution.preconditioner_fallbacks = fallbacks;
+            solution.uniform_restarts = restarts;
             solution.residual = residual;
             return Ok(solution);
         }

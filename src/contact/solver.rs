@@ -38,7 +38,9 @@
 //! 2000 iterations; on the whole grid it converges in 46. So a solve that stops making
 //! progress (`progress`) drops the correction and goes on on the whole grid: that solve
 //! converged in 57 iterations, the fallback after the 11th. The fallbacks are counted in
-//! [`ContactSolution::preconditioner_fallbacks`].
+//! [`ContactSolution::preconditioner_fallbacks`]. A warm start that stalls on the whole grid
+//! too begins again from the uniform pressure (`progress`), counted in
+//! [`ContactSolution::uniform_restarts`].
 //!
 //! # Cost: one operator apply per iteration
 //! The displacement `u = K p` is updated as `u - tau K t`, reusing the `K t` that the step
@@ -143,8 +145,8 @@ pub fn solve(
                 None => continue,
             }
         }
-        if state.progress.stalled(state.residual) {
-            state.fall_back();
+        if state.progress.stalled(state.residual) && state.fall_back(operator) {
+            continue;
         }
         let num = state.direction(operator);
         if num <= 0.0 {
@@ -224,6 +226,11 @@ struct PolonskyKeer<'a> {
     progress: Progress,
     /// Whether the correction was dropped because the solve stalled.
     fell_back: bool,
+    /// Whether the solve began from a warm start and has not yet left it for the uniform
+    /// pressure.
+    warm: bool,
+    /// Whether a stalled warm start was left for the uniform pressure.
+    restarted: bool,
     /// Operator applications so far.
     applies: usize,
     /// Updates of `u` since it was last computed from `p` by an apply (0: fresh).
@@ -268,11 +275,10 @@ impl<'a> PolonskyKeer<'a> {
                 capacity_n: cap * grid.area(),
             });
         }
-        let mut p = match warm_start {
-            Some(w) if w.len() == n && w.iter().any(|&v| v > 0.0) => {
-                w.iter().map(|&v| v.clamp(0.0, cap)).collect()
-            }
-            _ => vec![target / n as f64; n],
+        let warm = warm_start.filter(|w| w.len() == n && w.iter().any(|&v| v > 0.0));
+        let mut p = match warm {
+            Some(w) => w.iter().map(|&v| v.clamp(0.0, cap)).collect(),
+            None => vec![target / n as f64; n],
         };
         // Before the first apply the displacement is unknown: order by the separation alone.
         rescale_to_load(&mut p, cap, target, h);
@@ -303,6 +309,8 @@ impl<'a> PolonskyKeer<'a> {
             correction,
             progress: Progress::new(),
             fell_back: false,
+            warm: warm.is_some(),
+            restarted: false,
             applies: 1,
             updates: 0,
             changes: Vec::new(),
@@ -422,17 +430,8 @@ impl<'a> PolonskyKeer<'a> {
             operator_applies: self.applies,
             residual: self.residual,
             preconditioner_fallbacks: usize::from(self.fell_back),
+            uniform_restarts: usize::from(self.restarted),
         }))
-    }
-
-    /// The solve stalled: drop the free-set correction, if any, and go on preconditioned on
-    /// the whole grid, from a fresh direction. Without a correction there is no safer step
-    /// to take, and the solve goes on to its iteration limit.
-    fn fall_back(&mut self) {
-        if self.correction.take().is_some() {
-            self.fell_back = true;
-            self.restart = true;
-        }
     }
 
     /// `u = K p`, from scratch.

@@ -321,6 +321,7 @@ mod tests {
                 operator_applies: 0,
                 residual: 0.0,
                 preconditioner_fallbacks: 0,
+                uniform_restarts: 0,
             };
             for &(i, u) in displacement_um {
                 solution.pressure[i] = 1e9;

@@ -6,21 +6,30 @@ use super::super::grid::Grid;
 use super::super::operator::Operator;
 use super::sums::dot;
 
-/// Scales the cells below the cap so the total is `target`; cells pushed over the cap are
-/// clipped to it and the rest rescaled again (each pass caps at least one more cell, so
-/// this ends). If the capped cells alone exceed the target, every cell is scaled down. If
-/// every loaded cell is capped and the load is still short, the contact must grow: the
-/// deficit goes to unloaded cells in order of increasing `u + h`, the order in which a
+/// Restores the load to `target` by one shift of every loaded cell below the cap, the
+/// projection onto the load's hyperplane within the bounds; cells the shift carries past a
+/// bound are clipped to it and the rest shifted again (each pass clips at least one more
+/// cell, so this ends). If the capped cells alone exceed the target, every cell is scaled
+/// down. If every loaded cell is capped and the load is still short, the contact must grow:
+/// the deficit goes to unloaded cells in order of increasing `u + h`, the order in which a
 /// larger approach would bring them into contact. Without that, a contact that is almost
 /// entirely at the cap has an empty free set and the iteration stalls.
+///
+/// A shift rather than a scale: scaling gives the most to the cells nearest the cap, so a
+/// rescale after a step clips more cells than the step did, and on a rough disc under the
+/// cap the iteration fell into a cycle of 400 to 15,000 capped cells. Cycle 143 of the
+/// 4 um rough disc with seed 2 and `cycle_step_bound` 0.1 (`docs/accuracy.md`) took 955
+/// iterations scaled and 112 shifted; the paper scene's 464 solves take 2181 iterations
+/// against 2180, with the same results to 1e-8.
 pub(super) fn rescale_to_load(pressure: &mut [f64], cap: f64, target: f64, raw_gap: &[f64]) {
     loop {
-        let (mut capped, mut free) = (0.0, 0.0);
+        let (mut capped, mut free, mut shifted) = (0.0, 0.0, 0usize);
         for &p in pressure.iter() {
             if p >= cap {
                 capped += cap;
-            } else {
+            } else if p > 0.0 {
                 free += p;
+                shifted += 1;
             }
         }
         if capped >= target {
@@ -28,18 +37,16 @@ pub(super) fn rescale_to_load(pressure: &mut [f64], cap: f64, target: f64, raw_g
             pressure.iter_mut().for_each(|p| *p *= scale);
             return;
         }
-        if free <= 0.0 {
+        if shifted == 0 {
             grow_contact(pressure, cap, target - capped, raw_gap);
             return;
         }
-        let scale = (target - capped) / free;
+        let shift = (target - capped - free) / shifted as f64;
         let mut clipped = false;
-        for p in pressure.iter_mut().filter(|p| **p < cap) {
-            *p *= scale;
-            if *p >= cap {
-                *p = cap;
-                clipped = true;
-            }
+        for p in pressure.iter_mut().filter(|p| **p > 0.0 && **p < cap) {
+            let shifted = *p + shift;
+            clipped |= !(0.0..=cap).contains(&shifted);
+            *p = shifted.clamp(0.0, cap);
         }
         if !clipped {
             return;
@@ -123,4 +130,30 @@ pub(super) fn check_edges(grid: &Grid, pressure: &[f64], target: f64) -> Result<
         });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_load_is_restored_by_one_shift_of_the_loaded_cells_below_the_cap() {
+        // 0.2 short: a third each would carry the first cell past the cap, so it is clipped
+        // there and the two others share the rest, 0.075 each; the unloaded cell stays so.
+        let mut p = [0.95, 0.5, 0.1, 0.0];
+        rescale_to_load(&mut p, 1.0, 1.75, &[0.0; 4]);
+        let expected = [1.0, 0.575, 0.175, 0.0];
+        assert!(
+            p.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-15),
+            "{p:?}"
+        );
+        // Too much load: the shift lowers them and a cell it would take below zero stops at 0.
+        let mut p = [0.5, 0.3, 0.05];
+        rescale_to_load(&mut p, 1.0, 0.55, &[0.0; 3]);
+        let expected = [0.375, 0.175, 0.0];
+        assert!(
+            p.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-15),
+            "{p:?}"
+        );
+    }
 }

@@ -15,6 +15,10 @@
 //! slowest converging solve did, and stops a stalled solve within about 10 iterations of
 //! its last gain.
 
+use super::super::operator::Operator;
+use super::PolonskyKeer;
+use super::bounds::rescale_to_load;
+
 /// Iterations over which the best residual must fall by [`STALL_FACTOR`].
 pub(super) const STALL_ITERATIONS: usize = 10;
 
@@ -50,6 +54,39 @@ impl Progress {
         self.recorded += 1;
         // The oldest slot holds the best of STALL_ITERATIONS iterations ago.
         self.recorded > STALL_ITERATIONS && best > STALL_FACTOR * self.best[(slot + 1) % slots]
+    }
+}
+
+impl PolonskyKeer<'_> {
+    /// The solve stalled. The first remedy drops the free-set correction, if any, and goes on
+    /// preconditioned on the whole grid from a fresh direction. The second, for a solve
+    /// that began from a warm start, starts again from the uniform pressure at the load, on
+    /// the whole grid (true: the state must be measured afresh). After both, there is no
+    /// safer step to take, and the solve goes on to its iteration limit.
+    ///
+    /// A warm start can hold the whole-grid iteration in a cycle: cycle 492 of the 4 um
+    /// rough disc of `docs/accuracy.md` at `cycle_step_bound` 0.05, after a 5-cycle step,
+    /// swung between 250 and 18,000 capped cells (the load's rescale pushing the free cells
+    /// onto the cap, the re-entry rule releasing them) at residuals of 0.17 to 0.85 for 2000
+    /// iterations. From the uniform pressure the same problem converged in 73.
+    pub(super) fn fall_back(&mut self, operator: &mut dyn Operator) -> bool {
+        if self.correction.take().is_some() {
+            self.fell_back = true;
+            self.restart = true;
+            return false;
+        }
+        if !self.warm {
+            return false;
+        }
+        self.warm = false;
+        self.restarted = true;
+        let n = self.p.len();
+        self.p.fill(self.target / n as f64);
+        rescale_to_load(&mut self.p, self.cap, self.target, self.separation);
+        self.recompute(operator);
+        self.progress = Progress::new();
+        self.restart = true;
+        true
     }
 }
 

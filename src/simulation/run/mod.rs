@@ -114,6 +114,8 @@ struct Run<'a, F> {
     iterations: usize,
     /// Solves that stalled with the free-set preconditioner and fell back to the whole grid.
     fallback_solves: usize,
+    /// Solves whose warm start stalled on the whole grid too and began again uniform.
+    restarted_solves: usize,
     max_step: u64,
     /// Window fractions of the solvers of grids grown out of.
     window_fractions: WindowFractions,
@@ -143,6 +145,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             solves: 0,
             iterations: 0,
             fallback_solves: 0,
+            restarted_solves: 0,
             max_step: 1,
             window_fractions: WindowFractions::default(),
         }
@@ -255,6 +258,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         self.solves += 1;
         self.iterations += solution.iterations;
         self.fallback_solves += usize::from(solution.preconditioner_fallbacks > 0);
+        self.restarted_solves += usize::from(solution.uniform_restarts > 0);
         Ok((solution, separation))
     }
 
@@ -481,6 +485,12 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             window += &format!(
                 "; the free-set preconditioner stalled and fell back to the whole grid in {} of {} solves",
                 self.fallback_solves, self.solves
+            );
+        }
+        if self.restarted_solves > 0 {
+            window += &format!(
+                "; a warm start stalled on the whole grid too and the solve began again from the uniform pressure in {} of {} solves",
+                self.restarted_solves, self.solves
             );
         }
         models.push(ModelChoice {

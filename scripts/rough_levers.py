@@ -1,0 +1,154 @@
+#!/usr/bin/env python3
+"""The speed levers of a rough-disc wear run, as speed against error, written into
+docs/accuracy.md ("## Rough wear: speed levers").
+
+Runs the 4 um cut-off rough disc of issue 29 (rms 0.1 um, Hurst 0.8, cut-offs 4 and 50 um,
+seed 1) over 600 cycles with each lever, the smooth disc of the same scene as the time
+baseline, and both with every cycle solved as the references of the errors. Each time is
+a ratio to the smooth auto run of the same invocation, so the machine's speed cancels.
+
+Usage: scripts/rough_levers.py [--bin target/release/tribosim] [--markdown docs/accuracy.md]
+(about 4 minutes on 2 cores). Standard library only.
+"""
+
+import argparse
+import datetime
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+HEADING = "## Rough wear: speed levers"
+CYCLES = 600
+SURFACE = {
+    "kind": "synthetic",
+    "rms_height_um": 0.1,
+    "hurst": 0.8,
+    "short_cutoff_um": 4,
+    "long_cutoff_um": 50,
+    "seed": 1,
+}
+# (label, rough, numerics); the first rough and smooth entries with cycle_step 1 are the
+# references, the smooth auto run the time baseline.
+RUNS = [
+    ("smooth, auto (baseline)", False, {}),
+    ("smooth, every cycle (reference)", False, {"cycle_step": 1}),
+    ("rough, every cycle (reference)", True, {"cycle_step": 1}),
+    ("rough, auto, bound 0.01 (default)", True, {}),
+    ("rough, auto, bound 0.02", True, {"cycle_step_bound": 0.02}),
+    ("rough, auto, bound 0.05", True, {"cycle_step_bound": 0.05}),
+    ("rough, auto, bound 0.1", True, {"cycle_step_bound": 0.1}),
+    ("rough, auto, 2 threads", True, {"threads": 2}),
+    ("rough, auto, tolerance 1e-5", True, {"tolerance": 1e-5}),
+]
+OUTPUTS = [
+    ("wear_volume_mm3", "volume"),
+    ("max_depth_um", "depth"),
+    ("wac_volume_mm3", "WAC"),
+    ("potential_v", "E"),
+]
+
+
+def run(binary, label, rough, numerics, workdir):
+    scene = {"test": {"cycles": CYCLES}}
+    if rough:
+        scene["disc"] = {"surface": SURFACE}
+    if numerics:
+        scene["numerics"] = numerics
+    path = os.path.join(workdir, f"{len(os.listdir(workdir))}.json")
+    with open(path, "w") as f:
+        json.dump(scene, f)
+    out = path + ".out"
+    subprocess.run([binary, "run", path, "-o", out], check=True, stdout=subprocess.DEVNULL)
+    with open(out) as f:
+        return label, rough, numerics, json.load(f)
+
+
+def profile_error(result, reference):
+    """L1 difference of the last profiles, relative to the reference's, on its rows."""
+    last = max(p["cycle"] for p in reference["profiles"])
+    prof = {p["cycle"]: p for p in result["profiles"]}[last]
+    ref = {p["cycle"]: p for p in reference["profiles"]}[last]
+    ys, ds = prof["y_um"], prof["depth_um"]
+
+    def at(y):
+        if y <= ys[0] or y >= ys[-1]:
+            return 0.0
+        i = next(k for k in range(1, len(ys)) if ys[k] >= y)
+        w = (y - ys[i - 1]) / (ys[i] - ys[i - 1])
+        return ds[i - 1] * (1 - w) + ds[i] * w
+
+    diff = sum(abs(at(y) - d) for y, d in zip(ref["y_um"], ref["depth_um"]))
+    return diff / sum(abs(d) for d in ref["depth_um"])
+
+
+def table(rows):
+    base = rows[0][3]["summary"]["wall_s"]
+    refs = {rough: r for (_, rough, n, r) in rows if n.get("cycle_step") == 1}
+    head = "| run | solves | iterations a solve | time / smooth auto | " + " | ".join(
+        f"{name} error" for _, name in OUTPUTS
+    ) + " | profile L1 error |"
+    lines = [head, "|" + "---|" * (head.count("|") - 1)]
+    for label, rough, numerics, r in rows:
+        s, ref = r["summary"], refs[rough]["summary"]
+        errors = [
+            f"{(s[k] - ref[k]) / abs(ref[k]):+.1e}" for k, _ in OUTPUTS
+        ]
+        lines.append(
+            f"| {label} | {s['solves']} | {s['iterations'] / s['solves']:.1f} | "
+            f"{s['wall_s'] / base:.1f} | " + " | ".join(errors)
+            + f" | {profile_error(r, refs[rough]):.1e} |"
+        )
+    return "\n".join(lines)
+
+
+def section(rows, binary):
+    version = subprocess.run([binary, "--version"], capture_output=True, text=True).stdout
+    when = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    surface = ", ".join(f"{k} {v}" for k, v in SURFACE.items() if k != "kind")
+    return f"""{HEADING}
+
+The paper's scene over {CYCLES} cycles on a smooth disc and on a synthetic rough one ({surface}),
+each lever alone. Errors are relative to the same disc with every cycle solved; "time / smooth
+auto" is the run's wall time over the smooth disc's with the defaults, in the same invocation.
+Measured by `scripts/rough_levers.py --markdown docs/accuracy.md` on {when} ({os.cpu_count()}
+cores, {version.strip()}); the machine may be shared with other work.
+
+{table(rows)}
+"""
+
+
+def splice(text, body):
+    start = text.find(f"\n{HEADING}\n")
+    if start >= 0:
+        end = text.find("\n## ", start + 1 + len(HEADING))
+        end = len(text) if end < 0 else end + 1
+        before, after = text[: start + 1], text[end:]
+    else:
+        peers = text.find("\n## Peers")
+        before, after = (text, "") if peers < 0 else (text[: peers + 1], text[peers + 1:])
+    return before.rstrip() + "\n\n" + body.rstrip() + "\n\n" + after.lstrip()
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--bin", default="target/release/tribosim")
+    parser.add_argument("--markdown")
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as workdir:
+        rows = []
+        for label, rough, numerics in RUNS:
+            rows.append(run(args.bin, label, rough, numerics, workdir))
+            print(f"{label}: {rows[-1][3]['summary']['wall_s']:.1f} s", file=sys.stderr)
+    body = section(rows, args.bin)
+    print(body)
+    if args.markdown:
+        with open(args.markdown) as f:
+            text = f.read()
+        with open(args.markdown, "w") as f:
+            f.write(splice(text, body).rstrip() + "\n")
+
+
+if __name__ == "__main__":
+    main()
