@@ -135,7 +135,11 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             share: disc_share(setup),
             stepper: Stepper::new(scene.numerics.cycle_step, scene.numerics.cycle_step_bound),
             record_cycles: scene.record_cycles(),
-            history: WarmStart::new(setup.plan.pair().reduced_modulus_pa, grid.dx.min(grid.dy)),
+            history: WarmStart::new(
+                setup.plan.pair().reduced_modulus_pa,
+                grid.dx.min(grid.dy),
+                setup.surface.is_some(),
+            ),
             cell: Cell::of(scene, setup.plan.hertz().contact_radius_m()),
             grows: scene.numerics.domain_um == DomainSize::Auto,
             models: setup.models.clone(),
