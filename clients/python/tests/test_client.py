@@ -19,6 +19,9 @@ def test_presets(client: tribosim.Client) -> None:
     paper = next(p for p in presets if p.name == "dalmau2018-316l")
     assert paper.scene["test"]["load_n"] == 5.0
     assert "Dalmau" in paper.description
+    # Table 3 (Dalmau et al. 2018): the wear volume at 3600 s, 11.72e-3 mm^3.
+    assert [row["time_s"] for row in paper.measured] == [10, 60, 300, 1800, 3600]
+    assert paper.measured[-1]["wear_volume_mm3"] == 11.72e-3
 
 
 def test_page(client: tribosim.Client) -> None:

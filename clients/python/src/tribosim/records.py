@@ -108,3 +108,7 @@ class Preset(Record):
     name: str
     description: str
     scene: dict[str, Any]
+    #: What was measured on the preset's test, a row per time (``time_s``,
+    #: ``hardness_mpa``, ``wear_volume_mm3``, ``spread_mm3``): the paper's Table 3 for
+    #: ``dalmau2018-316l``.
+    measured: list[dict[str, Any]]
