@@ -576,8 +576,9 @@ impl<'a> PolonskyKeer<'a> {
     /// Brings the load back to the target after the recorded changes (`highest`: the
     /// largest pressure now, `load` their sum). With no cell at the cap before or after, the rescale is one
     /// factor `s` on every pressure, so `u = K p` becomes `s (u + K d)` with `d` the
-    /// recorded changes: a sparse update where the operator offers one. Otherwise the load
-    /// is restored by [`rescale_to_load`] and `u` recomputed.
+    /// recorded changes: a sparse update where the operator offers one (with no cap to
+    /// reach, a scale clips nothing, so it cannot cascade as it did under the cap). Otherwise
+    /// the load is restored by [`rescale_to_load`]'s shift and `u` recomputed.
     fn restore_load(&mut self, operator: &mut dyn Operator, highest: f64, load: f64) {
         let scale = self.target / load;
         if highest < self.cap
