@@ -9,9 +9,10 @@
 //! preserves the load exactly and needs no rescaling. Cells leaving `F` are truncated to the
 //! bound they cross; cells on a bound whose gap says they should not be there (zero
 //! pressure but penetrating, or at the cap but open) re-enter `F` by the Polonsky-Keer
-//! rule and restart the conjugacy. When the free cells cannot move (at most one is free,
-//! nearly every loaded cell at the cap), one projected steepest-descent step over the free
-//! and the wrongly bounded cells takes the place of the CG step.
+//! rule and restart the conjugacy (on the whole grid, only when many cells moved:
+//! `progress`). When the free cells cannot move (at most one is free, nearly every loaded
+//! cell at the cap), one projected steepest-descent step over the free and the wrongly
+//! bounded cells takes the place of the CG step.
 //!
 //! One iteration of [`solve`], step by step (the methods of its private state): measure the
 //! gap and the residual (`measure`); stop, or restore the load, once the residual meets the
@@ -78,7 +79,7 @@ mod sums;
 
 use bounds::{check_edges, rescale_to_load, violator_step};
 use free_set::FreeSetCorrection;
-use progress::Progress;
+use progress::{Progress, restarts_conjugacy};
 use sums::{dot, dot2, free_dots, sum, update_direction};
 
 /// Relative load error accepted at convergence. Summing N^2 pressures in f64 errs by up to
@@ -570,7 +571,8 @@ impl<'a> PolonskyKeer<'a> {
         if !self.changes.is_empty() {
             self.restore_load(operator, highest, load);
         }
-        self.restart = entered;
+        let (moved, corrected) = (self.changes.len(), self.correction.is_some());
+        self.restart = entered && restarts_conjugacy(moved, self.free_cells, corrected);
     }
 
     /// Brings the load back to the target after the recorded changes (`highest`: the
