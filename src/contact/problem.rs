@@ -114,7 +114,7 @@ pub struct ContactSolution {
     /// ([`Preconditioning::FreeSet`]; see [`super::solver`]): 0 or 1 for one solve, summed
     /// over the inner solves of a coupled one.
     pub preconditioner_fallbacks: usize,
-    /// Solves whose warm start stalled on the whole grid too and that started again from the
+    /// Solves whose warm start stalled on the whole grid and that started again from the
     /// uniform pressure (see [`super::solver`]): 0 or 1 for one solve, summed like
     /// `preconditioner_fallbacks`.
     pub uniform_restarts: usize,

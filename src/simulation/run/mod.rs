@@ -27,6 +27,8 @@ use crate::scene::DomainSize;
 use crate::surface::count_islands;
 use crate::wear::Groove;
 
+mod stalls;
+
 use super::balance::{balance, overdrawn};
 use super::electrochemistry::{Cell, Reading, Surface};
 use super::growth::{GROW_AT_EDGE_CELLS, GROW_AT_FRACTION, near_edges, widen};
@@ -39,6 +41,7 @@ use super::{
     CycleRecord, Model, ModelChoice, Plan, PressureMap, Profile, RunOptions, Setup,
     SimulationError, SimulationResult,
 };
+use stalls::Stalls;
 
 /// Cycles at which the depth profile is kept when solved (paper Figs. 12 and 15 use 10 and
 /// 300), besides the scene's record cycles and the last cycle.
@@ -112,10 +115,8 @@ struct Run<'a, F> {
     maps: Vec<PressureMap>,
     solves: usize,
     iterations: usize,
-    /// Solves that stalled with the free-set preconditioner and fell back to the whole grid.
-    fallback_solves: usize,
-    /// Solves whose warm start stalled on the whole grid too and began again uniform.
-    restarted_solves: usize,
+    /// How the solves stalled, and the preconditioner the next starts on.
+    stalls: Stalls,
     max_step: u64,
     /// Window fractions of the solvers of grids grown out of.
     window_fractions: WindowFractions,
@@ -148,8 +149,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             maps: Vec::new(),
             solves: 0,
             iterations: 0,
-            fallback_solves: 0,
-            restarted_solves: 0,
+            stalls: Stalls::default(),
             max_step: 1,
             window_fractions: WindowFractions::default(),
         }
@@ -235,9 +235,8 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             .history
             .guess(cycle, cap)
             .or_else(|| cold_start(&problem, self.setup.plan.pair(), &self.setup.options));
-        let solved = self
-            .solver
-            .solve(&problem, &self.setup.options, start.as_deref());
+        let options = self.stalls.options(&self.setup.options);
+        let solved = self.solver.solve(&problem, &options, start.as_deref());
         if self.grows
             && self.solves == 0
             && matches!(solved, Err(ContactError::ContactAtEdge { .. }))
@@ -261,8 +260,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let solution = solved.map_err(|source| SimulationError::Contact { cycle, source })?;
         self.solves += 1;
         self.iterations += solution.iterations;
-        self.fallback_solves += usize::from(solution.preconditioner_fallbacks > 0);
-        self.restarted_solves += usize::from(solution.uniform_restarts > 0);
+        self.stalls.record(&solution);
         Ok((solution, separation))
     }
 
@@ -485,18 +483,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             100.0 * self.window_fractions.solved / self.solves as f64,
             100.0 * self.window_fractions.checked / self.solves as f64
         );
-        if self.fallback_solves > 0 {
-            window += &format!(
-                "; the free-set preconditioner stalled and fell back to the whole grid in {} of {} solves",
-                self.fallback_solves, self.solves
-            );
-        }
-        if self.restarted_solves > 0 {
-            window += &format!(
-                "; a warm start stalled on the whole grid too and the solve began again from the uniform pressure in {} of {} solves",
-                self.restarted_solves, self.solves
-            );
-        }
+        window += &self.stalls.describe();
         models.push(ModelChoice {
             name: Model::SolveWindow,
             active: true,
