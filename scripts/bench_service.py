@@ -18,10 +18,14 @@ import threading
 import time
 import urllib.parse
 
-SMALL = {"preset": "dalmau2018-316l",
-         "overrides": {"numerics": {"grid": 32}, "test": {"cycles": 20}}}
-LONGER = {"preset": "dalmau2018-316l",
-          "overrides": {"numerics": {"grid": 64, "cycle_step": 1}, "test": {"cycles": 100}}}
+SMALL = {
+    "preset": "dalmau2018-316l",
+    "overrides": {"numerics": {"grid": 32}, "test": {"cycles": 20}},
+}
+LONGER = {
+    "preset": "dalmau2018-316l",
+    "overrides": {"numerics": {"grid": 64, "cycle_step": 1}, "test": {"cycles": 100}},
+}
 
 
 def connect(base):
@@ -31,8 +35,7 @@ def connect(base):
 
 def submit(base, scene):
     conn = connect(base)
-    conn.request("POST", "/api/v1/jobs", json.dumps(scene),
-                 {"content-type": "application/json"})
+    conn.request("POST", "/api/v1/jobs", json.dumps(scene), {"content-type": "application/json"})
     response = conn.getresponse()
     body = json.loads(response.read())
     conn.close()
@@ -89,8 +92,10 @@ def main():
         _, _, first_at = events(base, job_id, first_only=True)
         latencies.append(first_at - start)
         wait_final(base, job_id)
-    print(f"submit to first event (idle worker, 20 jobs): median "
-          f"{statistics.median(latencies) * 1e3:.1f} ms, max {max(latencies) * 1e3:.1f} ms")
+    print(
+        f"submit to first event (idle worker, 20 jobs): median "
+        f"{statistics.median(latencies) * 1e3:.1f} ms, max {max(latencies) * 1e3:.1f} ms"
+    )
 
     job_id = submit(base, LONGER)
     results = [None] * 50
@@ -104,11 +109,17 @@ def main():
     for t in threads:
         t.join()
     final = wait_final(base, job_id)
-    complete = sum(1 for cycles, status, _ in results
-                   if status == final["status"] and cycles == sorted(set(cycles))
-                   and len(cycles) == len(results[0][0]))
-    print(f"50 event-stream clients on one job: {complete} of 50 got all "
-          f"{len(results[0][0])} cycle events and the final status ({final['status']})")
+    complete = sum(
+        1
+        for cycles, status, _ in results
+        if status == final["status"]
+        and cycles == sorted(set(cycles))
+        and len(cycles) == len(results[0][0])
+    )
+    print(
+        f"50 event-stream clients on one job: {complete} of 50 got all "
+        f"{len(results[0][0])} cycle events and the final status ({final['status']})"
+    )
 
     conn = connect(base)
     times = []
@@ -118,8 +129,10 @@ def main():
         conn.getresponse().read()
         times.append(time.perf_counter() - start)
     conn.close()
-    print(f"GET /api/v1/jobs/{{id}} round trip (200, keep-alive): median "
-          f"{statistics.median(times) * 1e6:.0f} us")
+    print(
+        f"GET /api/v1/jobs/{{id}} round trip (200, keep-alive): median "
+        f"{statistics.median(times) * 1e6:.0f} us"
+    )
 
 
 if __name__ == "__main__":

@@ -13,6 +13,7 @@ W v tau with W = contact_area / contact_chord, and Mischler's law A_a = K v sqrt
 
     python3 scripts/corrosion_models.py [path/to/tribosim]   (default target/release/tribosim)
 """
+
 import json
 import math
 import subprocess
@@ -21,8 +22,13 @@ import sys
 BIN = sys.argv[1] if len(sys.argv) > 1 else "target/release/tribosim"
 TABLE = "docs/calibration/paper_ocp.csv"
 # Table 3: rubbing time (s) -> hardness measured in the track (MPa), total volume (mm^3).
-TABLE3 = {10: (2551, 0.97e-3), 60: (2727, 1.09e-3), 300: (2854, 1.18e-3),
-          1800: (2933, 5.33e-3), 3600: (2953, 11.72e-3)}
+TABLE3 = {
+    10: (2551, 0.97e-3),
+    60: (2727, 1.09e-3),
+    300: (2854, 1.18e-3),
+    1800: (2933, 5.33e-3),
+    3600: (2953, 11.72e-3),
+}
 # Table 2's cell, the paper's i_a and electrode.
 E_CORR, A_C, B_C, I_A, A_EXP_CM2 = -0.10, -3.31, 0.56, 0.01, 2.56
 LOAD_N = 5.0
@@ -39,17 +45,21 @@ def paper_potential(time_s):
 
 
 def run(scene):
-    out = subprocess.run([BIN, "run", "-"], input=json.dumps(scene), capture_output=True,
-                         text=True, check=True)
+    out = subprocess.run(
+        [BIN, "run", "-"], input=json.dumps(scene), capture_output=True, text=True, check=True
+    )
     return json.loads(out.stdout)
 
 
 def calibrate(scene):
     with open("/tmp/corrosion_models_scene.json", "w") as f:
         json.dump(scene, f)
-    out = subprocess.run([BIN, "calibrate", "ocp", TABLE, "--scene",
-                          "/tmp/corrosion_models_scene.json"],
-                         capture_output=True, text=True, check=True)
+    out = subprocess.run(
+        [BIN, "calibrate", "ocp", TABLE, "--scene", "/tmp/corrosion_models_scene.json"],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     return json.loads(out.stdout)
 
 
@@ -73,8 +83,10 @@ def golden(f, lo, hi):
 def fit_on_records(area_of, lo, hi):
     """A parameter fitted by least squares on the potentials of A_a = area_of(record, p)."""
     records = by_time(run({}))
-    rss = lambda p: sum((paper_potential(t) - eq18(area_of(records[t], p))) ** 2
-                        for t in TABLE3)
+
+    def rss(p):
+        return sum((paper_potential(t) - eq18(area_of(records[t], p))) ** 2 for t in TABLE3)
+
     return golden(rss, lo, hi)
 
 
@@ -99,27 +111,37 @@ def default_table():
     result = run({})
     at = by_time(result)
     print(f"`{{}}` ({result['summary']['solves']} solves, {result['summary']['wall_s']:.1f} s):\n")
-    print("| time (s) | paper's E (V) | model E (V) | A_a (mm^2) | F / H (mm^2) | A_a / (F/H) "
-          "| L (um) | I (uA) | charge (C) | WAC (1e-3 mm^3) | track = total (1e-3 mm^3) "
-          "| mechanical (1e-3 mm^3) "
-          "| Table 3 total | WAC / Table 3 | WAC / model total |")
+    print(
+        "| time (s) | paper's E (V) | model E (V) | A_a (mm^2) | F / H (mm^2) | A_a / (F/H) "
+        "| L (um) | I (uA) | charge (C) | WAC (1e-3 mm^3) | track = total (1e-3 mm^3) "
+        "| mechanical (1e-3 mm^3) "
+        "| Table 3 total | WAC / Table 3 | WAC / model total |"
+    )
     print("|" + "---|" * 15)
     for t, (_, measured) in TABLE3.items():
         r = at[t]
         wac = r["wac_volume_mm3"]
-        print(f"| {t} | {paper_potential(t):.4f} | {r['potential_v']:.4f} "
-              f"| {r['anodic_area_mm2']:.4f} | {real_mm2(r):.5f} "
-              f"| {r['anodic_area_mm2'] / real_mm2(r):.1f} | {r['contact_chord_um']:.1f} "
-              f"| {r['anodic_current_ma'] * 1e3:.2f} | {r['charge_c']:.4f} | {wac * 1e3:.3f} "
-              f"| {r['total_volume_mm3'] * 1e3:.3f} | {r['mechanical_volume_mm3'] * 1e3:.3f} "
-              f"| {measured * 1e3:.2f} | {wac / measured:.1%} | {wac / r['total_volume_mm3']:.1%} |")
+        print(
+            f"| {t} | {paper_potential(t):.4f} | {r['potential_v']:.4f} "
+            f"| {r['anodic_area_mm2']:.4f} | {real_mm2(r):.5f} "
+            f"| {r['anodic_area_mm2'] / real_mm2(r):.1f} | {r['contact_chord_um']:.1f} "
+            f"| {r['anodic_current_ma'] * 1e3:.2f} | {r['charge_c']:.4f} | {wac * 1e3:.3f} "
+            f"| {r['total_volume_mm3'] * 1e3:.3f} "
+            f"| {r['mechanical_volume_mm3'] * 1e3:.3f} "
+            f"| {measured * 1e3:.2f} | {wac / measured:.1%} | {wac / r['total_volume_mm3']:.1%} |"
+        )
     print()
 
 
 def conditions():
     """(label, test overrides) of the speed and load series."""
-    return [("30 rpm", {"speed_rpm": 30}), ("60 rpm, 5 N", {}), ("120 rpm", {"speed_rpm": 120}),
-            ("2 N", {"load_n": 2}), ("10 N", {"load_n": 10})]
+    return [
+        ("30 rpm", {"speed_rpm": 30}),
+        ("60 rpm, 5 N", {}),
+        ("120 rpm", {"speed_rpm": 120}),
+        ("2 N", {"load_n": 2}),
+        ("10 N", {"load_n": 10}),
+    ]
 
 
 def with_test(test, corrosion):
@@ -155,31 +177,45 @@ def models_table():
             scene_corrosion = dict(corrosion, **{key: value})
         fitted[name] = scene_corrosion
         at = by_time(run({"corrosion": scene_corrosion}))
-        cells = [(at[t]["potential_v"], at[t]["anodic_area_mm2"] / real_mm2(at[t]))
-                 for t in TABLE3]
+        cells = [(at[t]["potential_v"], at[t]["anodic_area_mm2"] / real_mm2(at[t])) for t in TABLE3]
         rows.append((name, parameter, cells))
     tau_band = fit_on_records(solved_band, 1e-4, 0.99)
     k_sqrt = fit_on_records(mischler, 1e-4, 10.0)
     records = by_time(run({}))
     for name, parameter, area in [
-        ("band of the solved contact's width (not offered)", f"tau = {tau_band:.4g} s",
-         lambda r: solved_band(r, tau_band)),
-        ("Mischler, K v sqrt(F / H) (not offered)", f"K = {k_sqrt:.4g} s",
-         lambda r: mischler(r, k_sqrt)),
+        (
+            "band of the solved contact's width (not offered)",
+            f"tau = {tau_band:.4g} s",
+            lambda r: solved_band(r, tau_band),
+        ),
+        (
+            "Mischler, K v sqrt(F / H) (not offered)",
+            f"K = {k_sqrt:.4g} s",
+            lambda r: mischler(r, k_sqrt),
+        ),
     ]:
-        cells = [(eq18(area(records[t])), area(records[t]) / real_mm2(records[t]))
-                 for t in TABLE3]
+        cells = [(eq18(area(records[t])), area(records[t]) / real_mm2(records[t])) for t in TABLE3]
         rows.append((name, parameter, cells))
-    print("| model | fitted | " + " | ".join(f"{t} s: E (V), A_a / (F/H)" for t in TABLE3)
-          + " | rms vs paper (mV) |")
+    print(
+        "| model | fitted | "
+        + " | ".join(f"{t} s: E (V), A_a / (F/H)" for t in TABLE3)
+        + " | rms vs paper (mV) |"
+    )
     print("|" + "---|" * (len(TABLE3) + 3))
-    print("| the paper, A_a = 50 F / H | | " + " | ".join(
-        f"{paper_potential(t):.3f}, 50" for t in TABLE3) + " | |")
+    print(
+        "| the paper, A_a = 50 F / H | | "
+        + " | ".join(f"{paper_potential(t):.3f}, 50" for t in TABLE3)
+        + " | |"
+    )
     for name, parameter, cells in rows:
-        rms = math.sqrt(sum((c[0] - paper_potential(t)) ** 2 for c, t in zip(cells, TABLE3))
-                        / len(TABLE3))
-        print(f"| {name} | {parameter} | " + " | ".join(f"{e:.3f}, {r:.1f}" for e, r in cells)
-              + f" | {rms * 1e3:.0f} |")
+        rms = math.sqrt(
+            sum((c[0] - paper_potential(t)) ** 2 for c, t in zip(cells, TABLE3)) / len(TABLE3)
+        )
+        print(
+            f"| {name} | {parameter} | "
+            + " | ".join(f"{e:.3f}, {r:.1f}" for e, r in cells)
+            + f" | {rms * 1e3:.0f} |"
+        )
     print()
     return fitted, tau_band, k_sqrt
 
@@ -191,7 +227,7 @@ def predictions(fitted, tau_band, k_sqrt):
     lines["band of the solved contact's width"] = []
     lines["Mischler"] = []
     lines["the paper's constant ratio, 50 F / H"] = []
-    for label, test in conditions():
+    for _label, test in conditions():
         rpm = test.get("speed_rpm", 60)
         for name, corrosion in fitted.items():
             result = run(with_test(test, corrosion))
@@ -201,10 +237,12 @@ def predictions(fitted, tau_band, k_sqrt):
         ends = [at[int(10 * rpm / 60)], at[int(3600 * rpm / 60)]]
         load = test.get("load_n", LOAD_N)
         lines["band of the solved contact's width"].append(
-            tuple(eq18(solved_band(r, tau_band, rpm, load)) for r in ends))
+            tuple(eq18(solved_band(r, tau_band, rpm, load)) for r in ends)
+        )
         lines["Mischler"].append(tuple(eq18(mischler(r, k_sqrt, rpm, load)) for r in ends))
         lines["the paper's constant ratio, 50 F / H"].append(
-            tuple(eq18(50 * load / r["hardness_mpa"]) for r in ends))
+            tuple(eq18(50 * load / r["hardness_mpa"]) for r in ends)
+        )
     for name, cells in lines.items():
         print(f"| {name} | " + " | ".join(f"{a:.3f} ({b:.3f})" for a, b in cells) + " |")
     print()

@@ -15,6 +15,7 @@ exceeded (with --report-only it only prints). Standard library only; Linux only 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import http.client
 import json
 import os
@@ -31,18 +32,23 @@ import uuid
 from pathlib import Path
 
 MIB = 1 << 20
-TINY = {"preset": "dalmau2018-316l",
-        "overrides": {"numerics": {"grid": 16}, "test": {"cycles": 3}, "corrosion": None}}
+TINY = {
+    "preset": "dalmau2018-316l",
+    "overrides": {"numerics": {"grid": 16}, "test": {"cycles": 3}, "corrosion": None},
+}
 
 
 class Server:
     """A tribosim server on a free loopback port."""
 
     def __init__(self, binary: str, data: Path, *extra: str) -> None:
-        self.log = open(data.parent / "server.log", "ab")
+        # Held for the server's life, and closed by stop().
+        self.log = open(data.parent / "server.log", "ab")  # noqa: SIM115
         self.proc = subprocess.Popen(
             [binary, "serve", "--addr", "127.0.0.1:0", "--data-dir", str(data), *extra],
-            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+        )
         self.port = 0
         assert self.proc.stderr is not None
         for raw in self.proc.stderr:
@@ -63,8 +69,10 @@ class Server:
     def status(self) -> dict[str, int]:
         """VmRSS and VmHWM, MiB."""
         text = Path(f"/proc/{self.proc.pid}/status").read_text()
-        return {key: int(re.search(rf"{key}:\s+(\d+) kB", text).group(1)) // 1024
-                for key in ("VmRSS", "VmHWM")}
+        return {
+            key: int(re.search(rf"{key}:\s+(\d+) kB", text).group(1)) // 1024
+            for key in ("VmRSS", "VmHWM")
+        }
 
     def reset_peak(self) -> None:
         """Resets VmHWM to the current RSS (Linux >= 4.0, writing 5 to clear_refs)."""
@@ -77,10 +85,16 @@ class Server:
         if self.alive():
             self.proc.send_signal(signal.SIGKILL if kill else signal.SIGTERM)
         self.proc.wait(timeout=30)
+        self.log.close()
 
-    def request(self, method: str, path: str, body: bytes | None = None,
-                content_type: str = "application/json",
-                timeout: float = 600) -> tuple[int, dict[str, str], bytes]:
+    def request(
+        self,
+        method: str,
+        path: str,
+        body: bytes | None = None,
+        content_type: str = "application/json",
+        timeout: float = 600,
+    ) -> tuple[int, dict[str, str], bytes]:
         conn = http.client.HTTPConnection("127.0.0.1", self.port, timeout=timeout)
         headers = {"content-type": content_type} if body is not None else {}
         conn.request(method, path, body, headers)
@@ -159,12 +173,14 @@ def matrix_bytes(side: int, rows: int | None = None) -> bytes:
 
 
 def gsf_bytes(nx: int, ny: int, real_m: float, data_pixels: int | None = None) -> bytes:
-    header = (b"Gwyddion Simple Field 1.0\n"
-              + f"XRes = {nx}\nYRes = {ny}\nXReal = {real_m:e}\nYReal = {real_m:e}\n".encode())
+    header = (
+        b"Gwyddion Simple Field 1.0\n"
+        + f"XRes = {nx}\nYRes = {ny}\nXReal = {real_m:e}\nYReal = {real_m:e}\n".encode()
+    )
     header += b"\0" * (4 - len(header) % 4)
     pixels = nx * ny if data_pixels is None else data_pixels
     pattern = b"".join(struct.pack("<f", 1e-7 * ((i * 37) % 101) / 101) for i in range(4093))
-    return header + (pattern * (pixels // 4093 + 1))[:4 * pixels]
+    return header + (pattern * (pixels // 4093 + 1))[: 4 * pixels]
 
 
 def peak_during(server: Server, action) -> tuple[int, int, object]:
@@ -197,11 +213,16 @@ def study_axes(server: Server, checks: Checks, count: int) -> None:
     axes = {f"test.a{i}": {"from": 0, "to": 1, "steps": 1_000_000} for i in range(count)}
     body = json.dumps({"base": TINY, "axes": axes}).encode()
     before, peak, (status, _, answer) = peak_during(
-        server, lambda: server.request("POST", "/api/v1/studies", body))
-    checks.check("refused before its values are built", status == 422,
-                 f"{status}, {len(body)} bytes, {answer[:120]!r}")
-    checks.check("peak RSS within 16 MiB of the RSS before", peak - before <= 16,
-                 f"{before} -> {peak} MiB")
+        server, lambda: server.request("POST", "/api/v1/studies", body)
+    )
+    checks.check(
+        "refused before its values are built",
+        status == 422,
+        f"{status}, {len(body)} bytes, {answer[:120]!r}",
+    )
+    checks.check(
+        "peak RSS within 16 MiB of the RSS before", peak - before <= 16, f"{before} -> {peak} MiB"
+    )
 
 
 def hardness_table(rows: int) -> str:
@@ -212,17 +233,22 @@ def hardness_table(rows: int) -> str:
 def calibrations_kept(server: Server, checks: Checks, fits: int) -> None:
     print(f"2. {fits} hardness fits of the largest table taken, kept when finished")
     big = hardness_table(75_000)
-    status, _, answer = server.json("POST", "/api/v1/calibrations",
-                                    {"kind": "hardness", "table": big})
-    checks.check("an 830 KB table (75000 rows) refused before it is parsed", status == 422,
-                 f"{status}, {len(big) // 1024} KiB: {str(answer)[:100]}")
+    status, _, answer = server.json(
+        "POST", "/api/v1/calibrations", {"kind": "hardness", "table": big}
+    )
+    checks.check(
+        "an 830 KB table (75000 rows) refused before it is parsed",
+        status == 422,
+        f"{status}, {len(big) // 1024} KiB: {str(answer)[:100]}",
+    )
     table = hardness_table(20_000)
     before = server.status()["VmRSS"]
     statuses = []
     for _ in range(fits):
         for _ in range(600):
-            status, _, record = server.json("POST", "/api/v1/calibrations",
-                                            {"kind": "hardness", "table": table})
+            status, _, record = server.json(
+                "POST", "/api/v1/calibrations", {"kind": "hardness", "table": table}
+            )
             if status != 429:
                 break
             time.sleep(0.2)
@@ -234,45 +260,68 @@ def calibrations_kept(server: Server, checks: Checks, fits: int) -> None:
     checks.check("every fit accepted", set(statuses) == {202}, f"{sorted(set(statuses))}")
     # --calibration-kept-bytes (64 MiB) of results, and what the allocator keeps of the
     # fits' freed working memory in its per-thread arenas (measured: 91 MiB in all).
-    checks.check("RSS kept for the finished fits within 128 MiB", after - before <= 128,
-                 f"{before} -> {after} MiB for {fits} fits of {len(table) // 1024} KiB")
+    checks.check(
+        "RSS kept for the finished fits within 128 MiB",
+        after - before <= 128,
+        f"{before} -> {after} MiB for {fits} fits of {len(table) // 1024} KiB",
+    )
 
 
 def archard_budget(server: Server, checks: Checks) -> None:
     print("3. Archard fits past the cycle limit, past the work budget, and cancelled")
     past = "cycles,volume_mm3\n10,0.001\n2000000,0.01\n"
-    status, _, answer = server.json("POST", "/api/v1/calibrations",
-                                    {"kind": "archard", "table": past})
-    checks.check("a last point past the cycle limit refused up front", status == 422,
-                 f"{status} {str(answer)[:160]}")
+    status, _, answer = server.json(
+        "POST", "/api/v1/calibrations", {"kind": "archard", "table": past}
+    )
+    checks.check(
+        "a last point past the cycle limit refused up front",
+        status == 422,
+        f"{status} {str(answer)[:160]}",
+    )
     long = "cycles,volume_mm3\n10,0.001\n1000000,0.01\n"
     scene = {"preset": "dalmau2018-316l", "overrides": {"numerics": {"cycle_step": 1}}}
-    status, _, answer = server.json("POST", "/api/v1/calibrations",
-                                    {"kind": "archard", "table": long, "scene": scene})
-    checks.check("a million solved cycles a run refused up front", status == 422,
-                 f"{status} {str(answer)[:160]}")
+    status, _, answer = server.json(
+        "POST", "/api/v1/calibrations", {"kind": "archard", "table": long, "scene": scene}
+    )
+    checks.check(
+        "a million solved cycles a run refused up front",
+        status == 422,
+        f"{status} {str(answer)[:160]}",
+    )
     big = {"preset": "dalmau2018-316l", "overrides": {"numerics": {"grid": 2048}}}
-    before, peak, (status, _, answer) = peak_during(server, lambda: server.json(
-        "POST", "/api/v1/calibrations",
-        {"kind": "archard", "table": "cycles,volume_mm3\n10,0.001\n3600,0.01\n", "scene": big}))
-    checks.check("a 2048-cell grid refused up front", status == 422,
-                 f"{status} {str(answer)[:160]}")
+    before, peak, (status, _, answer) = peak_during(
+        server,
+        lambda: server.json(
+            "POST",
+            "/api/v1/calibrations",
+            {"kind": "archard", "table": "cycles,volume_mm3\n10,0.001\n3600,0.01\n", "scene": big},
+        ),
+    )
+    checks.check(
+        "a 2048-cell grid refused up front", status == 422, f"{status} {str(answer)[:160]}"
+    )
     if status == 202:
         server.json("DELETE", f"/api/v1/calibrations/{answer['id']}")
     table3 = "time_s,volume_mm3\n10,0.00097\n60,0.00109\n300,0.00118\n1800,0.00533\n3600,0.01172\n"
     scene = {"preset": "dalmau2018-316l", "overrides": {"numerics": {"cycle_step": 1}}}
     ids = []
     for _ in range(2):
-        status, _, answer = server.json("POST", "/api/v1/calibrations",
-                                        {"kind": "archard", "table": table3, "scene": scene})
+        status, _, answer = server.json(
+            "POST", "/api/v1/calibrations", {"kind": "archard", "table": table3, "scene": scene}
+        )
         ids.append(answer.get("id") if status == 202 else None)
     deleted = [server.json("DELETE", f"/api/v1/calibrations/{i}")[0] for i in ids if i]
     time.sleep(1.0)
-    status, _, answer = server.json("POST", "/api/v1/calibrations",
-                                    {"kind": "hardness",
-                                     "table": "cycles,hardness_mpa\n10,2551\n60,2727\n300,2842\n"})
-    checks.check("two running fits cancelled by DELETE, the slots free again",
-                 deleted == [202, 202] and status == 202, f"DELETE {deleted}, then {status}")
+    status, _, answer = server.json(
+        "POST",
+        "/api/v1/calibrations",
+        {"kind": "hardness", "table": "cycles,hardness_mpa\n10,2551\n60,2727\n300,2842\n"},
+    )
+    checks.check(
+        "two running fits cancelled by DELETE, the slots free again",
+        deleted == [202, 202] and status == 202,
+        f"DELETE {deleted}, then {status}",
+    )
 
 
 def surface_uploads(server: Server, checks: Checks) -> None:
@@ -280,18 +329,24 @@ def surface_uploads(server: Server, checks: Checks) -> None:
     body = matrix_bytes(2048, 2048)
     body = body[: 64 * MIB - 1] if len(body) >= 64 * MIB else body
     upload = lambda: server.request(  # noqa: E731
-        "POST", "/api/v1/surfaces?format=matrix&pixel_um=0.5", body, "text/plain")
+        "POST", "/api/v1/surfaces?format=matrix&pixel_um=0.5", body, "text/plain"
+    )
     before, peak, results = peak_during(server, lambda: parallel([upload] * 4))
     # A client that sends its whole body before reading may see the connection closed
     # instead of the 429 the server answered before reading the body.
     statuses = sorted(str(r[0]) if isinstance(r, tuple) else "closed" for r in results)
-    checks.check("at most two read at once, the rest refused before their bodies",
-                 statuses.count("201") in (1, 2)
-                 and all(s in ("201", "429", "closed") for s in statuses), f"{statuses}")
+    checks.check(
+        "at most two read at once, the rest refused before their bodies",
+        statuses.count("201") in (1, 2) and all(s in ("201", "429", "closed") for s in statuses),
+        f"{statuses}",
+    )
     # Two maps read at once, each its body (64 MiB at most) and about 55 bytes a pixel
     # (measured: 228 MiB for a 2048 x 2048 matrix of 52 MiB) at --max-surface-pixels.
-    checks.check("peak RSS within 640 MiB of the RSS before", peak - before <= 640,
-                 f"{before} -> {peak} MiB for {len(body) // MIB} MiB bodies")
+    checks.check(
+        "peak RSS within 640 MiB of the RSS before",
+        peak - before <= 640,
+        f"{before} -> {peak} MiB for {len(body) // MIB} MiB bodies",
+    )
     for r in results:
         if isinstance(r, tuple) and r[0] == 201:
             server.request("DELETE", f"/api/v1/surfaces/{json.loads(r[2])['id']}")
@@ -302,23 +357,33 @@ def surface_pixel(server: Server, checks: Checks) -> list[str]:
     small = matrix_bytes(32, 32)
     kept = []
     status, _, answer = server.request(
-        "POST", "/api/v1/surfaces?format=matrix&pixel_um=1e308", small, "text/plain")
+        "POST", "/api/v1/surfaces?format=matrix&pixel_um=1e308", small, "text/plain"
+    )
     checks.check("?pixel_um=1e308 refused", status == 422, f"{status} {answer[:120]!r}")
     kept += [answer.decode()] if status == 201 else []
     status, _, answer = server.request(
-        "POST", "/api/v1/surfaces", gsf_bytes(32, 32, 1e308), "application/octet-stream")
+        "POST", "/api/v1/surfaces", gsf_bytes(32, 32, 1e308), "application/octet-stream"
+    )
     checks.check(".gsf with XReal 1e308 refused", status == 422, f"{status} {answer[:120]!r}")
     kept += [answer.decode()] if status == 201 else []
     status, _, answer = server.request(
-        "POST", "/api/v1/surfaces", gsf_bytes(100_000, 100_000, 1e-3, 64),
-        "application/octet-stream")
-    checks.check(".gsf declaring 1e10 pixels refused before reading", status == 413,
-                 f"{status} {answer[:120]!r}")
-    for query, data in (("?format=matrix&pixel_um=0.5", small),
-                        ("", gsf_bytes(64, 64, 64e-6))):
+        "POST",
+        "/api/v1/surfaces",
+        gsf_bytes(100_000, 100_000, 1e-3, 64),
+        "application/octet-stream",
+    )
+    checks.check(
+        ".gsf declaring 1e10 pixels refused before reading",
+        status == 413,
+        f"{status} {answer[:120]!r}",
+    )
+    for query, data in (("?format=matrix&pixel_um=0.5", small), ("", gsf_bytes(64, 64, 64e-6))):
         status, _, answer = server.request(
-            "POST", "/api/v1/surfaces" + query, data,
-            "text/plain" if query else "application/octet-stream")
+            "POST",
+            "/api/v1/surfaces" + query,
+            data,
+            "text/plain" if query else "application/octet-stream",
+        )
         if status == 201:
             kept.append(answer.decode())
     return kept
@@ -340,8 +405,13 @@ def study_crash(binary: str, data: Path, checks: Checks, tries: int) -> None:
         jobs_before = len(all_pages(server, "/api/v1/jobs"))
         studies_before = len(all_pages(server, "/api/v1/studies"))
         delay = took * (attempt + 0.5) / tries
-        threading.Thread(target=lambda: _ignore(lambda: server.request(
-            "POST", "/api/v1/studies", body, timeout=5)), daemon=True).start()
+        # The server is bound now: the loop rebinds the name before the thread may run.
+        threading.Thread(
+            target=lambda killed=server: _ignore(
+                lambda: killed.request("POST", "/api/v1/studies", body, timeout=5)
+            ),
+            daemon=True,
+        ).start()
         time.sleep(delay)
         server.stop(kill=True)
         server = Server(binary, data, "--workers", "1")
@@ -351,15 +421,17 @@ def study_crash(binary: str, data: Path, checks: Checks, tries: int) -> None:
             bad += 1
             print(f"     try {attempt}: {jobs} member jobs, {studies} studies")
         server.stop()
-    checks.check("after each crash the whole study or nothing", bad == 0,
-                 f"{bad} of {tries} tries left orphan members")
+    checks.check(
+        "after each crash the whole study or nothing",
+        bad == 0,
+        f"{bad} of {tries} tries left orphan members",
+    )
 
 
 def _ignore(action) -> None:
-    try:
+    # The server is killed mid-request on purpose.
+    with contextlib.suppress(Exception):
         action()
-    except Exception:  # noqa: BLE001 - the server was killed mid-request on purpose
-        pass
 
 
 def all_pages(server: Server, path: str) -> list:
@@ -378,21 +450,32 @@ def listing(server: Server, checks: Checks, jobs: int) -> None:
     status, headers, whole = server.request("GET", "/api/v1/jobs")
     status, headers, page = server.request("GET", "/api/v1/jobs?limit=50")
     count = len(json.loads(page))
-    checks.check("a page of 50 is 50 jobs", status == 200 and count == 50,
-                 f"{status}, {count} jobs, {len(page)} bytes (the default answer: "
-                 f"{len(whole)} bytes)")
-    checks.check("a page holds a link to the next", "next" in headers.get("link", ""),
-                 headers.get("link", "no Link header"))
+    checks.check(
+        "a page of 50 is 50 jobs",
+        status == 200 and count == 50,
+        f"{status}, {count} jobs, {len(page)} bytes (the default answer: {len(whole)} bytes)",
+    )
+    checks.check(
+        "a page holds a link to the next",
+        "next" in headers.get("link", ""),
+        headers.get("link", "no Link header"),
+    )
     cpu = _cpu_s(server)
     for _ in range(200):
         server.request("GET", "/api/v1/jobs?limit=50")
     per = (_cpu_s(server) - cpu) / 200 * 1e3
-    checks.check("a page of 50 costs the server under 5 ms of CPU", per < 5,
-                 f"{per:.2f} ms of server CPU a request")
+    checks.check(
+        "a page of 50 costs the server under 5 ms of CPU",
+        per < 5,
+        f"{per:.2f} ms of server CPU a request",
+    )
     found = all_pages(server, "/api/v1/jobs?status=cancelled&name=SAMPLE%200")
     want = sum(1 for i in range(jobs) if i % 7 == 0 and f"{i:05d}".startswith("0"))
-    checks.check("filtered by status and name, every page followed", len(found) == want,
-                 f"{len(found)} jobs, {want} expected")
+    checks.check(
+        "filtered by status and name, every page followed",
+        len(found) == want,
+        f"{len(found)} jobs, {want} expected",
+    )
 
 
 def _cpu_s(server: Server) -> float:
@@ -402,8 +485,9 @@ def _cpu_s(server: Server) -> float:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--report-only", action="store_true",
-                        help="print the figures without failing on a budget")
+    parser.add_argument(
+        "--report-only", action="store_true", help="print the figures without failing on a budget"
+    )
     parser.add_argument("--jobs", type=int, default=5000, help="jobs in the store")
     parser.add_argument("--axes", type=int, default=200, help="range axes in item 1")
     parser.add_argument("--only", default="", help="comma-separated item numbers to run")
@@ -439,11 +523,15 @@ def main() -> int:
         if kept:
             server = Server(binary, data)
             try:
-                back = [server.request("GET", f"/api/v1/surfaces/{json.loads(k)['id']}")
-                        for k in kept]
+                back = [
+                    server.request("GET", f"/api/v1/surfaces/{json.loads(k)['id']}") for k in kept
+                ]
                 same = all(s == 200 and b.decode() == k for (s, _, b), k in zip(back, kept))
-                checks.check("every surface accepted reads back the same after a restart",
-                             same, f"{len(kept)} surfaces")
+                checks.check(
+                    "every surface accepted reads back the same after a restart",
+                    same,
+                    f"{len(kept)} surfaces",
+                )
             finally:
                 server.stop()
         if want(6):

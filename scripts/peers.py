@@ -31,7 +31,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-
 import peers_rough
 
 # The paper's case, as in src/bench/contact/mod.rs.
@@ -113,7 +112,8 @@ def measures(outcome, h, dx, cap):
 
 
 def errors(values, reference):
-    """Relative errors as in src/bench/contact/mod.rs (plastic area only where the reference has one)."""
+    """Relative errors as in src/bench/contact/mod.rs (plastic area only where the reference
+    has one)."""
     out = {
         "err_pmax": values["pmax_pa"] / reference["pmax_pa"] - 1,
         "err_area": values["area_m2"] / reference["area_m2"] - 1,
@@ -313,10 +313,22 @@ def fmt_err(value):
 def table_rows(groups):
     """One line per solver: cells of the markdown table."""
     header = [
-        "case", "N", "solver", "iterations", "time s", "solve s", "peer / ours",
-        "peer / ours uniform", "runs",
-        "cpu / wall", "err p_max", "err area", "err approach", "err plastic area",
-        "residual (ours)", "err diff vs ours",
+        "case",
+        "N",
+        "solver",
+        "iterations",
+        "time s",
+        "solve s",
+        "peer / ours",
+        "peer / ours uniform",
+        "runs",
+        "cpu / wall",
+        "err p_max",
+        "err area",
+        "err approach",
+        "err plastic area",
+        "residual (ours)",
+        "err diff vs ours",
     ]
     lines = []
     for (case, n), (mine, peers) in groups.items():
@@ -330,16 +342,26 @@ def table_rows(groups):
             if m is not mine:
                 pairs = [(m.errors[k], mine.errors[k]) for k in m.errors]
                 diff = f"{max(abs(a - b) for a, b in pairs if a is not None):.1e}"
-            lines.append([
-                case, str(n), m.solver,
-                "" if m.iterations is None else str(m.iterations),
-                f"{m.wall_s:.4g}", f"{m.solve_s:.4g}", ratio, uniform,
-                "" if m.runs is None else str(m.runs),
-                "" if m.cpu_per_wall is None else f"{m.cpu_per_wall:.2f}",
-                fmt_err(m.errors["err_pmax"]), fmt_err(m.errors["err_area"]),
-                fmt_err(m.errors["err_delta"]), fmt_err(m.errors["err_plastic_area"]),
-                f"{m.residual:.1e}", diff,
-            ])
+            lines.append(
+                [
+                    case,
+                    str(n),
+                    m.solver,
+                    "" if m.iterations is None else str(m.iterations),
+                    f"{m.wall_s:.4g}",
+                    f"{m.solve_s:.4g}",
+                    ratio,
+                    uniform,
+                    "" if m.runs is None else str(m.runs),
+                    "" if m.cpu_per_wall is None else f"{m.cpu_per_wall:.2f}",
+                    fmt_err(m.errors["err_pmax"]),
+                    fmt_err(m.errors["err_area"]),
+                    fmt_err(m.errors["err_delta"]),
+                    fmt_err(m.errors["err_plastic_area"]),
+                    f"{m.residual:.1e}",
+                    diff,
+                ]
+            )
     return header, lines
 
 
@@ -357,9 +379,11 @@ def markdown_table(header, lines):
 
 def machine(load):
     info = dict(
-        line.split(":", 1) for line in subprocess.run(
+        line.split(":", 1)
+        for line in subprocess.run(
             ["lscpu"], capture_output=True, text=True, check=True
-        ).stdout.splitlines() if ":" in line
+        ).stdout.splitlines()
+        if ":" in line
     )
     return (
         f"{info['Model name'].strip()}, {info['CPU(s)'].strip()} logical CPUs "
@@ -376,7 +400,8 @@ def versions(binary):
     ours_version = subprocess.run(
         [binary, "--version"], capture_output=True, text=True
     ).stdout.strip()
-    return f"{ours_version} (commit {commit or 'unknown'}), Python {platform.python_version()}, " + ", ".join(found)
+    python = platform.python_version()
+    return f"{ours_version} (commit {commit or 'unknown'}), Python {python}, " + ", ".join(found)
 
 
 def now():
@@ -407,14 +432,15 @@ from the coarse-to-fine start (the same contact solved on grids of half the cell
 down to 32, to 1e-4, interpolated; their operators and solves are in our time, their
 iterations not in our count, which is the fine grid's); "peer / ours uniform" is the ratio
 to our solve from the uniform pressure, as the peers start (timed alternately with the cold
-one by `tribosim bench contact`). "runs" counts the runs behind each median (ours those of `tribosim bench
-contact`; a peer's up to {args.reps}, fewer once {args.budget:g} s are spent; a peer is not
-run on a grid when four times its time on the grid below exceeds {args.cap:g} s). All three are
-single-threaded; "cpu / wall", the process CPU time over wall time of a peer's runs, shows it
-(near 1 on a quiet machine, lower when other work shares the cores). "residual (ours)" is our
-stopping measure (worst complementarity violation over max |K p|) evaluated on each answer
-with that solver's own operator; "err diff vs ours" is the largest absolute difference
-between a peer's errors and ours: near zero when both solved the same discrete problem.
+one by `tribosim bench contact`). "runs" counts the runs behind each median (ours those of
+`tribosim bench contact`; a peer's up to {args.reps}, fewer once {args.budget:g} s are
+spent; a peer is not run on a grid when four times its time on the grid below exceeds
+{args.cap:g} s). All three are single-threaded; "cpu / wall", the process CPU time over wall
+time of a peer's runs, shows it (near 1 on a quiet machine, lower when other work shares the
+cores). "residual (ours)" is our stopping measure (worst complementarity violation over max
+|K p|) evaluated on each answer with that solver's own operator; "err diff vs ours" is the
+largest absolute difference between a peer's errors and ours: near zero when both solved the
+same discrete problem.
 
 {markdown_table(header, lines)}
 
@@ -429,13 +455,18 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--binary", default="target/release/tribosim")
     parser.add_argument(
-        "--sizes", type=int, nargs="+", default=[64, 128, 256, 512, 1024, 2048],
+        "--sizes",
+        type=int,
+        nargs="+",
+        default=[64, 128, 256, 512, 1024, 2048],
         help="grids of the smooth cases; a case runs on those of them that `bench contact` "
         "solves (the capped case stops at 1024, half its reference)",
     )
     parser.add_argument("--reps", type=int, default=3, help="runs per median")
     parser.add_argument(
-        "--budget", type=float, default=60.0,
+        "--budget",
+        type=float,
+        default=60.0,
         help="seconds after which a peer's measurement stops repeating",
     )
     parser.add_argument("--out", default="docs/peers.md")
@@ -444,12 +475,15 @@ def main():
     )
     parser.add_argument("--rough-sizes", type=int, nargs="+", default=[256, 512, 1024, 2048])
     parser.add_argument(
-        "--cap", type=float, default=900.0,
+        "--cap",
+        type=float,
+        default=900.0,
         help="seconds beyond which a peer's run on a grid is not started (four times its "
         "time on the grid below)",
     )
     parser.add_argument(
-        "--surfaces", default="target/rough-surfaces",
+        "--surfaces",
+        default="target/rough-surfaces",
         help="where `tribosim bench rough` writes the height arrays the peers read",
     )
     args = parser.parse_args()
@@ -460,8 +494,10 @@ def main():
     if args.only != "rough":
         text = peers_rough.with_section(smooth(args, load), rough_part(text))
     if args.only != "smooth":
-        peers = [peers_rough.TamaasRough(captured_stderr, LOG_LINE),
-                 peers_rough.ContactMechanicsRough()]
+        peers = [
+            peers_rough.TamaasRough(captured_stderr, LOG_LINE),
+            peers_rough.ContactMechanicsRough(),
+        ]
         groups, rows = peers_rough.run_rough(args, peers)
         header, lines = peers_rough.rough_table(groups)
         print(plain_table(header, lines))
@@ -493,8 +529,11 @@ def smooth(args, load):
             for peer in peers:
                 print(f"{case} N = {n}: {peer.name} ...", file=sys.stderr)
                 skipped = peers_rough.beyond_cap(last[peer.name], args.cap)
-                m = (Measurement(solver=peer.name, n=n, case=case, failure=skipped) if skipped
-                     else measure(peer, case, n, reference, args.reps, args.budget))
+                m = (
+                    Measurement(solver=peer.name, n=n, case=case, failure=skipped)
+                    if skipped
+                    else measure(peer, case, n, reference, args.reps, args.budget)
+                )
                 last[peer.name] = m.wall_s if m.wall_s is not None else float("inf")
                 found.append(m)
             groups[(case, n)] = (our_measurement(row), found)

@@ -135,6 +135,7 @@ class ContactMechanicsRough:
 @dataclass
 class Timing:
     """A solver's cold runs on one grid: the fields the smooth and rough tables share."""
+
     solver: str
     n: int
     wall_s: float | None = None
@@ -181,7 +182,9 @@ def ours_rough(binary, surfaces):
     """Our rows of `bench rough`, which also writes the height arrays to `surfaces`."""
     run = subprocess.run(
         [binary, "bench", "rough", "--json", "--surfaces", str(surfaces)],
-        check=True, capture_output=True, text=True,
+        check=True,
+        capture_output=True,
+        text=True,
     )
     rows = [json.loads(line) for line in run.stdout.splitlines() if line.startswith("{")]
     return {r["n"]: r for r in rows if r.get("study") == "rough_grid"}
@@ -204,9 +207,15 @@ def case_of(row):
 
 def our_rough(row):
     return RoughMeasurement(
-        solver="tribosim", n=row["n"], wall_s=row["wall_s"], solve_s=row["solve_s"],
-        runs=row["runs"], iterations=row["iterations"], area_fraction=row["area_fraction"],
-        mean_gap_m=row["mean_gap_m"], residual=row["residual"],
+        solver="tribosim",
+        n=row["n"],
+        wall_s=row["wall_s"],
+        solve_s=row["solve_s"],
+        runs=row["runs"],
+        iterations=row["iterations"],
+        area_fraction=row["area_fraction"],
+        mean_gap_m=row["mean_gap_m"],
+        residual=row["residual"],
     )
 
 
@@ -261,8 +270,18 @@ def run_rough(args, peers):
 
 def rough_table(groups):
     header = [
-        "N", "solver", "iterations", "time s", "solve s", "peer / ours", "runs",
-        "cpu / wall", "real area %", "mean gap um", "area vs ours", "gap vs ours",
+        "N",
+        "solver",
+        "iterations",
+        "time s",
+        "solve s",
+        "peer / ours",
+        "runs",
+        "cpu / wall",
+        "real area %",
+        "mean gap um",
+        "area vs ours",
+        "gap vs ours",
         "residual (ours)",
     ]
     lines = []
@@ -272,18 +291,23 @@ def rough_table(groups):
                 lines.append([str(n), m.solver, m.failure, *[""] * (len(header) - 3)])
                 continue
             mark = m is mine
-            lines.append([
-                str(n), m.solver,
-                "" if m.iterations is None else str(m.iterations),
-                f"{m.wall_s:.4g}", f"{m.solve_s:.4g}",
-                "" if mark else f"{m.wall_s / mine.wall_s:.1f}",
-                "" if m.runs is None else str(m.runs),
-                "" if m.cpu_per_wall is None else f"{m.cpu_per_wall:.2f}",
-                f"{100 * m.area_fraction:.4f}", f"{m.mean_gap_m * 1e6:.6f}",
-                "" if mark else f"{m.area_fraction / mine.area_fraction - 1:+.1e}",
-                "" if mark else f"{m.mean_gap_m / mine.mean_gap_m - 1:+.1e}",
-                f"{m.residual:.1e}",
-            ])
+            lines.append(
+                [
+                    str(n),
+                    m.solver,
+                    "" if m.iterations is None else str(m.iterations),
+                    f"{m.wall_s:.4g}",
+                    f"{m.solve_s:.4g}",
+                    "" if mark else f"{m.wall_s / mine.wall_s:.1f}",
+                    "" if m.runs is None else str(m.runs),
+                    "" if m.cpu_per_wall is None else f"{m.cpu_per_wall:.2f}",
+                    f"{100 * m.area_fraction:.4f}",
+                    f"{m.mean_gap_m * 1e6:.6f}",
+                    "" if mark else f"{m.area_fraction / mine.area_fraction - 1:+.1e}",
+                    "" if mark else f"{m.mean_gap_m / mine.mean_gap_m - 1:+.1e}",
+                    f"{m.residual:.1e}",
+                ]
+            )
     return header, lines
 
 
@@ -310,7 +334,8 @@ def rough_markdown(groups, rows, peers, args, run, markdown_table):
     sizes = ", ".join(str(n) for n in groups)
     split = [n for n in groups if rows[n].get("threads", 1) > 1]
     threads_note = (
-        f"{rows[split[0]]['threads']} threads from N = {split[0]} on" if split
+        f"{rows[split[0]]['threads']} threads from N = {split[0]} on"
+        if split
         else "one thread on every grid here"
     )
     return f"""{HEADING}

@@ -29,6 +29,9 @@ echo "== installing clients/python[pandas,progress,plot,test] into $venv"
 echo "== ruff and mypy --strict"
 (cd clients/python && "$venv/bin/ruff" format --check --quiet src tests \
     && "$venv/bin/ruff" check --quiet src tests && "$venv/bin/mypy" src)
+echo "== ruff on scripts/, in the client's style"
+"$venv/bin/ruff" format --config clients/python/pyproject.toml --check --quiet scripts
+"$venv/bin/ruff" check --config clients/python/pyproject.toml --quiet scripts
 
 echo "== pytest clients/python/tests against $TRIBOSIM_BIN"
 "$venv/bin/python" -m pytest -q -p no:cacheprovider clients/python/tests

@@ -98,18 +98,19 @@ def profile_error(result, reference):
 def table(rows):
     base = rows[0][3]["summary"]["wall_s"]
     refs = {rough: r for (_, rough, n, r) in rows if n.get("cycle_step") == 1}
-    head = "| run | solves | iterations a solve | time / smooth auto | " + " | ".join(
-        f"{name} error" for _, name in OUTPUTS
-    ) + " | profile L1 error |"
+    head = (
+        "| run | solves | iterations a solve | time / smooth auto | "
+        + " | ".join(f"{name} error" for _, name in OUTPUTS)
+        + " | profile L1 error |"
+    )
     lines = [head, "|" + "---|" * (head.count("|") - 1)]
-    for label, rough, numerics, r in rows:
+    for label, rough, _numerics, r in rows:
         s, ref = r["summary"], refs[rough]["summary"]
-        errors = [
-            f"{(s[k] - ref[k]) / abs(ref[k]):+.1e}" for k, _ in OUTPUTS
-        ]
+        errors = [f"{(s[k] - ref[k]) / abs(ref[k]):+.1e}" for k, _ in OUTPUTS]
         lines.append(
             f"| {label} | {s['solves']} | {s['iterations'] / s['solves']:.1f} | "
-            f"{s['wall_s'] / base:.1f} | " + " | ".join(errors)
+            f"{s['wall_s'] / base:.1f} | "
+            + " | ".join(errors)
             + f" | {profile_error(r, refs[rough]):.1e} |"
         )
     return "\n".join(lines)
@@ -186,7 +187,7 @@ def splice(text, body):
         before, after = text[: start + 1], text[end:]
     else:
         peers = text.find("\n## Peers")
-        before, after = (text, "") if peers < 0 else (text[: peers + 1], text[peers + 1:])
+        before, after = (text, "") if peers < 0 else (text[: peers + 1], text[peers + 1 :])
     return before.rstrip() + "\n\n" + body.rstrip() + "\n\n" + after.lstrip()
 
 

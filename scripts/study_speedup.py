@@ -34,9 +34,22 @@ def request(method, url, body=None):
 def run(binary, study, workers):
     with tempfile.TemporaryDirectory() as data:
         server = subprocess.Popen(
-            [binary, "serve", "--addr", "127.0.0.1:0", "--data-dir", data,
-             "--workers", str(workers), "--queue-capacity", "64"],
-            stderr=subprocess.PIPE, text=True, env={**os.environ, "RUST_LOG": "info"})
+            [
+                binary,
+                "serve",
+                "--addr",
+                "127.0.0.1:0",
+                "--data-dir",
+                data,
+                "--workers",
+                str(workers),
+                "--queue-capacity",
+                "64",
+            ],
+            stderr=subprocess.PIPE,
+            text=True,
+            env={**os.environ, "RUST_LOG": "info"},
+        )
         try:
             for line in server.stderr:
                 found = re.search(r"serving on (http://\S+)", line)
@@ -75,11 +88,16 @@ def main():
             load = os.getloadavg()[0]
             status, wall, polled, cpu = run(args.bin, study, workers)
             walls[workers].append(wall)
-            print(f"workers {workers}: {status}, wall {wall:.2f} s (polled {polled:.2f} s), "
-                  f"server CPU {cpu:.2f} s, load average {load:.1f}", flush=True)
+            print(
+                f"workers {workers}: {status}, wall {wall:.2f} s (polled {polled:.2f} s), "
+                f"server CPU {cpu:.2f} s, load average {load:.1f}",
+                flush=True,
+            )
     one, two = min(walls[1]), min(walls[2])
-    print(f"best of {args.repeat}: 1 worker {one:.2f} s, 2 workers {two:.2f} s, "
-          f"speed-up {one / two:.2f}")
+    print(
+        f"best of {args.repeat}: 1 worker {one:.2f} s, 2 workers {two:.2f} s, "
+        f"speed-up {one / two:.2f}"
+    )
 
 
 if __name__ == "__main__":
