@@ -10,7 +10,8 @@
 //! stall, twice as many after each stall of a retried correction, none once a retry
 //! converges without stalling. A surface that always stalls pays for about `log2` of its
 //! solves' stalls, and one that stalls in a few hard cycles keeps the correction. Measured
-//! with `tribosim run` (the whole grid's conjugacy rule of `contact::solver` in all):
+//! with `tribosim run`, solver iterations (the whole grid's conjugacy rule of `contact::solver`
+//! in all):
 //!
 //! | Run | Free set always | Whole grid for good after 2 stalls in a row | Backing off |
 //! |---|---|---|---|
