@@ -25,12 +25,12 @@ const COLOURS: [RGBColor; 6] = [
 
 /// Why a figure could not be drawn.
 #[derive(Debug, Error)]
-#[error("drawing the figure `{title}`: {message}")]
+#[error("drawing the figure `{title}`: {source}")]
 pub struct FigureError {
     /// The figure's title.
     pub title: String,
     /// What plotters reported.
-    pub message: String,
+    pub source: DrawingAreaErrorKind<std::io::Error>,
 }
 
 /// How a series is drawn.
@@ -117,23 +117,28 @@ impl LineFigure {
             return Ok(None);
         };
         let mut svg = String::new();
-        self.draw(&mut svg, x, y).map_err(|message| FigureError {
+        self.draw(&mut svg, x, y).map_err(|source| FigureError {
             title: self.title.clone(),
-            message,
+            source,
         })?;
         Ok(Some(svg))
     }
 
-    fn draw(&self, svg: &mut String, x: (f64, f64), y: (f64, f64)) -> Result<(), String> {
-        let fail = |e: DrawingAreaErrorKind<_>| e.to_string();
+    /// Draws the figure into `svg`; the error is the SVG backend's, whose own error is an
+    /// [`std::io::Error`].
+    fn draw(
+        &self,
+        svg: &mut String,
+        x: (f64, f64),
+        y: (f64, f64),
+    ) -> Result<(), DrawingAreaErrorKind<std::io::Error>> {
         let root = SVGBackend::with_string(svg, SIZE).into_drawing_area();
-        root.fill(&WHITE).map_err(fail)?;
+        root.fill(&WHITE)?;
         let mut chart = ChartBuilder::on(&root)
             .margin(14)
             .x_label_area_size(44)
             .y_label_area_size(78)
-            .build_cartesian_2d(x.0..x.1, y.0..y.1)
-            .map_err(fail)?;
+            .build_cartesian_2d(x.0..x.1, y.0..y.1)?;
         chart
             .configure_mesh()
             .x_desc(&self.x_label)
@@ -142,8 +147,7 @@ impl LineFigure {
             .y_label_formatter(&|v| tick(*v, y))
             .label_style(("sans-serif", 15))
             .axis_desc_style(("sans-serif", 16))
-            .draw()
-            .map_err(fail)?;
+            .draw()?;
         for (i, series) in self
             .series
             .iter()
@@ -161,8 +165,7 @@ impl LineFigure {
                 Style::Markers => {
                     chart.draw_series(points.map(|p| Circle::new(p, 5, colour.stroke_width(2))))
                 }
-            }
-            .map_err(fail)?;
+            }?;
             let legend = match series.style {
                 Style::Reference => RGBColor(90, 90, 90),
                 _ => colour,
@@ -177,9 +180,8 @@ impl LineFigure {
             .label_font(("sans-serif", 15))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
-            .draw()
-            .map_err(fail)?;
-        root.present().map_err(fail)
+            .draw()?;
+        root.present()
     }
 }
 

@@ -1,6 +1,8 @@
 //! A study's summary: one row per member with its varied values and its run's summary or
 //! its error, as JSON and as a markdown or CSV table.
 
+use std::fmt::Display;
+
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 
@@ -90,7 +92,7 @@ impl StudySummary {
             .iter()
             .map(|outcome| match &outcome.result {
                 Ok(result) => Ok(result.summary.clone()),
-                Err(error) => Err(error.to_string()),
+                Err(error) => Err(error),
             })
             .collect();
         Self::from_results(members, results, workers, wall_s)
@@ -98,10 +100,10 @@ impl StudySummary {
 
     /// Gathers each member's run summary, or why it has none, in the members' order: a
     /// study whose members ran elsewhere (a cluster's job array) is summarised by this same
-    /// path.
-    pub fn from_results(
+    /// path. A member's `error` is the text of why it has none.
+    pub fn from_results<E: Display>(
         members: &[Member],
-        results: Vec<Result<Summary, String>>,
+        results: Vec<Result<Summary, E>>,
         workers: usize,
         wall_s: f64,
     ) -> Self {
@@ -115,7 +117,7 @@ impl StudySummary {
             .map(|(member, result)| {
                 let (summary, error) = match result {
                     Ok(summary) => (Some(summary), None),
-                    Err(error) => (None, Some(error)),
+                    Err(error) => (None, Some(error.to_string())),
                 };
                 MemberRow {
                     index: member.index,

@@ -23,7 +23,7 @@ use serde_json::value::RawValue;
 use time::OffsetDateTime;
 use uuid::Uuid;
 
-use crate::calibration::{CommandOptions, FitKind, Table, calibrate_until};
+use crate::calibration::{CalibrationError, CommandOptions, FitKind, Table, calibrate_until};
 use crate::scene::Scene;
 use crate::service::listing::{Filter, Listed};
 
@@ -139,6 +139,20 @@ pub enum StartError {
     Busy,
     /// No thread could be started.
     Thread(std::io::Error),
+}
+
+/// Why a fit ended without a result; its text is the fit's `error`.
+#[derive(Debug, thiserror::Error)]
+enum FitFailure {
+    /// The fit itself failed.
+    #[error(transparent)]
+    Fit(#[from] CalibrationError),
+    /// The fit's result cannot be written as JSON.
+    #[error(transparent)]
+    Result(#[from] serde_json::Error),
+    /// The fit panicked.
+    #[error("internal error: the fit panicked")]
+    Panicked,
 }
 
 /// What DELETE did to a fit.
@@ -257,11 +271,10 @@ impl Calibrations {
             .spawn(move || {
                 // A panic in a fit must fail the fit, not leave it `running` for ever.
                 let outcome = panic::catch_unwind(AssertUnwindSafe(|| {
-                    calibrate_until(kind, &table, &scene, options, &cancel)
-                        .map_err(|e| e.to_string())
-                        .and_then(|fit| result_text(&fit).map_err(|e| e.to_string()))
+                    let fit = calibrate_until(kind, &table, &scene, options, &cancel)?;
+                    Ok(result_text(&fit)?)
                 }))
-                .unwrap_or_else(|_| Err("internal error: the fit panicked".to_owned()));
+                .unwrap_or(Err(FitFailure::Panicked));
                 // The inputs go before the result is kept.
                 drop((table, scene));
                 calibrations.finish(id, outcome);
@@ -276,7 +289,7 @@ impl Calibrations {
         Ok(info)
     }
 
-    fn finish(&self, id: Uuid, outcome: Result<String, String>) {
+    fn finish(&self, id: Uuid, outcome: Result<String, FitFailure>) {
         let mut inner = self.lock();
         inner.threads -= 1;
         if let Some(entry) = inner.entries.get_mut(&id) {
@@ -291,7 +304,7 @@ impl Calibrations {
                     Err(error) => {
                         tracing::warn!(%id, %error, "calibration failed");
                         entry.info.status = CalibrationStatus::Failed;
-                        entry.info.error = Some(error);
+                        entry.info.error = Some(error.to_string());
                     }
                 }
             } else {

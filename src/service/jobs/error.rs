@@ -1,7 +1,8 @@
 //! Why an operation on jobs did not do what was asked, one type per operation: submitting
 //! (`SubmitError`), deleting (`DeleteError`), reading what a job has (`JobError`, with
 //! `PartialError` for what a stopped run computed). They say what happened in the service's
-//! terms; `routes.rs` gives each its HTTP answer.
+//! terms; `routes.rs` gives each its HTTP answer. Why a job that ran failed (`JobFailure`)
+//! is no answer to a request: its text is kept in the job's record.
 
 use std::io;
 
@@ -109,4 +110,33 @@ pub enum PartialError {
     /// The result cannot be written as JSON.
     #[error("the result cannot be written: {0}")]
     Json(#[from] serde_json::Error),
+}
+
+/// Why a job that ran failed; its text is the `error` of the job's record.
+#[derive(Debug, Error)]
+pub enum JobFailure {
+    /// The scene was not in memory when a worker took the job.
+    #[error("the job's scene is not loaded")]
+    SceneNotLoaded,
+    /// The job's status, cycle log or result could not be written.
+    #[error("storage: {0}")]
+    Storage(#[from] io::Error),
+    /// A cycle's record cannot be written as JSON.
+    #[error("cycle record: {0}")]
+    CycleRecord(#[source] serde_json::Error),
+    /// The result cannot be written as JSON.
+    #[error("result: {0}")]
+    Result(#[source] serde_json::Error),
+    /// The height map the scene names is gone or damaged.
+    #[error(transparent)]
+    Surface(#[from] SurfaceLoadError),
+    /// The stored scene no longer passes its checks.
+    #[error(transparent)]
+    Scene(#[from] SceneErrors),
+    /// The run stopped without a result.
+    #[error(transparent)]
+    Simulation(#[from] SimulationError),
+    /// The simulation panicked, with the panic's message.
+    #[error("internal error: the simulation panicked: {0}")]
+    Panicked(String),
 }

@@ -15,6 +15,7 @@ use std::time::Instant;
 
 use time::OffsetDateTime;
 
+use super::error::JobFailure;
 use super::job::{Job, JobStatus};
 use super::registry::Jobs;
 use super::store::CyclesWriter;
@@ -52,7 +53,7 @@ impl Jobs {
 
     /// Marks a job taken from the queue running, on disk and in memory, and opens its cycle
     /// log; `None` when it is no longer queued (cancelled while it waited).
-    fn start(&self, job: &Job) -> Option<Result<(Arc<Scene>, CyclesWriter), String>> {
+    fn start(&self, job: &Job) -> Option<Result<(Arc<Scene>, CyclesWriter), JobFailure>> {
         let _disk = job.disk();
         let mut record = job.record();
         if record.status != JobStatus::Queued {
@@ -67,14 +68,14 @@ impl Jobs {
         });
         tracing::info!(id = %job.id, "job running");
         let Some(scene) = scene else {
-            return Some(Err("the job's scene is not loaded".to_owned()));
+            return Some(Err(JobFailure::SceneNotLoaded));
         };
         Some(
             self.store
                 .write_status(&record)
                 .and_then(|()| self.store.cycles_writer(job.id))
                 .map(|writer| (scene, writer))
-                .map_err(|e| format!("storage: {e}")),
+                .map_err(JobFailure::Storage),
         )
     }
 
@@ -99,7 +100,7 @@ impl Jobs {
                     tracing::info!(id = %job.id, "job interrupted by shutdown; it runs again at the next start");
                 }
             }
-            Err(error) => self.finish(job, JobStatus::Failed, Some(error)),
+            Err(error) => self.finish(job, JobStatus::Failed, Some(error.to_string())),
         }
     }
 
@@ -111,10 +112,10 @@ impl Jobs {
         scene: &Scene,
         mut writer: CyclesWriter,
         workers: usize,
-    ) -> Result<bool, String> {
-        let mut storage_error: Option<String> = None;
+    ) -> Result<bool, JobFailure> {
+        let mut storage_error: Option<JobFailure> = None;
         let map = match surface_id(scene) {
-            Some(id) => Some(self.surfaces.load(id).map_err(|e| e.to_string())?),
+            Some(id) => Some(self.surfaces.load(id)?),
             None => None,
         };
         // Each worker's solves get their share of the cores (`numerics.threads: "auto"`).
@@ -123,7 +124,7 @@ impl Jobs {
             concurrent_runs: NonZeroUsize::new(workers).unwrap_or(NonZeroUsize::MIN),
         };
         // The scene was checked when submitted; kept on disk, it is checked again here.
-        let plan = Plan::new(scene.clone()).map_err(|e| e.to_string())?;
+        let plan = Plan::new(scene.clone())?;
         let outcome = simulation::run_with(
             &plan,
             &options,
@@ -131,7 +132,7 @@ impl Jobs {
                 let line = match serde_json::to_string(record) {
                     Ok(line) => line,
                     Err(e) => {
-                        storage_error.get_or_insert(format!("cycle record: {e}"));
+                        storage_error.get_or_insert(JobFailure::CycleRecord(e));
                         job.cancel.store(true, Ordering::Relaxed);
                         return;
                     }
@@ -139,7 +140,7 @@ impl Jobs {
                 if storage_error.is_none() {
                     if let Err(e) = writer.append(&line) {
                         // The run cannot be made durable: stop it and fail the job.
-                        storage_error = Some(format!("storage: {e}"));
+                        storage_error = Some(JobFailure::Storage(e));
                         job.cancel.store(true, Ordering::Relaxed);
                     }
                 }
@@ -151,17 +152,15 @@ impl Jobs {
             return Err(error);
         }
         // Whatever the outcome, the final status will say the log is complete.
-        let cycles = writer.finish().map_err(|e| format!("storage: {e}"))?;
+        let cycles = writer.finish()?;
         match outcome {
             Ok(result) => {
-                let json = serde_json::to_vec(&result).map_err(|e| format!("result: {e}"))?;
-                self.store
-                    .write_result(job.id, &json, cycles)
-                    .map_err(|e| format!("storage: {e}"))?;
+                let json = serde_json::to_vec(&result).map_err(JobFailure::Result)?;
+                self.store.write_result(job.id, &json, cycles)?;
                 Ok(true)
             }
             Err(SimulationError::Cancelled { .. }) => Ok(false),
-            Err(e) => Err(e.to_string()),
+            Err(e) => Err(e.into()),
         }
     }
 
@@ -196,11 +195,11 @@ impl Jobs {
     }
 }
 
-fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+fn panic_message(payload: &(dyn std::any::Any + Send)) -> JobFailure {
     let message = payload
         .downcast_ref::<&str>()
         .copied()
         .or_else(|| payload.downcast_ref::<String>().map(String::as_str))
         .unwrap_or("no message");
-    format!("internal error: the simulation panicked: {message}")
+    JobFailure::Panicked(message.to_owned())
 }

@@ -112,17 +112,60 @@ struct ResultSummary {
     summary: Summary,
 }
 
+/// Why a member has no result; its text is the member's `error` in the summary.
+#[derive(Debug, thiserror::Error)]
+enum NoResult {
+    /// No result file, and its task's log is absent or empty.
+    #[error("no result and no log: not run yet, still running, or lost ({log})")]
+    NotRun {
+        /// The task's log, relative to the study directory.
+        log: String,
+    },
+    /// No result file; its task's log says why.
+    #[error("no result; {log} ends: {}", tail.join(" / "))]
+    Logged {
+        /// The task's log, relative to the study directory.
+        log: String,
+        /// The log's last non-empty lines, at most [`LOG_TAIL_LINES`].
+        tail: Vec<String>,
+    },
+    /// The result file exists but cannot be read.
+    #[error("cannot read {path}: {source}")]
+    Unreadable {
+        /// The result file, relative to the study directory.
+        path: String,
+        /// What the system reported.
+        source: std::io::Error,
+    },
+    /// The result file is not a run's result.
+    #[error("{path} is not a result: {source}")]
+    NotAResult {
+        /// The result file, relative to the study directory.
+        path: String,
+        /// Why it does not read as one.
+        source: serde_json::Error,
+    },
+}
+
 /// Member `index`'s run summary and when its result was written (s since the epoch), or
 /// why there is none.
-fn read_result(dir: &Path, index: usize) -> Result<(Summary, f64), String> {
+fn read_result(dir: &Path, index: usize) -> Result<(Summary, f64), NoResult> {
     let path = dir.join(result_path(index));
     let text = match std::fs::read_to_string(&path) {
         Ok(text) => text,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Err(no_result(dir, index)),
-        Err(e) => return Err(format!("cannot read {}: {e}", result_path(index))),
+        Err(source) => {
+            return Err(NoResult::Unreadable {
+                path: result_path(index),
+                source,
+            });
+        }
     };
-    let result: ResultSummary = serde_json::from_str(&text)
-        .map_err(|e| format!("{} is not a result: {e}", result_path(index)))?;
+    let result: ResultSummary =
+        serde_json::from_str(&text).map_err(|source| NoResult::NotAResult {
+            path: result_path(index),
+            source,
+        })?;
     let ended = std::fs::metadata(&path)
         .and_then(|m| m.modified())
         .ok()
@@ -132,17 +175,19 @@ fn read_result(dir: &Path, index: usize) -> Result<(Summary, f64), String> {
 }
 
 /// Why member `index` has no result: its task's log tail, or that it has not run.
-fn no_result(dir: &Path, index: usize) -> String {
+fn no_result(dir: &Path, index: usize) -> NoResult {
     let log = std::fs::read_to_string(dir.join(log_path(index))).unwrap_or_default();
     let lines: Vec<&str> = log.lines().filter(|l| !l.trim().is_empty()).collect();
     if lines.is_empty() {
-        return format!(
-            "no result and no log: not run yet, still running, or lost ({})",
-            log_path(index)
-        );
+        return NoResult::NotRun {
+            log: log_path(index),
+        };
     }
     let tail = &lines[lines.len().saturating_sub(LOG_TAIL_LINES)..];
-    format!("no result; {} ends: {}", log_path(index), tail.join(" / "))
+    NoResult::Logged {
+        log: log_path(index),
+        tail: tail.iter().map(|line| (*line).to_owned()).collect(),
+    }
 }
 
 /// The most spans open at once and the span from the first start to the last end, in s;
@@ -178,5 +223,36 @@ mod tests {
         let spans = [(0.0, 1.0), (1.0, 2.0), (0.5, 1.5)];
         assert_eq!(concurrency(&spans), (2, 2.0));
         assert_eq!(concurrency(&[]), (0, 0.0));
+    }
+
+    /// A member's `error` in the summary JSON is the text of [`NoResult`]; scripts and
+    /// users read it, so its wording is pinned here.
+    #[test]
+    fn a_member_without_result_says_why_in_the_summary_words() {
+        let dir = std::env::temp_dir().join(format!("tribosim-collect-{}", uuid::Uuid::new_v4()));
+        std::fs::create_dir_all(dir.join("logs")).expect("logs");
+        std::fs::create_dir_all(dir.join("members")).expect("members");
+        std::fs::write(dir.join(log_path(1)), "a\n\nb\nc\n  \nd\n").expect("a log");
+        std::fs::write(dir.join(result_path(2)), "{}").expect("a result");
+        let why = |index| {
+            read_result(&dir, index)
+                .map(|_| ())
+                .err()
+                .map(|e| e.to_string())
+        };
+        assert_eq!(
+            why(0).as_deref(),
+            Some("no result and no log: not run yet, still running, or lost (logs/0000.err)")
+        );
+        assert_eq!(
+            why(1).as_deref(),
+            Some("no result; logs/0001.err ends: b / c / d")
+        );
+        let not_a_result = why(2).expect("member 2 has no result");
+        assert!(
+            not_a_result.starts_with("members/0002.result.json is not a result: missing field"),
+            "{not_a_result}"
+        );
+        std::fs::remove_dir_all(&dir).expect("clean up");
     }
 }
