@@ -483,7 +483,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             100.0 * self.window_fractions.solved / self.solves as f64,
             100.0 * self.window_fractions.checked / self.solves as f64
         );
-        window += &self.stalls.describe();
+        window += &self.stalls.describe(self.solves);
         models.push(ModelChoice {
             name: Model::SolveWindow,
             active: true,

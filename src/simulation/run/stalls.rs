@@ -39,8 +39,6 @@ pub(super) struct Stalls {
     whole_grid_solves: usize,
     /// Solves whose warm start stalled on the whole grid and began again uniform.
     restarted_solves: usize,
-    /// Solves recorded.
-    solves: usize,
 }
 
 impl Stalls {
@@ -58,7 +56,6 @@ impl Stalls {
 
     /// Records how `solution`'s solve, started with [`Self::options`], went.
     pub(super) fn record(&mut self, solution: &ContactSolution) {
-        self.solves += 1;
         self.restarted_solves += usize::from(solution.uniform_restarts > 0);
         if self.whole_grid_left > 0 {
             self.whole_grid_left -= 1;
@@ -73,25 +70,25 @@ impl Stalls {
     }
 
     /// The clauses of the `solve_window` model that say how the solves stalled, if they
-    /// did: each begins with "; ".
-    pub(super) fn describe(&self) -> String {
+    /// did, out of the run's `solves`: each begins with "; ".
+    pub(super) fn describe(&self, solves: usize) -> String {
         let mut clauses = String::new();
         if self.fallback_solves > 0 {
             clauses += &format!(
                 "; the free-set preconditioner stalled and fell back to the whole grid in {} of {} solves",
-                self.fallback_solves, self.solves
+                self.fallback_solves, solves
             );
         }
         if self.whole_grid_solves > 0 {
             clauses += &format!(
                 "; after each stall the next solves started on the whole grid (one after the first, twice as many after each stall of a retried correction): {} of {} solves",
-                self.whole_grid_solves, self.solves
+                self.whole_grid_solves, solves
             );
         }
         if self.restarted_solves > 0 {
             clauses += &format!(
                 "; a warm start stalled on the whole grid and the solve began again from the uniform pressure in {} of {} solves",
-                self.restarted_solves, self.solves
+                self.restarted_solves, solves
             );
         }
         clauses
@@ -141,7 +138,7 @@ mod tests {
             );
         }
         assert_eq!(
-            stalls.describe(),
+            stalls.describe(8),
             "; the free-set preconditioner stalled and fell back to the whole grid in 3 of 8 solves\
              ; after each stall the next solves started on the whole grid (one after the first, twice as many after each stall of a retried correction): 4 of 8 solves\
              ; a warm start stalled on the whole grid and the solve began again from the uniform pressure in 1 of 8 solves"
@@ -152,6 +149,6 @@ mod tests {
     fn a_run_without_stalls_says_nothing_of_them() {
         let mut stalls = Stalls::default();
         stalls.record(&solution(0, 0));
-        assert_eq!(stalls.describe(), "");
+        assert_eq!(stalls.describe(1), "");
     }
 }
