@@ -308,7 +308,7 @@ impl<'a> PolonskyKeer<'a> {
             free: vec![0.0; n],
             preconditioned,
             correction,
-            progress: Progress::new(),
+            progress: Progress::new(warm.is_some()),
             fell_back: false,
             warm: warm.is_some(),
             restarted: false,
