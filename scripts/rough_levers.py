@@ -5,7 +5,9 @@ docs/accuracy.md ("## Rough wear: speed levers").
 Runs the 4 um cut-off rough disc of issue 29 (rms 0.1 um, Hurst 0.8, cut-offs 4 and 50 um,
 seed 1) over 600 cycles with each lever, the smooth disc of the same scene as the time
 baseline, and both with every cycle solved as the references of the errors. Then the rough
-example of docs/scene.md (2 um short cut-off) over its first 40 cycles, with the defaults.
+example of docs/scene.md (2 um short cut-off) over its first 40 cycles, with the defaults,
+and the rough disc solved every cycle over 150 cycles at its Archard k and at a tenth of it
+(how stiff the wear update is at the scale of the cells).
 Each time is a ratio to the smooth auto run of the same invocation, so the machine's speed
 cancels.
 
