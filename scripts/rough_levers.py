@@ -216,9 +216,8 @@ def stiffness(binary, workdir, smooth):
         f"tenth of the Archard k ({k / 10:.3e}) at {corr[0][1]:+.2f} and {corr[1][1]:+.2f}. "
         f"An update that holds one pressure for m cycles (forward Euler, the cycle step) is "
         f"stable only while m r < 2, so no bound lets the rough disc step far once its "
-        f"asperities have flattened: longer accurate steps need a wear update implicit in "
-        f"the groove, which the paper's cycle-by-cycle algorithm does not define. A smooth "
-        f"disc's groove has no content at those wavelengths to excite."
+        f"asperities have flattened. A smooth disc's groove has no content at those "
+        f"wavelengths to excite."
     )
 
 
