@@ -13,6 +13,7 @@ use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
 
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 use time::OffsetDateTime;
@@ -26,6 +27,25 @@ const STUDIES_DIR: &str = "studies";
 
 /// The suffix of a study being accepted.
 const PENDING_SUFFIX: &str = ".pending";
+
+/// Why a study's file does not load: logged, and the file quarantined.
+#[derive(Debug, thiserror::Error)]
+enum Damage {
+    /// The file cannot be read.
+    #[error(transparent)]
+    Unreadable(#[from] io::Error),
+    /// It does not parse as what it should hold.
+    #[error(transparent)]
+    Invalid(#[from] serde_json::Error),
+    /// It parses, but names another study than its file name.
+    #[error("it names study {0}")]
+    OtherStudy(Uuid),
+}
+
+/// The file at `path`, parsed.
+fn read_json<T: DeserializeOwned>(path: &Path) -> Result<T, Damage> {
+    Ok(serde_json::from_slice(&fs::read(path)?)?)
+}
 
 /// What `<uuid>.pending` holds: the member jobs of a study being accepted.
 #[derive(Debug, Serialize, Deserialize)]
@@ -101,11 +121,7 @@ impl StudyFiles {
                 continue;
             };
             if !self.dir.join(format!("{id}.json")).exists() {
-                let pending = fs::read(&path)
-                    .map_err(|e| e.to_string())
-                    .and_then(|bytes| {
-                        serde_json::from_slice::<Pending>(&bytes).map_err(|e| e.to_string())
-                    });
+                let pending = read_json::<Pending>(&path);
                 let Ok(pending) = pending.inspect_err(|damage| {
                     tracing::error!(%id, "pending study damaged: {damage}");
                 }) else {
@@ -147,18 +163,13 @@ impl StudyFiles {
             }
             return None;
         };
-        let stored = fs::read(path)
-            .map_err(|e| e.to_string())
-            .and_then(|bytes| {
-                serde_json::from_slice::<StoredStudy>(&bytes).map_err(|e| e.to_string())
-            })
-            .and_then(|stored| {
-                if stored.id == id {
-                    Ok(stored)
-                } else {
-                    Err(format!("it names study {}", stored.id))
-                }
-            });
+        let stored = read_json::<StoredStudy>(path).and_then(|stored| {
+            if stored.id == id {
+                Ok(stored)
+            } else {
+                Err(Damage::OtherStudy(stored.id))
+            }
+        });
         match stored {
             Ok(stored) => Some(stored),
             Err(damage) => {

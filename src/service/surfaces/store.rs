@@ -90,11 +90,16 @@ pub struct UploadLimits {
 }
 
 /// Why a surface was not stored.
-#[derive(Debug)]
+#[derive(Debug, thiserror::Error)]
 pub enum CreateError {
-    /// Its record would not read back at the next start; why.
-    Unreadable(String),
+    /// Its record would not parse at the next start.
+    #[error("the map's record would not read back after a restart: {0}")]
+    Unreadable(serde_json::Error),
+    /// Its record would parse at the next start as another record.
+    #[error("the map's record would not read back after a restart: it reads back different")]
+    ReadsBackDifferent,
     /// Its files could not be written.
+    #[error("the map's files could not be written: {0}")]
     Storage(io::Error),
 }
 
@@ -248,10 +253,9 @@ impl Surfaces {
         let json = to_json(&stored).map_err(CreateError::Storage)?;
         // Read back as the next start will read it: a record that would not load (a number
         // JSON cannot hold) would be accepted now and quarantined then.
-        let reread = serde_json::from_slice::<Stored>(&json).map_err(|e| e.to_string());
-        match reread {
+        match serde_json::from_slice::<Stored>(&json) {
             Ok(again) if again.record == record => {}
-            Ok(_) => return Err(CreateError::Unreadable("it reads back different".into())),
+            Ok(_) => return Err(CreateError::ReadsBackDifferent),
             Err(e) => return Err(CreateError::Unreadable(e)),
         }
         let staging = self.dir.join(format!("{id}{NEW_SUFFIX}"));

@@ -142,11 +142,8 @@ pub(super) fn store(
     surfaces
         .create(options.name, format, &map, statistics)
         .map_err(|e| match e {
-            CreateError::Unreadable(why) => invalid(
-                "body",
-                format!("the map's record would not read back after a restart: {why}"),
-            ),
             CreateError::Storage(e) => UploadError::Storage(e),
+            unreadable => invalid("body", unreadable.to_string()),
         })
 }
 
