@@ -30,7 +30,7 @@ const PENDING_SUFFIX: &str = ".pending";
 
 /// Why a study's file does not load: logged, and the file quarantined.
 #[derive(Debug, thiserror::Error)]
-enum Damage {
+enum StudyFileDamage {
     /// The file cannot be read.
     #[error(transparent)]
     Unreadable(#[from] io::Error),
@@ -43,7 +43,7 @@ enum Damage {
 }
 
 /// The file at `path`, parsed.
-fn read_json<T: DeserializeOwned>(path: &Path) -> Result<T, Damage> {
+fn read_json<T: DeserializeOwned>(path: &Path) -> Result<T, StudyFileDamage> {
     Ok(serde_json::from_slice(&fs::read(path)?)?)
 }
 
@@ -167,7 +167,7 @@ impl StudyFiles {
             if stored.id == id {
                 Ok(stored)
             } else {
-                Err(Damage::OtherStudy(stored.id))
+                Err(StudyFileDamage::OtherStudy(stored.id))
             }
         });
         match stored {
