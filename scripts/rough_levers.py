@@ -6,8 +6,8 @@ Runs the 4 um cut-off rough disc of issue 29 (rms 0.1 um, Hurst 0.8, cut-offs 4 
 seed 1) over 600 cycles with each lever, the smooth disc of the same scene as the time
 baseline, and both with every cycle solved as the references of the errors. Then the rough
 example of docs/scene.md (2 um short cut-off) over its first 40 cycles, with the defaults,
-and the rough disc solved every cycle over 150 cycles at its Archard k and at a tenth of it
-(how stiff the wear update is at the scale of the cells).
+and the rough disc solved every cycle over 150 cycles at its Archard k and at four times it
+(how stiff the wear update is at the scale of the cells, and that the implicit update holds).
 Each time is a ratio to the smooth auto run of the same invocation, so the machine's speed
 cancels.
 
@@ -54,8 +54,9 @@ DOCS_EXAMPLE = {
     "test": {"cycles": 40},
 }
 # The wear update's stiffness: the rough disc solved every cycle at the run's Archard k and
-# at a tenth of it, measured from the cycle after the run-in to the last.
+# at STIFF_K_FACTOR times it, measured from the cycle after the run-in to the last.
 STIFFNESS_CYCLES = (51, 150)
+STIFF_K_FACTOR = 4
 OUTPUTS = [
     ("wear_volume_mm3", "volume"),
     ("max_depth_um", "depth"),
@@ -73,12 +74,14 @@ def run(binary, label, rough, numerics, workdir):
     return label, rough, numerics, run_scene(binary, scene, workdir)
 
 
-def run_scene(binary, scene, workdir):
+def run_scene(binary, scene, workdir, extra=()):
+    """Runs `scene` (with the further `tribosim run` arguments `extra`) and reads its result."""
     path = os.path.join(workdir, f"{len(os.listdir(workdir))}.json")
     with open(path, "w") as f:
         json.dump(scene, f)
     out = path + ".out"
-    subprocess.run([binary, "run", path, "-o", out], check=True, stdout=subprocess.DEVNULL)
+    command = [binary, "run", path, "-o", out, *extra]
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
     with open(out) as f:
         return json.load(f)
 
@@ -176,8 +179,7 @@ def effective_modulus_pa(scene):
 
 def stiffness(binary, workdir, smooth):
     """How the rough disc's contact moves from cycle to cycle, solved every cycle, at the
-    run's k and at a tenth of it: the signature of an explicit wear update near its
-    stability limit."""
+    run's k and at STIFF_K_FACTOR times it, where the explicit update would alternate."""
     first, last = STIFFNESS_CYCLES
     scene = {
         "test": {"cycles": last},
@@ -186,7 +188,8 @@ def stiffness(binary, workdir, smooth):
     }
     runs = [run_scene(binary, scene, workdir)]
     k = runs[0]["summary"]["archard_k"]
-    runs.append(run_scene(binary, dict(scene, wear={"archard_k": k / 10}), workdir))
+    stiff = dict(scene, wear={"archard_k": STIFF_K_FACTOR * k})
+    runs.append(run_scene(binary, stiff, workdir))
     corr = [
         [change_correlation(r, key, first) for r in runs]
         for key in ("contact_area_mm2", "plastic_area_mm2")
@@ -199,25 +202,37 @@ def stiffness(binary, workdir, smooth):
     chords = (end["contact_chord_um"], smooth["cycles"][-1]["contact_chord_um"])
     r = [math.pi * k * c * e_star / (2 * dy * end["hardness_mpa"] * 1e6) for c in chords]
     return (
-        f"Why the rough disc's steps stay short: the wear update is stiff at the scale of its "
-        f"cells. A row raised by delta over a wavelength lambda across the track carries "
-        f"pi E* delta / lambda more pressure, and one pass removes k l / H of depth per unit "
-        f"of pressure over the chord l, so the row's excess shrinks by r = pi k l E* / "
-        f"(lambda H) of itself a cycle. With l from the rough contact's mean chord "
-        f"({chords[0]:.0f} um) to the smooth one's ({chords[1]:.0f} um), E* "
-        f"{e_star / 1e9:.0f} GPa and H {end['hardness_mpa'] / 1e3:.2f} GPa at cycle {last}, "
-        f"r is {r[0]:.1f} to {r[1]:.1f} at the shortest wavelength of the {dy:.2f} um cells "
-        f"(2 cells), and about twice that on the 2 um example's cells of half the size: of "
-        f"order one (the estimate is a row in full contact; a row carried by a few small "
-        f"contact spots is stiffer). Beyond r = 1 each cycle's wear overshoots and the next "
-        f"undoes part of it, and the runs show it: solved every cycle over cycles {first} to "
-        f"{last}, consecutive changes of the contact area "
-        f"correlate at {corr[0][0]:+.2f} and of the plastic area at {corr[1][0]:+.2f}; at a "
-        f"tenth of the Archard k ({k / 10:.3e}) at {corr[0][1]:+.2f} and {corr[1][1]:+.2f}. "
-        f"An update that holds one pressure for m cycles (forward Euler, the cycle step) is "
-        f"stable only while m r < 2, so no bound lets the rough disc step far once its "
-        f"asperities have flattened. A smooth disc's groove has no content at those "
-        f"wavelengths to excite."
+        f"Why the rough disc's steps stay short, and why its wear update is implicit: the "
+        f"update is stiff at the scale of the cells. A row raised by delta over a wavelength "
+        f"lambda across the track carries pi E* delta / lambda more pressure, and one pass "
+        f"removes k l / H of depth per unit of pressure over the chord l, so a pass changes "
+        f"the row's excess by r = pi k l E* / (lambda H) of itself. With l from the rough "
+        f"contact's mean chord ({chords[0]:.0f} um) to the smooth one's ({chords[1]:.0f} um), "
+        f"E* {e_star / 1e9:.0f} GPa and H {end['hardness_mpa'] / 1e3:.2f} GPa at cycle "
+        f"{last}, r is {r[0]:.1f} to {r[1]:.1f} at the shortest wavelength of the {dy:.2f} um "
+        f"cells (2 cells), and about twice that on the 2 um example's cells of half the "
+        f"size (the estimate is a row in full contact; a row carried by a few small contact "
+        f"spots is stiffer). The paper's update wears the surface with the pressure solved "
+        f"before the pass (forward Euler), which alternates and grows beyond r = 2. "
+        f"Measured with it (commit 105fc15, before the implicit update): at {STIFF_K_FACTOR} "
+        f"times k the consecutive changes of the contact area over cycles 11 to 60 "
+        f"correlated at -0.89 and of the plastic area at -0.97; at the run's k, on the fixed "
+        f"map of the next section, the run-in (plastic area above 5% of the first cycle's) "
+        f"lasted to cycle 26 on 0.5 um cells, 45 on 0.33 um and 120 on 0.25 um, where the "
+        f"volume at cycle 150 came out 5.6% above the 0.5 um cells' (the next section has "
+        f"the implicit update's). So a rough disc's solve includes the wear of its own "
+        f"step's passes (backward Euler, `src/contact/worn_rows.rs`): the excess shrinks "
+        f"by 1 / (1 + r), stable at every r while a step is at most twice the last. Solved "
+        f"every cycle over cycles {first} to {last}, consecutive changes of the contact "
+        f"area now correlate at {corr[0][0]:+.2f} and of the plastic area at {corr[1][0]:+.2f}; at "
+        f"{STIFF_K_FACTOR} times k ({STIFF_K_FACTOR * k:.3e}) at {corr[0][1]:+.2f} and "
+        f"{corr[1][1]:+.2f}: the jitter of a series of independent changes (-0.5), not "
+        f"the alternation (-1). This disc's steps stay short all the same: its per-pass wear "
+        f"profile still moves by about 1% a cycle, which the step bound follows (what moves "
+        f"it, past the oscillation, is not measured here). On the 2 um example's finer "
+        f"cells, where the explicit update oscillated most, the steps grew: its 3600 cycles "
+        f"take 1614 solves and 26,157 iterations (`tribosim run`), against 2650 and 34,461 "
+        f"with the explicit update at commit 105fc15."
     )
 
 
@@ -255,10 +270,12 @@ cores, {version.strip()}); the machine may be shared with other work.
 """
 
 
-def splice(text, body):
-    start = text.find(f"\n{HEADING}\n")
+def splice(text, body, heading=HEADING):
+    """`text` with the section under `heading` replaced by `body`, or `body` inserted before
+    the peers' sections when there is none yet."""
+    start = text.find(f"\n{heading}\n")
     if start >= 0:
-        end = text.find("\n## ", start + 1 + len(HEADING))
+        end = text.find("\n## ", start + 1 + len(heading))
         end = len(text) if end < 0 else end + 1
         before, after = text[: start + 1], text[end:]
     else:

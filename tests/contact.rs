@@ -44,6 +44,7 @@ fn solve_sphere_with(
         separation: &separation,
         load_n,
         yield_pressure_pa: cap,
+        pass_wear_per_pa: 0.0,
     };
     let solution = solve(&mut op, &problem, options, None)?;
     let check = verify(&mut op, &problem, &solution);
@@ -129,6 +130,7 @@ fn solutions_pass_the_check_by_direct_summation() {
         separation: &separation,
         load_n: 2.0,
         yield_pressure_pa: 700e6,
+        pass_wear_per_pa: 0.0,
     };
     let options = SolverOptions::default();
     let solution = solve(&mut DcFft::new(&kernel), &problem, &options, None).expect("converges");
@@ -207,6 +209,7 @@ fn iteration_limit_reports_the_residual_reached() {
         separation: &separation,
         load_n: LOAD_N,
         yield_pressure_pa: f64::INFINITY,
+        pass_wear_per_pa: 0.0,
     };
     let options = SolverOptions {
         tolerance: 1e-8,
@@ -243,6 +246,7 @@ fn invalid_inputs_are_named_errors() {
         separation: &separation,
         load_n: 1.0,
         yield_pressure_pa: f64::INFINITY,
+        pass_wear_per_pa: 0.0,
     };
     let mut op = DcFft::new(&Kernel::normal(&grid, &paper_pair()));
     let result = solve(&mut op, &problem, &SolverOptions::default(), None);
@@ -268,6 +272,7 @@ fn warm_start_from_the_answer_needs_no_iterations() {
         separation: &s.separation,
         load_n: LOAD_N,
         yield_pressure_pa: 900e6,
+        pass_wear_per_pa: 0.0,
     };
     let again = solve(
         &mut op,
@@ -321,6 +326,7 @@ fn rough_sphere() {
         separation: &separation,
         load_n: LOAD_N,
         yield_pressure_pa: f64::INFINITY,
+        pass_wear_per_pa: 0.0,
     };
     let options = SolverOptions::default();
     let solution = solve(&mut op, &problem, &options, None).expect("converges");
@@ -375,6 +381,7 @@ fn preconditioning_changes_the_path_not_the_answer() {
         separation: &separation,
         load_n: LOAD_N,
         yield_pressure_pa: cap,
+        pass_wear_per_pa: 0.0,
     };
     let options = SolverOptions {
         tolerance: 1e-10,
@@ -420,6 +427,7 @@ fn hertz_256_solve_time() {
         separation: &separation,
         load_n: LOAD_N,
         yield_pressure_pa: f64::INFINITY,
+        pass_wear_per_pa: 0.0,
     };
     let mut times: Vec<f64> = (0..21)
         .map(|_| {

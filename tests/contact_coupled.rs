@@ -42,6 +42,7 @@ fn coupled_case(
         separation: &separation,
         load_n: LOAD_N,
         yield_pressure_pa: f64::INFINITY,
+        pass_wear_per_pa: 0.0,
     };
     let options = SolverOptions::default();
     let solution = solve_coupled(
@@ -127,6 +128,7 @@ fn coupled_solver_takes_the_direct_route_when_it_converges_and_falls_back_when_n
             separation: &separation,
             load_n: LOAD_N,
             yield_pressure_pa: f64::INFINITY,
+            pass_wear_per_pa: 0.0,
         };
         let options = SolverOptions::default();
         let mut solver = CoupledSolver::new(&normal, &coupling);

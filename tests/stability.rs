@@ -64,6 +64,7 @@ fn warm_start_with_a_single_free_cell_converges() {
         separation: &separation,
         load_n: 5.0,
         yield_pressure_pa: cap,
+        pass_wear_per_pa: 0.0,
     };
     let full_cells = (5.0 / grid.cell_area() / cap).floor() as usize;
     let mut order: Vec<usize> = (0..grid.len()).collect();
@@ -355,6 +356,7 @@ fn peak_pressure_error(cells: f64) -> f64 {
         separation: &separation,
         load_n: hertz.load_n,
         yield_pressure_pa: f64::INFINITY,
+        pass_wear_per_pa: 0.0,
     };
     let mut op = DcFft::new(&Kernel::normal(&grid, &pair));
     let solution = solve(&mut op, &problem, &SolverOptions::default(), None).expect("converges");
@@ -419,6 +421,7 @@ fn coupled_hertz(strength: f64) -> Result<(), ContactError> {
         separation: &separation,
         load_n: 5.0,
         yield_pressure_pa: f64::INFINITY,
+        pass_wear_per_pa: 0.0,
     };
     let normal = Kernel::normal(&grid, &pair);
     let coupling = Kernel::coupling(&grid, &pair, strength / beta.abs());

@@ -106,6 +106,7 @@ fn rough_sphere(ratio: f64, n: usize, domain_m: f64, short_m: f64, long_m: f64, 
         separation: &separation,
         load_n: LOAD_N,
         yield_pressure_pa: cap,
+        pass_wear_per_pa: 0.0,
     };
     solve_rough(&mut DcFft::new(&Kernel::normal(&grid, &pair)), &problem)
 }
@@ -126,6 +127,7 @@ fn thousands_of_islands_on_a_periodic_rough_flat_converge() {
         separation: &separation,
         load_n: 0.02 * e * slope * grid.area(),
         yield_pressure_pa: f64::INFINITY,
+        pass_wear_per_pa: 0.0,
     };
     let rough = solve_rough(&mut PeriodicHalfSpace::new(n, n, pixel, pixel, e), &problem);
     assert!(rough.checked);
@@ -379,6 +381,7 @@ fn unrefused_spikes_would_carry_the_load_alone() {
         separation: &separation,
         load_n: LOAD_N,
         yield_pressure_pa: cap,
+        pass_wear_per_pa: 0.0,
     };
     let rough = solve_rough(&mut DcFft::new(&Kernel::normal(&grid, &pair)), &problem);
     assert!(rough.checked);
@@ -414,6 +417,7 @@ fn bench_rough_solve() {
         separation: &separation,
         load_n: 0.015 * e * tribosim::surface::rms_slope(&map) * grid.area(),
         yield_pressure_pa: f64::INFINITY,
+        pass_wear_per_pa: 0.0,
     };
     let mut operator = PeriodicHalfSpace::new(n, n, grid.dx, grid.dy, e);
     if let Ok(threads) = std::env::var("ROUGH_THREADS") {

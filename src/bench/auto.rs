@@ -256,6 +256,7 @@ fn coupling_row(n: usize, mu: f64) -> Result<CouplingRow, ContactError> {
         separation: &separation,
         load_n: hertz.load_n,
         yield_pressure_pa: f64::INFINITY,
+        pass_wear_per_pa: 0.0,
     };
     let normal = Kernel::normal(&grid, &pair);
     let mut plain = DcFft::new(&normal);

@@ -125,6 +125,7 @@ pub fn surface_rows(map: &HeightMap, name: &str) -> Result<Vec<KappaRow>, BenchE
                 separation: &separation,
                 load_n: reduced * modulus * slope * grid.area(),
                 yield_pressure_pa: f64::INFINITY,
+                pass_wear_per_pa: 0.0,
             };
             let solution = solve(&mut operator, &problem, &options, None)?;
             let mask: Vec<bool> = solution.pressure.iter().map(|&p| p > 0.0).collect();

@@ -157,6 +157,7 @@ pub fn rough_rows(surfaces: Option<&Path>) -> Result<Vec<RoughRow>, BenchError> 
             separation: &separation,
             load_n: mean_pa * grid.area(),
             yield_pressure_pa: f64::INFINITY,
+            pass_wear_per_pa: 0.0,
         };
         let build = || PeriodicHalfSpace::new(n, n, grid.dx, grid.dy, modulus);
         let reps = repetitions(n);

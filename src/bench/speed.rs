@@ -223,6 +223,7 @@ pub fn coarse_rows() -> Result<Vec<CoarseRow>, BenchError> {
             separation: &separation,
             load_n: hertz.load_n,
             yield_pressure_pa: f64::INFINITY,
+            pass_wear_per_pa: 0.0,
         };
         let mut operator = DcFft::new(&Kernel::normal(&grid, &pair));
         let started = Instant::now();

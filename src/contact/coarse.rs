@@ -145,6 +145,7 @@ mod tests {
             separation: &separation,
             load_n: 5.0,
             yield_pressure_pa: f64::INFINITY,
+            pass_wear_per_pa: 0.0,
         };
         let options = SolverOptions::default();
         let start = coarse_start(&problem, &pair, &options)

@@ -6,7 +6,8 @@
 //! and may offer a [`Preconditioner`], and a [`ContactSolver`] solves a [`ContactProblem`]:
 //! [`NormalSolver`] (preconditioned Polonsky-Keer on any operator), [`CoupledSolver`] (with
 //! the friction coupling term) and [`WindowedSolver`] (on a window around the contact,
-//! checked on every cell whose gap could close). [`residual`] holds the complementarity conditions they all
+//! checked on every cell whose gap could close); [`WornRows`] adds the wear a solve's own pass
+//! wears (the implicit update of [`worn_rows`]). [`residual`] holds the complementarity conditions they all
 //! meet, and [`verify`] checks a solution against them independently.
 
 pub mod check;
@@ -26,6 +27,7 @@ pub mod residual;
 pub mod solver;
 mod transform;
 mod window;
+pub mod worn_rows;
 
 pub use check::{Verification, verify};
 pub use coarse::{COARSE_TOLERANCE, COARSEST_CELLS, coarse_start, cold_start};
@@ -45,3 +47,4 @@ pub use solver::{NormalSolver, UPDATE_ROUNDOFF, solve};
 pub(crate) use transform::{BLOCK, Plans, STRIDE_PAD};
 pub use transform::{MAX_SPLIT_THREADS, SPLIT_MIN_CELLS, fft_friendly, split_threads};
 pub use window::{MARGIN_FRACTION, MIN_MARGIN, WindowFractions, WindowedSolver};
+pub use worn_rows::{WornRows, add_worn_rows};

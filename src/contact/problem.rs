@@ -60,6 +60,12 @@ pub struct ContactProblem<'a> {
     pub load_n: f64,
     /// Pressure cap `Y`, Pa; `f64::INFINITY` for a purely elastic contact.
     pub yield_pressure_pa: f64,
+    /// The depth the solved pressure wears from each row per unit of the row's pressure
+    /// integral `int p dx` (Pa m), 1/Pa: Archard's `k / H` summed over the passes whose wear
+    /// the solve includes. The gap of a row's cells then includes that wear, so the pressure
+    /// is solved on the surface its own wear leaves (the implicit update of
+    /// [`super::worn_rows`]); 0 solves on the surface as it is.
+    pub pass_wear_per_pa: f64,
 }
 
 impl ContactProblem<'_> {
@@ -85,6 +91,12 @@ impl ContactProblem<'_> {
                 self.yield_pressure_pa
             ));
         }
+        if !(self.pass_wear_per_pa >= 0.0 && self.pass_wear_per_pa.is_finite()) {
+            return invalid(format!(
+                "pass wear {} 1/Pa: must be finite and >= 0",
+                self.pass_wear_per_pa
+            ));
+        }
         if !(options.tolerance > 0.0 && options.tolerance.is_finite()) {
             return invalid(format!("tolerance {}: must be > 0", options.tolerance));
         }
@@ -97,7 +109,8 @@ impl ContactProblem<'_> {
 pub struct ContactSolution {
     /// Pressure per cell, Pa.
     pub pressure: Vec<f64>,
-    /// Elastic displacement `K p` per cell (both bodies together), m. A
+    /// Elastic displacement `K p` per cell (both bodies together), plus the pass's wear
+    /// when the problem has one ([`ContactProblem::pass_wear_per_pa`]), m. A
     /// [`super::WindowedSolver`] under a nonnegative kernel computes it only on the cells
     /// whose gap could close and leaves 0 elsewhere, a lower bound there: those cells' gap
     /// is at least their separation's, beyond the tolerance.

@@ -71,13 +71,14 @@ use super::problem::{
     ContactProblem, ContactSolution, ContactSolver, Preconditioning, SolverOptions,
 };
 use super::residual::{Bound, Residual, approach};
+use super::worn_rows::WornRows;
 
 mod bounds;
 mod free_set;
 mod progress;
 mod sums;
 
-use bounds::{check_edges, rescale_to_load, violator_step};
+use bounds::{check_edges, rescale_to_load, step_cell, violator_step};
 use free_set::FreeSetCorrection;
 use progress::{Progress, restarts_conjugacy};
 use sums::{dot, dot2, free_dots, sum, update_direction};
@@ -137,6 +138,13 @@ pub fn solve(
     warm_start: Option<&[f64]>,
 ) -> Result<ContactSolution, ContactError> {
     problem.validate(options)?;
+    let mut worn;
+    let operator: &mut dyn Operator = if problem.pass_wear_per_pa > 0.0 {
+        worn = WornRows::new(operator, problem.pass_wear_per_pa, problem.grid.dx);
+        &mut worn
+    } else {
+        operator
+    };
     let mut state = PolonskyKeer::start(operator, problem, options, warm_start)?;
     for iteration in 1..=options.max_iterations {
         let delta = state.measure();
@@ -162,37 +170,6 @@ pub fn solve(
         residual: state.residual,
         tolerance: options.tolerance,
     })
-}
-
-/// One cell of [`PolonskyKeer::advance`]: a free cell steps by `-tau t` and is truncated at
-/// the bound it crosses, a wrongly bounded cell re-enters at `rate` per unit of gap
-/// (setting `entered`). Returns how far the cell moved other than along the step, if it
-/// did.
-fn step_cell(
-    pi: &mut f64,
-    (ti, gi): (f64, f64),
-    (tau, rate, cap): (f64, f64, f64),
-    entered: &mut bool,
-) -> Option<f64> {
-    if *pi > 0.0 && *pi < cap {
-        let stepped = *pi - tau * ti;
-        *pi = stepped.clamp(0.0, cap);
-        (stepped <= 0.0 || stepped >= cap).then_some(*pi - stepped)
-    } else if *pi <= 0.0 && gi < 0.0 {
-        let new = (-rate * gi).min(cap);
-        let by = new - *pi;
-        *pi = new;
-        *entered = true;
-        Some(by)
-    } else if *pi >= cap && gi > 0.0 {
-        let new = (cap - rate * gi).max(0.0);
-        let by = new - *pi;
-        *pi = new;
-        *entered = true;
-        Some(by)
-    } else {
-        None
-    }
 }
 
 /// The state of one solve between iterations. The work vectors are allocated once, at the

@@ -23,6 +23,7 @@ use super::operator::Operator;
 use super::problem::{ContactProblem, ContactSolution, ContactSolver, SolverOptions};
 use super::residual::displacement_scale;
 use super::transform::fft_friendly;
+use super::worn_rows::add_worn_rows;
 
 /// Margin around the last contact's bounding box, as a fraction of its extent... Every
 /// apply of a solve costs the window's cells, and a warm solve's contact differs from the
@@ -147,7 +148,8 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         };
         let pressure = window.embed(&grid, &solution.pressure);
         let reach = self.reach(&window, problem.separation, &solution, options.tolerance);
-        let (displacement, scale) = self.displacement_over(&reach, &pressure)?;
+        let (displacement, scale) =
+            self.displacement_over(&reach, &pressure, problem.pass_wear_per_pa)?;
         // The gap first: it rarely fails, and the window's test divides by the row length.
         let penetrates = reach.indices(&grid).any(|i| {
             displacement[i] + problem.separation[i] - solution.approach_m
@@ -195,11 +197,13 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         )
     }
 
-    /// `K pressure` on the cells of `reach` (zero elsewhere), and its largest magnitude.
+    /// `K pressure` on the cells of `reach` (zero elsewhere), plus the wear of
+    /// `pass_wear_per_pa` on every row ([`add_worn_rows`]), and its largest magnitude.
     fn displacement_over(
         &mut self,
         reach: &Window,
         pressure: &[f64],
+        pass_wear_per_pa: f64,
     ) -> Result<(Vec<f64>, f64), ContactError> {
         let grid = self.grid;
         let mut displacement = vec![0.0; grid.len()];
@@ -212,6 +216,12 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
                 .apply(&reach.extract(&grid, pressure), &mut part);
             reach.place(&grid, &part, &mut displacement);
         }
+        add_worn_rows(
+            pass_wear_per_pa * grid.dx,
+            grid.nx,
+            pressure,
+            &mut displacement,
+        );
         let scale = displacement_scale(&displacement);
         Ok((displacement, scale))
     }
@@ -311,6 +321,7 @@ mod tests {
             separation,
             load_n: 5.0,
             yield_pressure_pa: f64::INFINITY,
+            pass_wear_per_pa: 0.0,
         }
     }
 
@@ -339,6 +350,7 @@ mod tests {
             separation: &separation,
             load_n,
             yield_pressure_pa: 2455e6 / 2.8,
+            pass_wear_per_pa: 0.0,
         };
         let options = SolverOptions::default();
         let mut solver = WindowedSolver::new(grid, factory(true));
@@ -369,6 +381,7 @@ mod tests {
             separation: &separation,
             load_n: 5.0,
             yield_pressure_pa: 2455e6 / 2.8,
+            pass_wear_per_pa: 0.0,
         };
         let options = SolverOptions::default();
         let mut solver = WindowedSolver::new(grid, factory(true));

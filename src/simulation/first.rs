@@ -87,6 +87,7 @@ fn solve_growing(setup: &mut Setup, cap: f64) -> Result<(Grid, ContactSolution),
             separation: &separation,
             load_n: setup.scene().load_n(),
             yield_pressure_pa: cap,
+            pass_wear_per_pa: 0.0,
         };
         let start = cold_start(&problem, setup.plan.pair(), &setup.options);
         let solved = setup

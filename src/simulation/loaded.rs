@@ -4,7 +4,9 @@
 //! with the numerical profiles) sees the loaded surface, deeper by the disc's share of the
 //! elastic approach. `docs/paper.md` compares both with the paper's figures.
 
-use crate::contact::{Grid, Material};
+use std::borrow::Cow;
+
+use crate::contact::{ContactSolution, Grid, Material, add_worn_rows};
 use crate::wear::Groove;
 
 use super::Setup;
@@ -46,6 +48,27 @@ pub fn loaded_max_depth_m(groove: &Groove, grid: &Grid, displacement: &[f64], sh
     loaded_profile_m(groove, grid, displacement, share)
         .into_iter()
         .fold(0.0, f64::max)
+}
+
+/// The pair's elastic displacement in `solution`: a solve that included its pass's wear
+/// (`pass_wear_per_pa`, [`crate::contact::worn_rows`]) reports `K p` plus that wear, which is
+/// no dent of the disc's.
+pub fn elastic_displacement<'a>(
+    solution: &'a ContactSolution,
+    grid: &Grid,
+    pass_wear_per_pa: f64,
+) -> Cow<'a, [f64]> {
+    if pass_wear_per_pa == 0.0 {
+        return Cow::Borrowed(&solution.displacement);
+    }
+    let mut elastic = solution.displacement.clone();
+    add_worn_rows(
+        -pass_wear_per_pa * grid.dx,
+        grid.nx,
+        &solution.pressure,
+        &mut elastic,
+    );
+    Cow::Owned(elastic)
 }
 
 /// The pair's displacement `K p` at every cell of `grid` under `pressure`, with the

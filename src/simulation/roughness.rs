@@ -12,7 +12,7 @@
 //! wears it: yielding (eq. 13) truncates each row's asperities at the level its most-pressed
 //! capped cell was pressed to, so they flatten, and Archard wear lowers the row as on a
 //! smooth disc. The paper's scene with a 0.1 um rms surface (H 0.8, cut-offs 2 and 50 um,
-//! seed 1) wears 4.64e-4 mm^3 in 20 cycles with the cap on, 1.83 times the smooth disc's
+//! seed 1) wears 4.60e-4 mm^3 in 20 cycles with the cap on, 1.81 times the smooth disc's
 //! 2.54e-4 (`tribosim run`): Archard's volume is the same, but the ball sinks deeper
 //! (approach 0.87 against 0.78 um at cycle 20) before the truncated asperities, with the
 //! valleys between them, bear the load below the cap. The tests of `simulation::run` check

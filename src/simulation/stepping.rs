@@ -1,7 +1,8 @@
 //! Cycle stepping: when the surface changes slowly, one contact solve stands for several
 //! cycles. The wear of the skipped cycles uses the pressure of the last solve, which is
-//! forward Euler on the groove with step `m`; its error is about half the change of the
-//! per-pass wear profile across the step. The controller measures that change between
+//! forward Euler on the groove with step `m` (on a rough disc the solve includes the wear
+//! of the last step's passes, which makes it stable, [`crate::contact::worn_rows`]); its
+//! error is about half the change of the per-pass wear profile across the step. The controller measures that change between
 //! consecutive solves in the L1 norm relative to the profile (the share of the wear that
 //! moves), and keeps it below a bound per step: the scene's `numerics.cycle_step_bound`,
 //! by default [`crate::scene::STEP_CHANGE_BOUND`], whose documentation gives what each
@@ -35,6 +36,12 @@ impl Stepper {
             previous: None,
             step: 1,
         }
+    }
+
+    /// The cycles the last solve stood for (1 before the first): the next step is at most
+    /// twice as long.
+    pub fn last_step(&self) -> u64 {
+        self.step
     }
 
     /// Cycles the solve at `cycle` stands for (itself included), given its per-pass wear

@@ -359,6 +359,7 @@ impl Setup {
             separation: &self.separation,
             load_n: self.load_n,
             yield_pressure_pa: self.case.yield_pressure_pa(),
+            pass_wear_per_pa: 0.0,
         }
     }
 

@@ -69,6 +69,37 @@ fn grow_contact(pressure: &mut [f64], cap: f64, mut deficit: f64, raw_gap: &[f64
     }
 }
 
+/// One cell of the solver's step (`PolonskyKeer::advance`): a free cell steps by `-tau t` and is truncated at
+/// the bound it crosses, a wrongly bounded cell re-enters at `rate` per unit of gap
+/// (setting `entered`). Returns how far the cell moved other than along the step, if it
+/// did.
+pub(super) fn step_cell(
+    pi: &mut f64,
+    (ti, gi): (f64, f64),
+    (tau, rate, cap): (f64, f64, f64),
+    entered: &mut bool,
+) -> Option<f64> {
+    if *pi > 0.0 && *pi < cap {
+        let stepped = *pi - tau * ti;
+        *pi = stepped.clamp(0.0, cap);
+        (stepped <= 0.0 || stepped >= cap).then_some(*pi - stepped)
+    } else if *pi <= 0.0 && gi < 0.0 {
+        let new = (-rate * gi).min(cap);
+        let by = new - *pi;
+        *pi = new;
+        *entered = true;
+        Some(by)
+    } else if *pi >= cap && gi > 0.0 {
+        let new = (cap - rate * gi).max(0.0);
+        let by = new - *pi;
+        *pi = new;
+        *entered = true;
+        Some(by)
+    } else {
+        None
+    }
+}
+
 /// Projected steepest descent over the cells that may move: the free ones and those on a
 /// bound whose gap says they should leave it (zero pressure but penetrating, at the cap but
 /// open). The direction is the gap there, less its mean so the load is kept; the step is the
