@@ -16,7 +16,6 @@ Usage: scripts/rough_grid.py [--bin target/release/tribosim] [--markdown docs/ac
 (about 10 minutes on 2 cores). Needs numpy.
 """
 
-import argparse
 import datetime
 import os
 import subprocess
@@ -24,7 +23,7 @@ import sys
 import tempfile
 
 import numpy as np
-from rough_levers import profile_error, run_scene, splice
+from rough_levers import arguments, profile_error, run_scene, write_section
 
 HEADING = "## Rough wear: grid and cut-off"
 SIDE_UM = 192.0
@@ -167,10 +166,7 @@ surfaces, not a convergence: how much of the wear the finer roughness decides.
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--bin", default="target/release/tribosim")
-    parser.add_argument("--markdown")
-    args = parser.parse_args()
+    args = arguments(__doc__)
     with tempfile.TemporaryDirectory() as workdir:
         maps, paths = [], {}
         for cut in CUTOFFS_UM:
@@ -191,12 +187,7 @@ def main():
             cutoff_rows.append((f"cut-off {cut:g} um", r))
             print(f"cut-off {cut:g} um: {r['summary']['wall_s']:.1f} s", file=sys.stderr)
     body = section(grid_rows, cutoff_rows, maps, args.bin)
-    print(body)
-    if args.markdown:
-        with open(args.markdown) as f:
-            text = f.read()
-        with open(args.markdown, "w") as f:
-            f.write(splice(text, body, HEADING).rstrip() + "\n")
+    write_section(body, args.markdown, HEADING)
 
 
 if __name__ == "__main__":

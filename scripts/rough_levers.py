@@ -284,11 +284,26 @@ def splice(text, body, heading=HEADING):
     return before.rstrip() + "\n\n" + body.rstrip() + "\n\n" + after.lstrip()
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def arguments(doc):
+    """The command line both rough-wear scripts take: the binary, and the report to write."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
     parser.add_argument("--bin", default="target/release/tribosim")
     parser.add_argument("--markdown")
-    args = parser.parse_args()
+    return parser.parse_args()
+
+
+def write_section(body, markdown, heading=HEADING):
+    """Prints `body`, and splices it under `heading` into the report `markdown` if given."""
+    print(body)
+    if markdown:
+        with open(markdown) as f:
+            text = f.read()
+        with open(markdown, "w") as f:
+            f.write(splice(text, body, heading).rstrip() + "\n")
+
+
+def main():
+    args = arguments(__doc__)
     with tempfile.TemporaryDirectory() as workdir:
         rows = []
         for label, rough, numerics in RUNS:
@@ -296,13 +311,7 @@ def main():
             print(f"{label}: {rows[-1][3]['summary']['wall_s']:.1f} s", file=sys.stderr)
         stiffness_text = stiffness(args.bin, workdir, rows[0][3])
         example = run_scene(args.bin, DOCS_EXAMPLE, workdir)
-    body = section(rows, example, stiffness_text, args.bin)
-    print(body)
-    if args.markdown:
-        with open(args.markdown) as f:
-            text = f.read()
-        with open(args.markdown, "w") as f:
-            f.write(splice(text, body).rstrip() + "\n")
+    write_section(section(rows, example, stiffness_text, args.bin), args.markdown)
 
 
 if __name__ == "__main__":
