@@ -21,7 +21,13 @@
 //! cut-off disc of `docs/accuracy.md` ("Rough wear"; rms 0.1 um, seed 1), every cycle
 //! solved over 150 cycles: 11.8 iterations a solve extrapolated, 9.9 from the last
 //! pressure; over 600 cycles at the default step bound, 5791 against 4922 iterations. Seeds
-//! 2 and 3 (rms 0.2 and 0.1 um, 100 cycles): 15.6 against 11.8 and 13.4 against 10.5. On the
+//! 2 and 3 (rms 0.2 and 0.1 um, 100 cycles): 15.6 against 11.8 and 13.4 against 10.5. Those
+//! were measured with the explicit wear update, whose oscillation made the changes reverse.
+//! With the implicit one ([`crate::contact::worn_rows`]; a build with the extrapolation
+//! switched on for rough discs, against the same build without): every cycle over 150
+//! cycles, 10.5 against 10.3; over 600 cycles at the default bound, 5559 against 5117
+//! iterations. The per-pass profile's changes there are uncorrelated from cycle to cycle
+//! (`docs/accuracy.md`, "Rough wear: speed levers"), which a line does not follow. On the
 //! smooth discs the extrapolation keeps its lead: the paper scene `{}` takes 4.7 iterations
 //! a solve extrapolated and 6.2 from the last pressure, and the same over 600 cycles 4.4
 //! against 6.9.
