@@ -290,7 +290,39 @@ def short_steps(rows):
         f"um at the same cycles solving every cycle, and its depassivated wake "
         f"{wake[0]:.3f} mm^2 against {wake[1]:.3f} mm^2, which lowers its potential and raises "
         f"its WAC (the table's errors). A step bound cannot tell this cut from "
-        f"the profile's moves; what it would take is a cut that follows the skipped cycles."
+        f"the profile's moves; what it would take is a cut that follows the skipped cycles. "
+        + target(rows)
+    )
+
+
+def target(rows):
+    """What ten times the smooth disc's time leaves the rough disc: how many solves, and the
+    table's runs around that count."""
+    by = {label: r["summary"] for label, _, _, r in rows}
+    smooth, smooth_every, rough_every = (by[RUNS[i][0]] for i in (0, 1, 2))
+    rough_solve_s = rough_every["wall_s"] / rough_every["solves"]
+    per_solve = rough_solve_s / (smooth["wall_s"] / smooth["solves"])
+    allowed = 10 * smooth["wall_s"] / rough_solve_s
+    stepped = sorted(
+        (s["solves"], label, s) for label, s in by.items() if label.startswith("rough, auto")
+    )
+    fewer = max(r for r in stepped if r[0] <= allowed)
+    more = min(r for r in stepped if r[0] > allowed)
+
+    def error(run):
+        return run[2]["wear_volume_mm3"] / rough_every["wear_volume_mm3"] - 1
+
+    smooth_error = smooth["wear_volume_mm3"] / smooth_every["wear_volume_mm3"] - 1
+    return (
+        f"This is why the target of ten times the smooth disc's time is out of reach of cycle "
+        f"steps at the default's error: one rough solve, every cycle solved, costs "
+        f"{per_solve:.1f} times one of the smooth disc's auto run, so ten times its time "
+        f"allows about {allowed:.0f} rough solves in {CYCLES} cycles, steps of "
+        f"{CYCLES / allowed:.1f} cycles on average, as many solves as the smooth disc's "
+        f'{smooth["solves"]}. The table\'s runs around that count: "{more[1]}" ({more[0]} '
+        f'solves) errs by {error(more):+.1e} in volume and "{fewer[1]}" ({fewer[0]} '
+        f"solves) by {error(fewer):+.1e}, where the smooth disc's auto run errs by "
+        f"{smooth_error:+.1e}."
     )
 
 
