@@ -35,8 +35,8 @@ export const onListed = listed.on;
 /** Shows job `id` in the run panel: (id, { scroll, focus }). */
 export const view = (id, how = {}) => viewed.emit(id, how);
 
-/** The newest job listed, or null. */
-export const newest = () => jobs[0] || null;
+/** The newest job listed for which `keep(job)` holds (any job without it), or null. */
+export const newest = (keep = () => true) => jobs.find(keep) || null;
 
 /** The job of this id, as last listed. */
 export const find = (id) => jobs.find((j) => j.id === id);

@@ -31,6 +31,7 @@ import * as calibration from "./calibration.js";
 import * as compare from "./compare.js";
 import { $ } from "./dom.js";
 import { addExportButtons } from "./export.js";
+import { COMPANION_TAG } from "./fig11.js";
 import * as form from "./form.js";
 import { readHash } from "./hash.js";
 import { TOKEN } from "./ids.js";
@@ -58,7 +59,9 @@ function followResize() {
 }
 
 // Opens the view the address asks for (scrolled into place), else the newest run (where it
-// is, so the page does not jump); true when something was opened.
+// is, so the page does not jump): the newest the user ran, not a Fig. 11 companion, which
+// the view submitted for itself after the run it was asked beside; true when something
+// was opened.
 async function openAsked() {
   const asked = readHash();
   if (asked && asked.kind === "run") { jobs.view(asked.value, { scroll: true }); return true; }
@@ -69,7 +72,7 @@ async function openAsked() {
     return true;
   }
   if (asked && asked.kind === "study") { await studies.select(asked.value, { scroll: true }); return true; }
-  const newest = jobs.newest();
+  const newest = jobs.newest((job) => !(job.tags || []).includes(COMPANION_TAG)) || jobs.newest();
   if (newest) jobs.view(newest.id);
   return Boolean(newest);
 }

@@ -1,7 +1,8 @@
 // The paper's Fig. 11 view of the preset's run: a refused companion said so; its own EPP
 // records and an elastic companion run over the first 300 cycles with Table 3's points
 // there; the companion re-used when the view is asked again; the view refused, with the
-// reason, beside the 10 N run.
+// reason, beside the 10 N run; the page opened without an address shows a run, not the
+// companion.
 import assert from "node:assert/strict";
 import path from "node:path";
 
@@ -131,9 +132,23 @@ async function refused(page, found) {
   assert.match(reason, /Fig\. 11 view are not shown: this run's load differs/);
 }
 
+// The companion is the newest job now; the page opened without an address shows the
+// newest run the user submitted.
+async function openedWithoutAddress(page, found) {
+  step("opened without an address, the page shows the newest run, not the newer companion");
+  await page.goto("about:blank");
+  await openPage(page);
+  const listed = await page.evaluate(async () => (await e2e.api.api("/api/v1/jobs?limit=50")).body);
+  assert.equal(listed[0].id, found.fig11Companion, "the companion is not the newest job");
+  const newestRun = listed.find((job) => !(job.tags || []).includes("fig11"));
+  await page.waitForFunction((id) => e2e.run.selectedId() === id, newestRun.id);
+  assert.ok(page.url().endsWith(`#run=${newestRun.id}`), page.url());
+}
+
 export async function fig11(page, found) {
   await refusedCompanion(page, found);
   await view(page, found);
   await reused(page, found);
   await refused(page, found);
+  await openedWithoutAddress(page, found);
 }
