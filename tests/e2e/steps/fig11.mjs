@@ -1,8 +1,8 @@
 // The paper's Fig. 11 view of the preset's run: a refused companion said so; its own EPP
 // records and an elastic companion run over the first 300 cycles with Table 3's points
 // there; the companion re-used when the view is asked again; the view refused, with the
-// reason, beside the 10 N run; the page opened without an address shows a run, not the
-// companion.
+// reason, beside the 10 N run; beside an elastic run, an EPP companion; the page opened
+// without an address shows a run, not a companion.
 import assert from "node:assert/strict";
 import path from "node:path";
 
@@ -132,14 +132,32 @@ async function refused(page, found) {
   assert.match(reason, /Fig\. 11 view are not shown: this run's load differs/);
 }
 
-// The companion is the newest job now; the page opened without an address shows the
+// The view beside an elastic run: the elastic companion itself, whose own records are the
+// elastic curve and whose EPP curve is a companion of its own.
+async function besideElastic(page, found) {
+  step("beside an elastic run (the elastic companion itself): its records, and an EPP companion of its own");
+  await viewOn(page, found.fig11Companion);
+  const series = await drawnSeries(page);
+  assert.deepEqual(series.slice(0, 3).map((s) => s.label), [EPP, ELASTIC, MEASURED]);
+  const own = await page.evaluate(() => e2e.run.currentResult().cycles.map((r) => [r.cycle, r.wear_volume_mm3 * 1e3]));
+  assert.deepEqual(series[1].points, own, "the elastic curve is not the run's own records");
+  const epp = (await companions(page)).find((job) => job.id !== found.fig11Companion);
+  assert.equal(epp.note, `Fig. 11 EPP companion of ${found.fig11Companion}`);
+  const scene = await page.evaluate(async (id) => (await e2e.api.api(`/api/v1/jobs/${id}/scene`)).body, epp.id);
+  assert.deepEqual([scene.wear.plasticity, scene.test.cycles], ["on", 300]);
+  const [eppCurve, elastic] = series.map((s) => s.points);
+  assert.ok(eppCurve[eppCurve.length - 1][1] > elastic[elastic.length - 1][1], "the EPP curve is not over the elastic one at cycle 300");
+  found.fig11Newest = epp.id;
+}
+
+// The companions are the newest jobs now; the page opened without an address shows the
 // newest run the user submitted.
 async function openedWithoutAddress(page, found) {
-  step("opened without an address, the page shows the newest run, not the newer companion");
+  step("opened without an address, the page shows the newest run, not the newer companions");
   await page.goto("about:blank");
   await openPage(page);
   const listed = await page.evaluate(async () => (await e2e.api.api("/api/v1/jobs?limit=50")).body);
-  assert.equal(listed[0].id, found.fig11Companion, "the companion is not the newest job");
+  assert.equal(listed[0].id, found.fig11Newest, "a companion is not the newest job");
   const newestRun = listed.find((job) => !(job.tags || []).includes("fig11"));
   await page.waitForFunction((id) => e2e.run.selectedId() === id, newestRun.id);
   assert.ok(page.url().endsWith(`#run=${newestRun.id}`), page.url());
@@ -150,5 +168,6 @@ export async function fig11(page, found) {
   await view(page, found);
   await reused(page, found);
   await refused(page, found);
+  await besideElastic(page, found);
   await openedWithoutAddress(page, found);
 }
