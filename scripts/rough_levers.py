@@ -134,7 +134,8 @@ def yield_cut_mm3(result, reference, first=0):
     groove's growth less Archard's passes, k F s / H(n) each at the hardness of every cycle,
     read from `reference` (the same scene solved every cycle). The rest of the groove is
     Archard's whatever the pressure's shape, so the cut is all a cycle step can change of
-    the volume."""
+    the volume. For the scenes here: one k, fitted on the total loss (the groove is then the
+    total, `docs/result.md`)."""
     test = reference["scene"]["test"]
     per_pass = (
         reference["summary"]["archard_k"] * test["load_n"] * 2 * math.pi * test["track_radius_mm"]
