@@ -263,8 +263,8 @@ def short_steps(rows):
     share, smooth_share = (
         yield_cut_mm3(r, r, first) / growth_mm3(r, first) for r in (reference, smooth_reference)
     )
-    wide = [(label, r) for label, r in by.items() if label.startswith("rough, auto, bound 0.05")]
-    label, stepped = wide[0]
+    label = RUNS[5][0]
+    stepped = by[label]
     solves = stepped["summary"]["solves"]
     cut = yield_cut_mm3(stepped, reference) / yield_cut_mm3(reference, reference)
     chord, wake = (
