@@ -146,6 +146,44 @@ def extrapolation(grid_rows):
     )
 
 
+def centre_line(grid_rows):
+    """Where the grid's late cut is made: the contact's centre line, measured once with a
+    build that wrote each solve's capped cells (a result does not carry them); and the
+    volumes' difference at the end of the run-in and at the end of the run, from this
+    invocation's runs."""
+    by = dict(grid_rows)
+    coarse, fine = by["8 cells per cut-off"], by["16 cells per cut-off"]
+    end = yielding_ends(fine)
+
+    def difference(cycle):
+        volumes = [
+            next(c["wear_volume_mm3"] for c in r["cycles"] if c["cycle"] == cycle)
+            for r in (coarse, fine)
+        ]
+        return volumes[0] - volumes[1], volumes[0] / volumes[1] - 1
+
+    at_end, at_last = difference(end), difference(CYCLES)
+    return (
+        f"Where the cut after cycle {LATE_CUT_FROM} differs, measured once on this map over "
+        f"30 cycles with a build that wrote each solve's capped cells (a result does not carry "
+        f"them): in the track's middle 50 um, every row is cut to the level of its cell on "
+        f"the contact's centre line (|x| under 0.5 um, on a plateau of the earlier cuts), the "
+        f"most pressed of the row. That cell's interpenetration, averaged over the rows, falls "
+        f"by 17 to 19% a cycle: from 3.9 nm at cycle 10 to 0.49 nm at cycle 20 on 8 cells, "
+        f"from 4.3 to 0.70 nm on 16, and below 0.12 nm from cycle 25 on both. Summed over "
+        f"cycles 11 to 30 it is 17.4% smaller on 8 cells and 6.6% smaller on 12 than on 16, "
+        f"as the cut of those cycles is (about 15% on 8 cells). Why the finer cells press "
+        f"that line harder is not measured: these interpenetrations are under a hundredth of "
+        f"the roughness's rms height. Most of the grid's error is made by the end of the "
+        f"run-in: the volume on 8 cells differs from 16 cells' by {at_end[0]:.2e} mm^3 "
+        f"({at_end[1]:+.1%}) at cycle {end}, the end of the run-in on 16 cells, and by "
+        f"{at_last[0]:.2e} mm^3 ({at_last[1]:+.1%}) at cycle {CYCLES}. Past the run-in the "
+        f"difference grows more slowly than Archard's part, which does not depend on the grid, "
+        f"so the relative error shrinks: run once over 300 cycles, -3.45% at cycle 30, -2.34% "
+        f"at 150 and -1.92% at 300."
+    )
+
+
 def section(grid_rows, cutoff_rows, maps, binary):
     version = subprocess.run([binary, "--version"], capture_output=True, text=True).stdout
     when = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
@@ -170,6 +208,8 @@ cut-off (8 is the simulation's rule, `CELLS_PER_SHORT_WAVELENGTH`); errors again
 {table(grid_rows, dict(grid_rows)["16 cells per cut-off"], base)}
 
 {extrapolation(grid_rows)}
+
+{centre_line(grid_rows)}
 
 The short cut-off: the same spectrum cut at {", ".join(f"{c:g}" for c in CUTOFFS_UM)} um, each
 on 8 cells across its cut-off; differences against the finest cut-off. These are different
