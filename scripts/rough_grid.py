@@ -162,6 +162,8 @@ def centre_line(grid_rows):
         ]
         return volumes[0] - volumes[1], volumes[0] / volumes[1] - 1
 
+    if not isinstance(end, int):
+        sys.exit(f"the 16-cell run's run-in did not end within its {CYCLES} cycles")
     at_end, at_last = difference(end), difference(CYCLES)
     return (
         f"Where the cut after cycle {LATE_CUT_FROM} differs, measured once on this map over "
