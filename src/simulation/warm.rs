@@ -16,18 +16,13 @@
 //! 1, 7.9 at 3: large guessed pressures at the rim leave contact again).
 //!
 //! On a rough disc the last pressure is the better guess, and the extrapolation is not made:
-//! from cycle to cycle the asperities' pressures move by steps that do not continue, so a
-//! line through the last two solves doubles the change instead of following it. The 4 um
-//! cut-off disc of `docs/accuracy.md` ("Rough wear"; rms 0.1 um, seed 1), every cycle
-//! solved over 150 cycles: 11.8 iterations a solve extrapolated, 9.9 from the last
-//! pressure; over 600 cycles at the default step bound, 5791 against 4922 iterations. Seeds
-//! 2 and 3 (rms 0.2 and 0.1 um, 100 cycles): 15.6 against 11.8 and 13.4 against 10.5. Those
-//! were measured with the explicit wear update, whose oscillation made the changes reverse.
-//! With the implicit one ([`crate::contact::worn_rows`]; a build with the extrapolation
-//! switched on for rough discs, against the same build without): every cycle over 150
-//! cycles, 10.5 against 10.3; over 600 cycles at the default bound, 5559 against 5117
-//! iterations. The per-pass profile's changes there are uncorrelated from cycle to cycle
-//! (`docs/accuracy.md`, "Rough wear: speed levers"), which a line does not follow. On the
+//! from cycle to cycle the asperities' pressures move by steps that do not continue (the
+//! per-pass profile's changes are uncorrelated from one cycle to the next, `docs/accuracy.md`,
+//! "Rough wear: speed levers"), so a line through the last two solves adds a change that
+//! does not come. The 4 um cut-off disc of that section (rms 0.1 um, seed 1), with a build
+//! that switched the extrapolation on for rough discs against the same build without: every
+//! cycle solved over 150 cycles, 10.5 iterations a solve extrapolated against 10.3 from the
+//! last pressure; over 600 cycles at the default step bound, 5559 against 5117. On the
 //! smooth discs the extrapolation keeps its lead: the paper scene `{}` takes 4.7 iterations
 //! a solve extrapolated and 6.2 from the last pressure, and the same over 600 cycles 4.4
 //! against 6.9.
