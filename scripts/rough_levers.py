@@ -308,14 +308,14 @@ def short_steps(rows):
         f"measured once with a build that lowered each row's truncation level through a step "
         f"at the rate it fell over the last interval (the solve's cut and the cuts predicted "
         f"before it), at bound 0.05: the rate as measured cut 1.55 times what solving every "
-        f"cycle cut (+12% in volume, +82% in depth: rows at a flank cut into their valleys, the deepest "
-        f"at -68 um 2.16 um deep against 0.49 um; leaving out rows first cut at the last "
-        f"solve, +6.3% and +100%), half of it -1.3% in volume, -3.1% in E and +1.1% in WAC, "
-        f"the smaller of the last two intervals' rates +1.6%, +4.4% and "
-        f"-1.1%, and the same at bound 0.1 (47 solves) -0.22%, -3.7% and +2.4%. The prediction "
+        f"cycle cut (+12% in volume, +82% in depth: rows at a flank cut into their valleys, "
+        f"the deepest at -68 um 2.16 um deep against 0.49 um; leaving out rows first cut at "
+        f"the last solve, +6.3% and +100%), half of it -1.3% in volume, -3.1% in E and +1.1% "
+        f"in WAC, the smaller of the last two intervals' rates +1.6%, +4.4% and -1.1%, and "
+        f"the same at bound 0.1 (47 solves) -0.22%, -3.7% and +2.4%. The prediction "
         f"moves the volume's error across zero with its damping, a constant that would have "
         f"to be fitted, and leaves the potential's and the WAC's at 1 to 4%, where the "
-        f"default's are under 0.4%. " + target(rows)
+        f"default's are under 0.4%."
     )
 
 
@@ -398,6 +398,8 @@ cores, {version.strip()}); the machine may be shared with other work.
 {stiffness_text}
 
 {short_steps(rows)}
+
+{target(rows)}
 
 {docs_example(example, rows)}
 """
