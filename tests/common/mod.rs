@@ -246,6 +246,37 @@ pub async fn get_json(client: &reqwest::Client, url: &str) -> Value {
     response.json().await.expect("JSON body")
 }
 
+/// POST `body` as JSON to `url`: the status and the JSON body.
+pub async fn post(client: &reqwest::Client, url: &str, body: &Value) -> (u16, Value) {
+    let response = client.post(url).json(body).send().await.expect("POST");
+    let status = response.status().as_u16();
+    (status, response.json().await.expect("JSON body"))
+}
+
+/// DELETE `url`: the status and the JSON body (null for none).
+pub async fn delete(client: &reqwest::Client, url: &str) -> (u16, Value) {
+    let response = client.delete(url).send().await.expect("DELETE");
+    let status = response.status().as_u16();
+    let text = response.text().await.expect("body");
+    (status, serde_json::from_str(&text).unwrap_or(Value::Null))
+}
+
+/// Polls `url` until `done` holds for its JSON.
+pub async fn wait_for(client: &reqwest::Client, url: &str, done: impl Fn(&Value) -> bool) -> Value {
+    let poll = async {
+        loop {
+            let value = get_json(client, url).await;
+            if done(&value) {
+                return value;
+            }
+            tokio::time::sleep(Duration::from_millis(20)).await;
+        }
+    };
+    tokio::time::timeout(PATIENCE, poll)
+        .await
+        .expect("state reached")
+}
+
 pub async fn get_job(client: &reqwest::Client, base: &str, id: &str) -> Value {
     get_json(client, &format!("{base}/api/v1/jobs/{id}")).await
 }
@@ -257,18 +288,7 @@ pub async fn wait_for_job(
     id: &str,
     done: impl Fn(&Value) -> bool,
 ) -> Value {
-    let poll = async {
-        loop {
-            let job = get_job(client, base, id).await;
-            if done(&job) {
-                return job;
-            }
-            tokio::time::sleep(Duration::from_millis(20)).await;
-        }
-    };
-    tokio::time::timeout(PATIENCE, poll)
-        .await
-        .expect("job state reached")
+    wait_for(client, &format!("{base}/api/v1/jobs/{id}"), done).await
 }
 
 pub fn is_final(job: &Value) -> bool {

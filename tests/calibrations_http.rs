@@ -1,0 +1,273 @@
+//! Calibrations over HTTP, against the real `tribosim serve` binary: a fit over HTTP gives
+//! the numbers of `tribosim calibrate` to the last digit, a bad table or option is refused
+//! before any run with the field named, and fits are bounded up front, listed, cancelled and
+//! deleted.
+
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+use std::time::Duration;
+
+use serde_json::{Value, json};
+
+use common::process::ServerProcess;
+use common::{TempDir, delete, get_json, post, wait_for};
+
+/// Fits `request` over HTTP on `server` and `tribosim calibrate` with `cli_args` (into
+/// `dir`), expects both to succeed with the same result, and returns it.
+async fn same_fit_as_the_cli(
+    dir: &TempDir,
+    cli_args: &[&str],
+    request: &Value,
+    server: &ServerProcess,
+) -> Value {
+    let cli_output = dir.path().join("fit.json");
+    let status = Command::new(env!("CARGO_BIN_EXE_tribosim"))
+        .arg("calibrate")
+        .args(cli_args)
+        .arg("-o")
+        .arg(&cli_output)
+        .status()
+        .expect("run tribosim calibrate");
+    assert!(status.success());
+    let cli: Value =
+        serde_json::from_slice(&std::fs::read(&cli_output).expect("read")).expect("JSON");
+
+    let client = reqwest::Client::new();
+    let url = server.url("/api/v1/calibrations");
+    let (code, started) = post(&client, &url, request).await;
+    assert_eq!(code, 202, "{started}");
+    let id = started["id"].as_str().expect("id");
+    let fit = wait_for(&client, &format!("{url}/{id}"), |c| {
+        c["status"] != "running"
+    })
+    .await;
+    assert_eq!(fit["status"], "succeeded", "{fit}");
+    assert_eq!(fit["result"], cli, "the same fit, to the last digit");
+    cli
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_hardness_calibration_over_http_gives_the_numbers_of_tribosim_calibrate() {
+    let dir = TempDir::new("calibration-http");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let table_path = root.join("docs/calibration/table3_hardness.csv");
+    let server = ServerProcess::start(&dir.path().join("data"));
+    let client = reqwest::Client::new();
+    let url = server.url("/api/v1/calibrations");
+    let table = std::fs::read_to_string(&table_path).expect("read the table");
+    let request = json!({"kind": "hardness", "table": table});
+    same_fit_as_the_cli(
+        &dir,
+        &["hardness", table_path.to_str().expect("path")],
+        &request,
+        &server,
+    )
+    .await;
+
+    let bad = json!({"kind": "hardness", "table": "cycles,hardness_mpa\n10,2551\n60,abc\n"});
+    let (code, error) = post(&client, &url, &bad).await;
+    assert_eq!(code, 422, "{error}");
+    let message = error["error"].as_str().expect("message");
+    assert!(
+        message.contains("`hardness_mpa`") && message.contains("row 2"),
+        "{message}"
+    );
+    let backwards =
+        json!({"kind": "archard", "table": {"time_s": [60, 10], "volume_mm3": [1e-3, 2e-3]}});
+    let (code, error) = post(&client, &url, &backwards).await;
+    assert_eq!(code, 422, "{error}");
+    let message = error["error"].as_str().expect("message");
+    assert!(
+        message.contains("`time_s`") && message.contains("row 2"),
+        "{message}"
+    );
+
+    // A change of regime is refused before any run: on another fit, as no cycle, and at a
+    // cycle outside Table 3's 10 to 3600 cycles.
+    let wear = std::fs::read_to_string(root.join("docs/calibration/table3_wear.csv"))
+        .expect("read the wear table");
+    for (kind, table, change) in [
+        ("hardness", &table, json!(300)),
+        ("archard", &wear, json!("soon")),
+        ("archard", &wear, json!(5000)),
+    ] {
+        let request = json!({"kind": kind, "table": table, "options": {"regime_change": change}});
+        let (code, error) = post(&client, &url, &request).await;
+        assert_eq!(code, 422, "{kind} {change}: {error}");
+        let field = &error["fields"][0]["path"];
+        assert!(
+            field == "options.regime_change" || field == "table",
+            "{kind} {change}: {error}"
+        );
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn calibrations_are_bounded_up_front_listed_cancelled_and_deleted() {
+    let dir = TempDir::new("calibration-limits");
+    let server = ServerProcess::start(&dir.path().join("data"));
+    let client = reqwest::Client::new();
+    let url = server.url("/api/v1/calibrations");
+    let every_cycle =
+        json!({"preset": "dalmau2018-316l", "overrides": {"numerics": {"cycle_step": 1}}});
+    let on_2048 = json!({"preset": "dalmau2018-316l", "overrides": {"numerics": {"grid": 2048}}});
+    let refusals = [
+        (
+            "cycles,volume_mm3\n10,0.001\n2000000,0.01\n",
+            json!(null),
+            "table",
+            "test.cycles",
+        ),
+        (
+            "cycles,volume_mm3\n10,0.001\n1000000,0.01\n",
+            every_cycle.clone(),
+            "table",
+            "--calibration-max-cell-cycles",
+        ),
+        (
+            "cycles,volume_mm3\n10,0.001\n3600,0.01\n",
+            on_2048,
+            "scene.numerics.grid",
+            "--calibration-max-grid",
+        ),
+        (
+            "cycles,volume_mm3,cycles\n10,0.001,10\n3600,0.01,3600\n",
+            json!(null),
+            "table",
+            "`cycles` more than once",
+        ),
+    ];
+    for (table, scene, path, words) in refusals {
+        let mut request = json!({"kind": "archard", "table": table});
+        if !scene.is_null() {
+            request["scene"] = scene;
+        }
+        let (code, error) = post(&client, &url, &request).await;
+        assert_eq!(code, 422, "{error}");
+        assert_eq!(error["fields"][0]["path"], path, "{error}");
+        assert!(
+            error["error"].as_str().expect("message").contains(words),
+            "{error}"
+        );
+    }
+    let rows: String = (1..=20_001)
+        .map(|n| format!("{n},{}\n", 2500 + n % 7))
+        .collect();
+    let request = json!({"kind": "hardness", "table": format!("cycles,hardness_mpa\n{rows}")});
+    let (code, error) = post(&client, &url, &request).await;
+    assert_eq!(code, 422, "{error}");
+    assert!(
+        error["error"]
+            .as_str()
+            .expect("message")
+            .contains("at most 20000")
+    );
+
+    // Two fits of whole runs, every cycle solved, hold both places until cancelled.
+    let table3 = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/calibration/table3_wear.csv"),
+    )
+    .expect("read the wear table");
+    let archard = json!({"kind": "archard", "table": table3, "scene": every_cycle});
+    let mut running = Vec::new();
+    for _ in 0..2 {
+        let (code, started) = post(&client, &url, &archard).await;
+        assert_eq!(code, 202, "{started}");
+        running.push(started["id"].as_str().expect("id").to_owned());
+    }
+    let hardness =
+        json!({"kind": "hardness", "table": "cycles,hardness_mpa\n10,2551\n60,2727\n300,2842\n"});
+    let (code, _) = post(&client, &url, &hardness).await;
+    assert_eq!(code, 429, "both places are taken");
+    for id in &running {
+        let (code, cancelled) = delete(&client, &format!("{url}/{id}")).await;
+        assert_eq!(code, 202, "{cancelled}");
+        assert_eq!(cancelled["status"], "cancelled");
+    }
+    // Each run stops within a cycle, and its place frees then.
+    let fit = loop {
+        let (code, fit) = post(&client, &url, &hardness).await;
+        if code == 202 {
+            break fit;
+        }
+        assert_eq!(code, 429, "{fit}");
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    };
+    let id = fit["id"].as_str().expect("id").to_owned();
+    wait_for(&client, &format!("{url}/{id}"), |c| {
+        c["status"] == "succeeded"
+    })
+    .await;
+
+    // Listed newest first without results, filtered by status; DELETE forgets an ended fit.
+    let listed = get_json(&client, &url).await;
+    let ids: Vec<&str> = listed
+        .as_array()
+        .expect("a list")
+        .iter()
+        .filter_map(|c| c["id"].as_str())
+        .collect();
+    assert_eq!(ids.first().copied(), Some(id.as_str()), "{listed}");
+    assert_eq!(ids.len(), 3, "{listed}");
+    assert!(listed[0].get("result").is_none(), "{listed}");
+    let cancelled = get_json(&client, &format!("{url}?status=cancelled")).await;
+    assert_eq!(cancelled.as_array().map(Vec::len), Some(2), "{cancelled}");
+    for id in running.iter().chain([&id]) {
+        let (code, _) = delete(&client, &format!("{url}/{id}")).await;
+        assert_eq!(code, 204);
+        let response = client.get(format!("{url}/{id}")).send().await.expect("GET");
+        assert_eq!(response.status(), 404);
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_ocp_trace_over_http_fits_the_repassivation_time_as_tribosim_calibrate() {
+    let dir = TempDir::new("calibration-ocp-http");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let table_path = root.join("docs/calibration/paper_ocp_trace.csv");
+    let server = ServerProcess::start(&dir.path().join("data"));
+    let client = reqwest::Client::new();
+    let url = server.url("/api/v1/calibrations");
+    let table = std::fs::read_to_string(&table_path).expect("read the table");
+    let options = json!({"rubbing_start_s": 3600, "rubbing_stop_s": 7200});
+    let request = json!({"kind": "ocp", "table": table, "options": options});
+    let cli = [
+        "ocp",
+        table_path.to_str().expect("path"),
+        "--rubbing-start",
+        "3600",
+        "--rubbing-stop",
+        "7200",
+    ];
+    let fit = same_fit_as_the_cli(&dir, &cli, &request, &server).await;
+    assert_eq!(fit["parameter"], "repassivation_time_s");
+
+    // Refused before any run: a rubbing time on another fit (the option named), a stop
+    // without its start (the table's field).
+    let (code, error) = post(
+        &client,
+        &url,
+        &json!({"kind": "tafel", "table": table, "options": {"rubbing_start_s": 3600}}),
+    )
+    .await;
+    assert_eq!(code, 422, "{error}");
+    assert_eq!(
+        error["fields"][0]["path"], "options.rubbing_start_s",
+        "{error}"
+    );
+    let (code, error) = post(
+        &client,
+        &url,
+        &json!({"kind": "ocp", "table": table, "options": {"rubbing_stop_s": 7200}}),
+    )
+    .await;
+    assert_eq!(code, 422, "{error}");
+    assert!(
+        error["error"]
+            .as_str()
+            .is_some_and(|m| m.contains("rubbing start")),
+        "{error}"
+    );
+}
