@@ -310,7 +310,7 @@ def short_steps(rows):
         f"before it), at bound 0.05: the rate as measured cut 1.55 times what solving every "
         f"cycle cut (+12% in volume, +82% in depth: rows at a flank cut into their valleys, "
         f"the deepest at -68 um 2.16 um deep against 0.49 um; leaving out rows first cut at "
-        f"the last solve, +6.3% and +100%), half of it -1.3% in volume, -3.1% in E and +1.1% "
+        f"the last solve, +6.3% and +100%), half that rate -1.3% in volume, -3.1% in E and +1.1% "
         f"in WAC, the smaller of the last two intervals' rates +1.6%, +4.4% and -1.1%, and "
         f"the same at bound 0.1 (47 solves) -0.22%, -3.7% and +2.4%. The prediction "
         f"moves the volume's error across zero with its damping, a constant that would have "
