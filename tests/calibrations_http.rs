@@ -6,12 +6,11 @@
 mod common;
 
 use std::path::Path;
-use std::process::Command;
 use std::time::Duration;
 
 use serde_json::{Value, json};
 
-use common::process::ServerProcess;
+use common::process::{ServerProcess, cli_json};
 use common::{TempDir, delete, get_json, post, wait_for};
 
 /// Fits `request` over HTTP on `server` and `tribosim calibrate` with `cli_args` (into
@@ -22,17 +21,8 @@ async fn same_fit_as_the_cli(
     request: &Value,
     server: &ServerProcess,
 ) -> Value {
-    let cli_output = dir.path().join("fit.json");
-    let status = Command::new(env!("CARGO_BIN_EXE_tribosim"))
-        .arg("calibrate")
-        .args(cli_args)
-        .arg("-o")
-        .arg(&cli_output)
-        .status()
-        .expect("run tribosim calibrate");
-    assert!(status.success());
-    let cli: Value =
-        serde_json::from_slice(&std::fs::read(&cli_output).expect("read")).expect("JSON");
+    let args = std::iter::once("calibrate").chain(cli_args.iter().copied());
+    let cli = cli_json(args, &dir.path().join("fit.json"));
 
     let client = reqwest::Client::new();
     let url = server.url("/api/v1/calibrations");

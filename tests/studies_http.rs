@@ -5,12 +5,12 @@
 
 mod common;
 
+use std::ffi::OsStr;
 use std::path::Path;
-use std::process::Command;
 
 use serde_json::{Value, json};
 
-use common::process::{ServerProcess, serve_command};
+use common::process::{ServerProcess, cli_json, serve_command};
 use common::{TempDir, get_json, post, wait_for};
 
 /// A 2 x 2 study of short runs (30 cycles on 32 cells: well under a second each).
@@ -53,16 +53,13 @@ async fn a_study_over_http_summarises_as_tribosim_study_does() {
     let dir = TempDir::new("study-http");
     let study_file = dir.path().join("study.json");
     std::fs::write(&study_file, two_by_two().to_string()).expect("write the study");
-    let cli_summary = dir.path().join("cli.json");
-    let status = Command::new(env!("CARGO_BIN_EXE_tribosim"))
-        .args(["study", "--workers", "1", "-o"])
-        .arg(&cli_summary)
-        .arg(&study_file)
-        .status()
-        .expect("run tribosim study");
-    assert!(status.success());
-    let cli: Value =
-        serde_json::from_slice(&std::fs::read(&cli_summary).expect("read")).expect("JSON");
+    let study_args = [
+        OsStr::new("study"),
+        "--workers".as_ref(),
+        "1".as_ref(),
+        study_file.as_ref(),
+    ];
+    let cli = cli_json(study_args, &dir.path().join("cli.json"));
 
     let server = ServerProcess::spawn(serve_command(&dir.path().join("data"), 2));
     let client = reqwest::Client::new();

@@ -1,11 +1,15 @@
 //! `tribosim serve` as a separate process (the real binary), for tests that kill the server
-//! with SIGKILL or damage its data directory between two runs.
+//! with SIGKILL or damage its data directory between two runs; and the CLI run once, for
+//! tests that compare the service with it.
 
+use std::ffi::OsStr;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
+
+use serde_json::Value;
 
 use super::PATIENCE;
 
@@ -18,6 +22,19 @@ pub struct ServerProcess {
     /// `http://127.0.0.1:<port>`.
     pub base: String,
     log: Arc<Mutex<Vec<String>>>,
+}
+
+/// Runs `tribosim` with `args` and `-o output`, expects it to succeed, and reads the JSON it
+/// wrote there.
+pub fn cli_json<S: AsRef<OsStr>>(args: impl IntoIterator<Item = S>, output: &Path) -> Value {
+    let status = Command::new(env!("CARGO_BIN_EXE_tribosim"))
+        .args(args)
+        .arg("-o")
+        .arg(output)
+        .status()
+        .expect("run tribosim");
+    assert!(status.success());
+    serde_json::from_slice(&std::fs::read(output).expect("read")).expect("JSON")
 }
 
 /// The command that runs the binary as `serve` on a port of its choice, with `workers`
