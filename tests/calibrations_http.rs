@@ -11,18 +11,18 @@ use std::time::Duration;
 use serde_json::{Value, json};
 
 use common::process::{ServerProcess, cli_json};
-use common::{TempDir, delete, get_json, post, wait_for};
+use common::{TempDir, delete, get_json, post, refused, wait_for};
 
-/// Fits `request` over HTTP on `server` and `tribosim calibrate` with `cli_args` (into
-/// `dir`), expects both to succeed with the same result, and returns it.
+/// Fits `request` over HTTP on `server` and runs `tribosim` with `cli_args` (a `calibrate`
+/// command; its output into `dir`), expects both to succeed with the same result, and
+/// returns it.
 async fn same_fit_as_the_cli(
     dir: &TempDir,
     cli_args: &[&str],
     request: &Value,
     server: &ServerProcess,
 ) -> Value {
-    let args = std::iter::once("calibrate").chain(cli_args.iter().copied());
-    let cli = cli_json(args, &dir.path().join("fit.json"));
+    let cli = cli_json(cli_args, &dir.path().join("fit.json"));
 
     let client = reqwest::Client::new();
     let url = server.url("/api/v1/calibrations");
@@ -50,15 +50,14 @@ async fn a_hardness_calibration_over_http_gives_the_numbers_of_tribosim_calibrat
     let request = json!({"kind": "hardness", "table": table});
     same_fit_as_the_cli(
         &dir,
-        &["hardness", table_path.to_str().expect("path")],
+        &["calibrate", "hardness", table_path.to_str().expect("path")],
         &request,
         &server,
     )
     .await;
 
     let bad = json!({"kind": "hardness", "table": "cycles,hardness_mpa\n10,2551\n60,abc\n"});
-    let (code, error) = post(&client, &url, &bad).await;
-    assert_eq!(code, 422, "{error}");
+    let error = refused(&client, &url, &bad).await;
     let message = error["error"].as_str().expect("message");
     assert!(
         message.contains("`hardness_mpa`") && message.contains("row 2"),
@@ -66,8 +65,7 @@ async fn a_hardness_calibration_over_http_gives_the_numbers_of_tribosim_calibrat
     );
     let backwards =
         json!({"kind": "archard", "table": {"time_s": [60, 10], "volume_mm3": [1e-3, 2e-3]}});
-    let (code, error) = post(&client, &url, &backwards).await;
-    assert_eq!(code, 422, "{error}");
+    let error = refused(&client, &url, &backwards).await;
     let message = error["error"].as_str().expect("message");
     assert!(
         message.contains("`time_s`") && message.contains("row 2"),
@@ -84,8 +82,7 @@ async fn a_hardness_calibration_over_http_gives_the_numbers_of_tribosim_calibrat
         ("archard", &wear, json!(5000)),
     ] {
         let request = json!({"kind": kind, "table": table, "options": {"regime_change": change}});
-        let (code, error) = post(&client, &url, &request).await;
-        assert_eq!(code, 422, "{kind} {change}: {error}");
+        let error = refused(&client, &url, &request).await;
         let field = &error["fields"][0]["path"];
         assert!(
             field == "options.regime_change" || field == "table",
@@ -134,8 +131,7 @@ async fn calibrations_are_bounded_up_front_listed_cancelled_and_deleted() {
         if !scene.is_null() {
             request["scene"] = scene;
         }
-        let (code, error) = post(&client, &url, &request).await;
-        assert_eq!(code, 422, "{error}");
+        let error = refused(&client, &url, &request).await;
         assert_eq!(error["fields"][0]["path"], path, "{error}");
         assert!(
             error["error"].as_str().expect("message").contains(words),
@@ -146,8 +142,7 @@ async fn calibrations_are_bounded_up_front_listed_cancelled_and_deleted() {
         .map(|n| format!("{n},{}\n", 2500 + n % 7))
         .collect();
     let request = json!({"kind": "hardness", "table": format!("cycles,hardness_mpa\n{rows}")});
-    let (code, error) = post(&client, &url, &request).await;
-    assert_eq!(code, 422, "{error}");
+    let error = refused(&client, &url, &request).await;
     assert!(
         error["error"]
             .as_str()
@@ -224,6 +219,7 @@ async fn an_ocp_trace_over_http_fits_the_repassivation_time_as_tribosim_calibrat
     let options = json!({"rubbing_start_s": 3600, "rubbing_stop_s": 7200});
     let request = json!({"kind": "ocp", "table": table, "options": options});
     let cli = [
+        "calibrate",
         "ocp",
         table_path.to_str().expect("path"),
         "--rubbing-start",
@@ -236,24 +232,22 @@ async fn an_ocp_trace_over_http_fits_the_repassivation_time_as_tribosim_calibrat
 
     // Refused before any run: a rubbing time on another fit (the option named), a stop
     // without its start (the table's field).
-    let (code, error) = post(
+    let error = refused(
         &client,
         &url,
         &json!({"kind": "tafel", "table": table, "options": {"rubbing_start_s": 3600}}),
     )
     .await;
-    assert_eq!(code, 422, "{error}");
     assert_eq!(
         error["fields"][0]["path"], "options.rubbing_start_s",
         "{error}"
     );
-    let (code, error) = post(
+    let error = refused(
         &client,
         &url,
         &json!({"kind": "ocp", "table": table, "options": {"rubbing_stop_s": 7200}}),
     )
     .await;
-    assert_eq!(code, 422, "{error}");
     assert!(
         error["error"]
             .as_str()

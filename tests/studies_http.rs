@@ -11,7 +11,7 @@ use std::path::Path;
 use serde_json::{Value, json};
 
 use common::process::{ServerProcess, cli_json, serve_command};
-use common::{TempDir, get_json, post, wait_for};
+use common::{TempDir, get_json, post, refused, wait_for};
 
 /// A 2 x 2 study of short runs (30 cycles on 32 cells: well under a second each).
 fn two_by_two() -> Value {
@@ -196,8 +196,7 @@ async fn a_study_over_the_member_limit_or_the_queue_is_refused_whole() {
     let url = server.url("/api/v1/studies");
     let mut three = two_by_two();
     three["axes"] = json!({"test.load_n": [2, 5, 10]});
-    let (code, error) = post(&client, &url, &three).await;
-    assert_eq!(code, 422, "{error}");
+    let error = refused(&client, &url, &three).await;
     let message = error["error"].as_str().expect("message");
     assert!(
         message.contains("3 members") && message.contains("limit of 2"),
@@ -221,8 +220,7 @@ async fn a_study_over_the_member_limit_or_the_queue_is_refused_whole() {
 
     let mut unknown = two_by_two();
     unknown["axes"] = json!({"test.lod_n": [2, 5]});
-    let (code, error) = post(&client, &url, &unknown).await;
-    assert_eq!(code, 422, "{error}");
+    let error = refused(&client, &url, &unknown).await;
     assert_eq!(
         error["fields"][0]["path"], "base.overrides.test.lod_n",
         "{error}"
@@ -238,8 +236,7 @@ async fn a_study_over_the_member_limit_or_the_queue_is_refused_whole() {
         &["--max-study-members", "3", "--queue-capacity", "8"],
     );
     let url = server.url("/api/v1/studies");
-    let (code, error) = post(&client, &url, &two_by_two()).await;
-    assert_eq!(code, 422, "{error}");
+    let error = refused(&client, &url, &two_by_two()).await;
     let message = error["error"].as_str().expect("message");
     assert!(
         message.contains("4 members") && message.contains("limit of 3"),

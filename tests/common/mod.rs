@@ -253,6 +253,13 @@ pub async fn post(client: &reqwest::Client, url: &str, body: &Value) -> (u16, Va
     (status, response.json().await.expect("JSON body"))
 }
 
+/// POST `body` as JSON to `url`, expect it refused with 422 and the JSON error shape
+/// ([`expect_client_error`]); returns the error body.
+pub async fn refused(client: &reqwest::Client, url: &str, body: &Value) -> Value {
+    let response = client.post(url).json(body).send().await.expect("POST");
+    expect_client_error(response, 422).await
+}
+
 /// DELETE `url`: the status and the JSON body (null for none).
 pub async fn delete(client: &reqwest::Client, url: &str) -> (u16, Value) {
     let response = client.delete(url).send().await.expect("DELETE");
