@@ -15,7 +15,9 @@ use serde_json::{Map, Value};
 
 use super::fields::{CYCLES, GRID};
 use super::suggest::did_you_mean_field;
-use super::{Ball, Corrosion, Disc, FieldError, Numerics, Scene, TestConditions, Wear};
+use super::{
+    Ball, Corrosion, Disc, FieldError, MAX_LISTED_PROBLEMS, Numerics, Scene, TestConditions, Wear,
+};
 
 /// The top-level fields of a scene, in the order of `docs/scene.md`.
 pub(super) const SECTIONS: [&str; 7] = [
@@ -45,15 +47,20 @@ pub(super) fn deserialize_located(document: &Value, errors: &mut Vec<FieldError>
         }
     }
     let mut kept = Map::new();
-    for (key, value) in &top {
+    let mut unchecked = 0;
+    for (i, (key, value)) in top.iter().enumerate() {
+        if errors.len() >= MAX_LISTED_PROBLEMS {
+            unchecked += top.len() - i;
+            break;
+        }
         let field = match key.as_str() {
             "name" => whole::<String>(key, value, errors),
-            "ball" => by_field::<Ball>(key, value, errors),
-            "disc" => by_field::<Disc>(key, value, errors),
-            "test" => by_field::<TestConditions>(key, value, errors),
-            "wear" => by_field::<Wear>(key, value, errors),
-            "corrosion" => by_field::<Option<Corrosion>>(key, value, errors),
-            "numerics" => by_field::<Numerics>(key, value, errors),
+            "ball" => by_field::<Ball>(key, value, errors, &mut unchecked),
+            "disc" => by_field::<Disc>(key, value, errors, &mut unchecked),
+            "test" => by_field::<TestConditions>(key, value, errors, &mut unchecked),
+            "wear" => by_field::<Wear>(key, value, errors, &mut unchecked),
+            "corrosion" => by_field::<Option<Corrosion>>(key, value, errors, &mut unchecked),
+            "numerics" => by_field::<Numerics>(key, value, errors, &mut unchecked),
             _ => {
                 let expected: Vec<String> = SECTIONS.iter().map(|s| format!("`{s}`")).collect();
                 errors.push(FieldError::new(
@@ -70,6 +77,16 @@ pub(super) fn deserialize_located(document: &Value, errors: &mut Vec<FieldError>
         if let Some(field) = field {
             kept.insert(key.clone(), field);
         }
+    }
+    if unchecked > 0 {
+        errors.push(FieldError::new(
+            "",
+            format!(
+                "{unchecked} more fields were not checked: a refusal lists at most \
+                 {MAX_LISTED_PROBLEMS} problems; mend these and send the scene again"
+            ),
+        ));
+        return None;
     }
     match Scene::deserialize(&Value::Object(kept)) {
         Ok(scene) => Some(scene),
@@ -139,17 +156,24 @@ fn whole<T: DeserializeOwned>(
 }
 
 /// The fields of the section object `value` that deserialise alone as a `T`; an error at
-/// `path.field` for each one that does not.
+/// `path.field` for each one that does not. Once [`MAX_LISTED_PROBLEMS`] are found, the
+/// fields left are counted in `unchecked` instead: each check may look for a near name
+/// among every field of the scene, which a megabyte of keys makes seconds of work.
 fn by_field<T: DeserializeOwned>(
     path: &str,
     value: &Value,
     errors: &mut Vec<FieldError>,
+    unchecked: &mut usize,
 ) -> Option<Value> {
     let Value::Object(object) = value else {
         return whole::<T>(path, value, errors);
     };
     let mut kept = Map::new();
-    for (key, field) in object {
+    for (i, (key, field)) in object.iter().enumerate() {
+        if errors.len() >= MAX_LISTED_PROBLEMS {
+            *unchecked += object.len() - i;
+            break;
+        }
         let alone = Value::Object(Map::from_iter([(key.clone(), field.clone())]));
         match T::deserialize(&alone) {
             Ok(_) => {

@@ -538,4 +538,34 @@ mod tests {
         let echo = serde_json::to_value(&scene).expect("scenes serialise");
         assert_eq!(parse_scene(&echo), Ok(scene));
     }
+
+    #[test]
+    fn a_megabyte_of_unknown_keys_is_refused_with_the_first_problems_and_a_count() {
+        // The hostile scene of the service's load test: 110,000 unknown keys in one
+        // section, and as many at the top.
+        let keys = 110_000;
+        let disc: serde_json::Map<String, Value> =
+            (0..keys).map(|i| (format!("k{i}"), json!(1))).collect();
+        // "disc" comes first in insertion order and in key order alike.
+        let mut top = serde_json::Map::new();
+        top.insert("disc".to_owned(), Value::Object(disc));
+        for i in 0..keys {
+            top.insert(format!("t{i}"), json!(1));
+        }
+        let SceneErrors(errors) = parse_scene(&Value::Object(top)).expect_err("refused");
+        assert_eq!(errors.len(), MAX_LISTED_PROBLEMS + 1, "{errors:?}");
+        let last = errors.last().map(|e| e.message.clone()).unwrap_or_default();
+        // The 20 listed are disc's first keys; the rest of disc's and every top-level key
+        // after "disc" are counted.
+        let unchecked = 2 * keys - MAX_LISTED_PROBLEMS;
+        assert!(
+            last.starts_with(&format!("{unchecked} more fields were not checked")),
+            "{last}"
+        );
+        // A scene with a few problems still lists each of them.
+        let SceneErrors(few) =
+            parse_scene(&json!({"test": {"lod_n": 5, "cycles": -1}, "colour": 1}))
+                .expect_err("refused");
+        assert_eq!(few.len(), 3, "{few:?}");
+    }
 }

@@ -12,6 +12,7 @@ use axum::http::{HeaderMap, header};
 use serde_json::Value;
 use uuid::Uuid;
 
+use super::blocking::blocking;
 use super::error::ApiError;
 use crate::json::{self, JsonError};
 
@@ -119,7 +120,7 @@ pub(crate) fn is_json(headers: &HeaderMap) -> bool {
 }
 
 /// What a JSON route reads from its body, and the words of its refusals.
-pub(crate) trait JsonRequest: Sized {
+pub(crate) trait JsonRequest: Sized + Send + 'static {
     /// What the body is, for the 415 answer: "the {NAME} must be sent with ...".
     const NAME: &'static str;
 
@@ -130,9 +131,11 @@ pub(crate) trait JsonRequest: Sized {
     fn duplicate_key(path: String, message: String) -> ApiError;
 }
 
-/// The body of a JSON route: declared as JSON (415 otherwise), read as [`Body`] is, parsed by
-/// [`crate::json`] so a key given twice is refused (400 for text that is not JSON), then made
-/// into a `T`.
+/// The body of a JSON route: declared as JSON (415 otherwise), read as [`Body`] is, then
+/// parsed by [`crate::json`] so a key given twice is refused (400 for text that is not JSON)
+/// and made into a `T`, on the blocking pool: a megabyte of JSON with a hundred thousand
+/// keys is tens of milliseconds of parsing and checking, which on a runtime thread would
+/// hold up every other request (`/healthz` included) behind it.
 pub(crate) struct JsonBody<T>(pub(crate) T);
 
 impl<S, T> FromRequest<S> for JsonBody<T>
@@ -151,15 +154,18 @@ where
             )));
         }
         let Body(bytes) = Body::from_request(request, state).await?;
-        let document = json::from_slice(&bytes).map_err(|e| match e {
-            JsonError::Syntax(_) => ApiError::bad_request(format!("malformed JSON: {e}")),
-            JsonError::DuplicateKey { ref path, .. } => {
-                T::duplicate_key(path.clone(), e.to_string())
-            }
-        })?;
-        // Text that parses as JSON is UTF-8 (serde_json checks every string, and JSON's other
-        // characters are ASCII), so nothing is replaced here.
-        let text = String::from_utf8_lossy(&bytes);
-        T::from_json(document, &text).map(Self)
+        blocking(move || parse_body::<T>(&bytes)).await.map(Self)
     }
+}
+
+/// A `T` from a JSON body's bytes, as [`JsonBody`] reads it.
+fn parse_body<T: JsonRequest>(bytes: &[u8]) -> Result<T, ApiError> {
+    let document = json::from_slice(bytes).map_err(|e| match e {
+        JsonError::Syntax(_) => ApiError::bad_request(format!("malformed JSON: {e}")),
+        JsonError::DuplicateKey { ref path, .. } => T::duplicate_key(path.clone(), e.to_string()),
+    })?;
+    // Text that parses as JSON is UTF-8 (serde_json checks every string, and JSON's other
+    // characters are ASCII), so nothing is replaced here.
+    let text = String::from_utf8_lossy(bytes);
+    T::from_json(document, &text)
 }
