@@ -195,7 +195,11 @@ impl Studies {
             stored = Some(study);
             Ok(())
         })
-        .map_err(StudySubmitError::Submit)?;
+        .map_err(|e| {
+            // The members are removed by now; their study's mark goes with them.
+            self.files.abandon(id);
+            StudySubmitError::Submit(e)
+        })?;
         let stored = stored.ok_or_else(|| {
             StudySubmitError::Submit(SubmitError::Storage(io::Error::other(
                 "the study was not recorded",

@@ -202,6 +202,26 @@ impl StudyFiles {
         Ok(())
     }
 
+    /// Drops what study `id` wrote, whose acceptance failed after its member jobs were
+    /// removed: its mark, and its file if the write that failed got as far as the rename,
+    /// so a refused study leaves nothing behind. A mark that cannot be removed (the store
+    /// has just refused a write) is swept at the next start, which removes the jobs it
+    /// names, none by then. Blocking.
+    pub(super) fn abandon(&self, id: Uuid) {
+        for suffix in [".json", PENDING_SUFFIX] {
+            let path = self.dir.join(format!("{id}{suffix}"));
+            match fs::remove_file(&path) {
+                Err(e) if e.kind() != io::ErrorKind::NotFound => {
+                    tracing::warn!(%id, "cannot remove {suffix} of a refused study: {e}");
+                }
+                _ => {}
+            }
+        }
+        if let Err(e) = sync_dir(&self.dir) {
+            tracing::warn!(%id, "cannot sync the studies folder after a refused study: {e}");
+        }
+    }
+
     /// Removes a study's file; one already gone is not an error. Blocking.
     pub(super) fn remove(&self, id: Uuid) -> io::Result<()> {
         let removed =
