@@ -2,7 +2,8 @@
 //! kind of damage still comes up serving each intact job byte for byte, re-runs the jobs
 //! whose results are damaged and lists those whose scenes are; a result damaged while the
 //! server runs is never served; concurrent DELETEs each get a correct answer; a cancel
-//! survives kill -9; a full disk answers 507 and leaves nothing behind.
+//! survives kill -9; a full disk answers 507 and leaves nothing behind, a read-only one 503
+//! with its reason, with `/healthz` degraded and what it holds served.
 
 mod common;
 
@@ -433,6 +434,31 @@ async fn a_full_disk_answers_507_and_leaves_nothing_behind() {
     assert!(left.is_empty(), "nothing left of the refused job: {left:?}");
     let listed: Value = get_json(&client, &server.url("/api/v1/jobs")).await;
     assert_eq!(listed, json!([]));
+    // A study refused the same way leaves neither its members nor its mark: with two
+    // pages free, its mark is written and the disk fills as its members are.
+    let filler = fs::OpenOptions::new()
+        .write(true)
+        .open(inside.join("filler"))
+        .expect("the filler");
+    let length = filler.metadata().expect("filler length").len();
+    filler.set_len(length - 8192).expect("free two pages");
+    let study = json!({"base": small_scene(5), "axes": {"test.load_n": [2, 5]}});
+    let response = client
+        .post(server.url("/api/v1/studies"))
+        .json(&study)
+        .send()
+        .await
+        .expect("submit a study");
+    assert_eq!(response.status(), 507);
+    let left: Vec<_> = fs::read_dir(inside.join("studies"))
+        .expect("studies directory")
+        .collect();
+    assert!(
+        left.is_empty(),
+        "nothing left of the refused study: {left:?}"
+    );
+    let left: Vec<_> = fs::read_dir(inside.join("jobs")).expect("jobs").collect();
+    assert!(left.is_empty(), "nothing left of its members: {left:?}");
 
     // Space freed: the same submission is accepted and runs.
     fs::File::create(inside.join("filler")).expect("free the space");
@@ -440,4 +466,94 @@ async fn a_full_disk_answers_507_and_leaves_nothing_behind() {
     let id = job["id"].as_str().expect("id");
     let job = wait_for_job(&client, &server.base, id, is_final).await;
     assert_eq!(job["status"], "succeeded", "{job}");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_read_only_store_answers_503_with_the_reason_and_keeps_what_it_holds() {
+    // The data directory a tmpfs in the server's own user and mount namespace, as in the
+    // full-disk test, remounted read-only by a watcher in that namespace once the test
+    // creates the trigger file (given up after 60 s, so no process outlives a failed test).
+    let namespaces = Command::new("unshare")
+        .args(["--user", "--map-root-user", "--mount", "true"])
+        .status()
+        .is_ok_and(|status| status.success());
+    if !namespaces {
+        eprintln!("skipped: `unshare --user --mount` is not available here");
+        return;
+    }
+    let dir = TempDir::new("read-only");
+    let signals = TempDir::new("read-only-trigger");
+    let trigger = signals.path().join("remount");
+    let serve = serve_command(dir.path(), 1);
+    let mut command = Command::new("unshare");
+    command
+        .args(["--user", "--map-root-user", "--mount", "sh", "-c"])
+        .arg(
+            "mount -t tmpfs -o size=16m tribosim \"$0\" || exit 1; trigger=\"$1\"; shift; \
+             ( i=0; while [ ! -e \"$trigger\" ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; \
+               [ -e \"$trigger\" ] && mount -o remount,ro \"$0\" ) & exec \"$@\"",
+        )
+        .arg(dir.path())
+        .arg(&trigger)
+        .arg(serve.get_program())
+        .args(serve.get_args());
+    let server = ServerProcess::spawn(command);
+    let client = reqwest::Client::new();
+    let job = submit(&client, &server.base, &small_scene(5)).await;
+    let id = job["id"].as_str().expect("id").to_owned();
+    let done = wait_for_job(&client, &server.base, &id, is_final).await;
+    assert_eq!(done["status"], "succeeded", "{done}");
+    let (_, before) = result(&client, &result_url(&server.base, &id)).await;
+
+    fs::write(&trigger, b"").expect("trigger the remount");
+    let health = tokio::time::timeout(Duration::from_secs(30), async {
+        loop {
+            let response = client
+                .get(server.url("/healthz"))
+                .send()
+                .await
+                .expect("healthz");
+            if response.status() == 503 {
+                return response.json::<Value>().await.expect("health JSON");
+            }
+            tokio::time::sleep(Duration::from_millis(50)).await;
+        }
+    })
+    .await
+    .expect("/healthz reports the store degraded");
+    assert_eq!(health["status"], "degraded", "{health}");
+    let reason = |body: &Value| body.to_string().contains("Read-only file system");
+    assert!(reason(&health), "{health}");
+
+    let response = client
+        .post(server.url("/api/v1/jobs"))
+        .json(&small_scene(5))
+        .send()
+        .await
+        .expect("submit");
+    assert_eq!(response.status(), 503);
+    let refusal: Value = response.json().await.expect("error JSON");
+    assert!(reason(&refusal), "{refusal}");
+    let response = client
+        .patch(server.url(&format!("/api/v1/jobs/{id}")))
+        .json(&json!({"sample": "S-1"}))
+        .send()
+        .await
+        .expect("relabel");
+    assert_eq!(response.status(), 503);
+    let study = json!({"base": small_scene(5), "axes": {"test.load_n": [2, 5]}});
+    let response = client
+        .post(server.url("/api/v1/studies"))
+        .json(&study)
+        .send()
+        .await
+        .expect("submit a study");
+    assert_eq!(response.status(), 503);
+
+    // What was stored is served as it was, and nothing else was added.
+    let (status, after) = result(&client, &result_url(&server.base, &id)).await;
+    assert_eq!((status, after == before), (200, true));
+    let listed: Value = get_json(&client, &server.url("/api/v1/jobs")).await;
+    assert_eq!(listed.as_array().map(Vec::len), Some(1), "{listed}");
+    assert_eq!(listed[0]["sample"], Value::Null, "{listed}");
 }

@@ -118,7 +118,6 @@ impl ApiError {
         }
     }
 
-
     /// 429: no room now (a full queue, every fit slot busy); retry after `retry_after_s`.
     pub fn too_many_requests(message: impl Into<String>, retry_after_s: u64) -> Self {
         Self {
@@ -133,14 +132,23 @@ impl ApiError {
         Self::new(status, status.canonical_reason().unwrap_or("error"))
     }
 
-    /// A file operation of the server that failed: 507 when the disk (or the quota) is full,
-    /// with `kept` saying what became of the request; otherwise 500 while `doing`.
+    /// A write of the server's store that failed, with `kept` saying what became of the
+    /// request: 507 when the disk (or the quota) is full; otherwise 503 with the system's
+    /// reason ("Read-only file system", "Input/output error"), which is the store's state
+    /// rather than the request's fault, and which the operator, reading it, can mend.
     pub fn storage(error: &io::Error, kept: &str, doing: &str) -> Self {
         if is_disk_full(error) {
-            Self::disk_full(kept)
-        } else {
-            Self::internal(doing, error)
+            return Self::disk_full(kept);
         }
+        tracing::error!("{doing}: {error}");
+        Self::new(
+            StatusCode::SERVICE_UNAVAILABLE,
+            format!(
+                "the server cannot write its data directory ({}) while {doing}: {kept}; \
+                 retry once its operator has mended the storage",
+                os_reason(error)
+            ),
+        )
     }
 
     /// 507: the server's disk is full; `kept` says what became of the request.
@@ -180,6 +188,15 @@ impl IntoResponse for ApiError {
                 .insert(header::RETRY_AFTER, HeaderValue::from(seconds));
         }
         response
+    }
+}
+
+/// What the system says of `error`, without the error number: "Read-only file system".
+pub fn os_reason(error: &io::Error) -> String {
+    let text = error.to_string();
+    match text.rfind(" (os error ") {
+        Some(end) => text[..end].to_owned(),
+        None => text,
     }
 }
 

@@ -260,6 +260,10 @@ pub async fn serve_on(
             args.limits.max_connections
         );
     }
+    // Absolute, so that whoever started the server from some folder sees where it writes.
+    let data_dir = std::fs::canonicalize(&args.data_dir)
+        .or_else(|_| std::path::absolute(&args.data_dir))
+        .unwrap_or_else(|_| args.data_dir.clone());
     let app = AppState {
         jobs: Arc::clone(&jobs),
         studies,
@@ -276,11 +280,8 @@ pub async fn serve_on(
             keep_alive: keep_alive_interval(limits.idle_timeout_s),
             shutdown: stopped.clone(),
         },
+        data_dir: meta::DataDir(Arc::from(data_dir.as_path())),
     };
-    // Absolute, so that whoever started the server from some folder sees where it writes.
-    let data_dir = std::fs::canonicalize(&args.data_dir)
-        .or_else(|_| std::path::absolute(&args.data_dir))
-        .unwrap_or_else(|_| args.data_dir.clone());
     tracing::info!(
         %addr,
         workers = args.workers.get(),

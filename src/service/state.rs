@@ -12,6 +12,7 @@ use axum::extract::FromRef;
 use super::calibrations::Calibrations;
 use super::extract::BodyTimeout;
 use super::jobs::{Jobs, Streams};
+use super::meta::DataDir;
 use super::studies::Studies;
 use super::surfaces::{SurfaceUsers, Surfaces};
 
@@ -28,6 +29,8 @@ pub(crate) struct AppState {
     pub(crate) static_dir: Option<Arc<Path>>,
     pub(crate) body_timeout: BodyTimeout,
     pub(crate) streams: Streams,
+    /// The data folder, whose health `/healthz` reports.
+    pub(crate) data_dir: DataDir,
 }
 
 impl FromRef<AppState> for Arc<Jobs> {
@@ -70,5 +73,11 @@ impl FromRef<AppState> for BodyTimeout {
 impl FromRef<AppState> for Streams {
     fn from_ref(app: &AppState) -> Self {
         app.streams.clone()
+    }
+}
+
+impl FromRef<AppState> for DataDir {
+    fn from_ref(app: &AppState) -> Self {
+        app.data_dir.clone()
     }
 }

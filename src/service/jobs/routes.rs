@@ -259,7 +259,7 @@ fn unknown(id: uuid::Uuid) -> ApiError {
 }
 
 /// 422 for a scene the service cannot run, 429 with Retry-After when the queue is full, 507
-/// when the disk is.
+/// when the disk is, 503 when the store cannot be written.
 impl From<SubmitError> for ApiError {
     fn from(error: SubmitError) -> Self {
         match error {
@@ -273,7 +273,9 @@ impl From<SubmitError> for ApiError {
                 retry_after_s,
             ),
             SubmitError::DiskFull => Self::disk_full("the job was not accepted"),
-            SubmitError::Storage(e) => Self::internal("storing the job", &e),
+            SubmitError::Storage(e) => {
+                Self::storage(&e, "the job was not accepted", "storing the job")
+            }
         }
     }
 }
@@ -289,7 +291,7 @@ impl From<DeleteError> for ApiError {
     }
 }
 
-/// The job's own answers, 507 or 500 when the record could not be written.
+/// The job's own answers, 507 or 503 when the record could not be written.
 impl From<RelabelError> for ApiError {
     fn from(error: RelabelError) -> Self {
         match error {

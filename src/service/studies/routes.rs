@@ -179,7 +179,8 @@ impl From<StudyError> for ApiError {
 }
 
 /// The study's own refusals, 422 when the queue could never hold it, 429 when it has no
-/// room for every member now, 507 when the disk is full.
+/// room for every member now, 507 when the disk is full, 503 when the store cannot be
+/// written.
 impl From<StudySubmitError> for ApiError {
     fn from(error: StudySubmitError) -> Self {
         match error {
@@ -202,7 +203,7 @@ impl From<StudySubmitError> for ApiError {
                 Self::disk_full("the study was not accepted")
             }
             StudySubmitError::Submit(SubmitError::Storage(e)) => {
-                Self::internal("storing the study", &e)
+                Self::storage(&e, "the study was not accepted", "storing the study")
             }
             // The members' scenes were checked before they were submitted.
             StudySubmitError::Submit(SubmitError::Unservable(errors)) => errors.into(),
