@@ -20,6 +20,15 @@ use cli::error::CliError;
 use cli::output::{Destination, FileName, destination, today, write_json};
 use cli::run::{SurfaceFile, contact_scene, run_scene};
 
+/// jemalloc instead of glibc's malloc, so that a server that ran a large job gives the
+/// memory back when it ends: with glibc, a 1024-cell job (759 MB peak RSS) left the idle
+/// server at 447 MB for good, in the arena of its worker thread. jemalloc's background
+/// thread returns freed pages after the decay `.cargo/config.toml` sets, whether or not
+/// the server does anything more (`scripts/load_test.py`, item 11; `docs/operations.md`,
+/// "Memory").
+#[global_allocator]
+static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
+
 #[derive(Parser)]
 #[command(
     version,
