@@ -5,8 +5,8 @@
 
 Starts the binary on a temporary data directory pre-filled with several thousand jobs
 (written as the store lays them out: copies of one real succeeded job and of one cancelled
-job under new ids, which is what the server reads at startup), then runs each attack of
-issue 31 against it, reads the server's resident memory from /proc/<pid>/status (VmRSS now,
+job under new ids, which is what the server reads at startup), then runs each attack
+against it, reads the server's resident memory from /proc/<pid>/status (VmRSS now,
 VmHWM the peak since the last reset through /proc/<pid>/clear_refs) and checks each figure
 against its budget. Prints one line per check and the figures; exits 1 when a budget is
 exceeded (with --report-only it only prints). Standard library only; Linux only (/proc).
@@ -478,6 +478,121 @@ def listing(server: Server, checks: Checks, jobs: int) -> None:
     )
 
 
+def hostile_bodies(job_id: str) -> list[tuple[str, str, bytes]]:
+    """The largest bodies the server accepts (1 MiB), each built to cost it the most: a
+    hundred thousand tags for a job and for a job that does not exist, and scenes with a
+    hundred thousand unknown keys."""
+    tags = json.dumps({"tags": [f"t{i}" for i in range(100_000)]}).encode()
+    keys = {f"k{i}": 1 for i in range(80_000)}
+    scene = json.dumps({"disc": keys}).encode()
+    top = json.dumps(keys).encode()
+    for body in (tags, scene, top):
+        assert len(body) <= MIB, len(body)
+    return [
+        ("PATCH", f"/api/v1/jobs/{job_id}", tags),
+        ("PATCH", f"/api/v1/jobs/{uuid.uuid4()}", tags),
+        ("POST", "/api/v1/jobs", scene),
+        ("POST", "/api/v1/jobs", top),
+    ]
+
+
+def healthz_latencies(server: Server, stop: threading.Event) -> list[float]:
+    """/healthz asked every 20 ms until `stop`, each answer's latency in ms."""
+    latencies = []
+    while not stop.is_set():
+        began = time.monotonic()
+        status, _, _ = server.request("GET", "/healthz", timeout=60)
+        latencies.append((time.monotonic() - began) * 1e3 if status == 200 else float("inf"))
+        time.sleep(0.02)
+    return latencies
+
+
+def hostile_parsing(server: Server, checks: Checks, rounds: int) -> None:
+    print(f"10. four hostile 1 MiB bodies at once, {rounds} times, with /healthz asked meanwhile")
+    status, _, job = server.json("POST", "/api/v1/jobs", TINY)
+    assert status == 202, (status, job)
+    bodies = hostile_bodies(job["id"])
+    stop = threading.Event()
+    latencies: list[float] = []
+    poller = threading.Thread(target=lambda: latencies.extend(healthz_latencies(server, stop)))
+    poller.start()
+    answers = []
+    for _ in range(rounds):
+        answers += parallel(
+            [lambda m=m, p=p, b=b: server.request(m, p, b) for m, p, b in bodies]
+        )
+    stop.set()
+    poller.join()
+    worst = max(latencies)
+    checks.check(
+        "/healthz answers within 100 ms throughout",
+        worst <= 100,
+        f"worst {worst:.1f} ms, median {sorted(latencies)[len(latencies) // 2]:.1f} ms "
+        f"of {len(latencies)}",
+    )
+    statuses = sorted({a[0] if isinstance(a, tuple) else str(a) for a in answers}, key=str)
+    largest = max(len(a[2]) for a in answers if isinstance(a, tuple))
+    checks.check(
+        "each refused (422, 404 for the job that does not exist)",
+        set(statuses) <= {404, 422},
+        f"{statuses}",
+    )
+    checks.check("each error body within 16 KiB", largest <= 16 * 1024, f"largest {largest} bytes")
+    status, _, after = server.json("GET", f"/api/v1/jobs/{job['id']}")
+    checks.check(
+        "the job they aimed at is as it was",
+        status == 200 and after["tags"] == [],
+        f"{status}, tags {after.get('tags')}",
+    )
+
+
+def memory_budget(binary: str, data: Path, checks: Checks) -> None:
+    print("11. jobs within a memory budget, and the memory given back after a large job")
+    server = Server(binary, data, "--workers", "2", "--job-memory-mib", "1024")
+    try:
+        over = {"preset": "dalmau2018-316l", "overrides": {"numerics": {"grid": 2048}}}
+        status, _, answer = server.json("POST", "/api/v1/jobs", over)
+        checks.check(
+            "a 2048-cell job refused at submit with its estimate and the budget",
+            status == 422 and "budget" in str(answer),
+            f"{status} {str(answer)[:200]}",
+        )
+        big = {
+            "preset": "dalmau2018-316l",
+            "overrides": {"numerics": {"grid": 1024, "domain_um": 150}, "test": {"cycles": 2}},
+        }
+        before = server.status()["VmRSS"]
+        ids = []
+        for _ in range(2):
+            status, _, job = server.json("POST", "/api/v1/jobs", big)
+            assert status == 202, (status, job)
+            ids.append(job["id"])
+        overlap = 0
+        while True:
+            records = [server.json("GET", f"/api/v1/jobs/{i}")[2] for i in ids]
+            running = sum(r["status"] == "running" for r in records)
+            overlap = max(overlap, running)
+            if all(r["status"] in ("succeeded", "failed", "cancelled") for r in records):
+                break
+            time.sleep(0.05)
+        checks.check(
+            "two jobs of 0.9 GB estimated run one at a time within 1 GiB on two workers",
+            overlap == 1 and all(r["status"] == "succeeded" for r in records),
+            f"at most {overlap} running; {[r['status'] for r in records]}",
+        )
+        time.sleep(2.0)
+        after = server.status()["VmRSS"]
+        checks.check(
+            "RSS back within 64 MiB of before once they ended (memory returned)",
+            after - before <= 64,
+            f"{before} -> {after} MiB",
+        )
+        for i in ids:
+            server.request("DELETE", f"/api/v1/jobs/{i}")
+    finally:
+        server.stop()
+
+
 def _cpu_s(server: Server) -> float:
     fields = Path(f"/proc/{server.proc.pid}/stat").read_text().rsplit(")", 1)[1].split()
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
@@ -517,6 +632,8 @@ def main() -> int:
                 kept = surface_pixel(server, checks)
             if want(9):
                 listing(server, checks, args.jobs)
+            if want(10):
+                hostile_parsing(server, checks, 3)
             checks.check("the server is still up", server.alive(), f"RSS {server.status()}")
         finally:
             server.stop()
@@ -536,6 +653,8 @@ def main() -> int:
                 server.stop()
         if want(6):
             study_crash(binary, data, checks, 10)
+        if want(11):
+            memory_budget(binary, data, checks)
     print(f"load test done in {time.monotonic() - began:.0f} s")
     print(f"load-test: {checks.passed} passed, {len(checks.failed)} failed")
     return 1 if checks.failed and not args.report_only else 0

@@ -3,7 +3,7 @@
 //! reason and the measurement behind its default). The resources receive the numbers; this
 //! file knows none of them.
 
-use std::num::NonZeroUsize;
+use std::num::{NonZeroU64, NonZeroUsize};
 
 /// The budgets of uploads and fits.
 #[derive(Debug, Clone, clap::Args)]
@@ -26,6 +26,11 @@ pub struct Budgets {
     /// beyond it.
     #[arg(long, default_value_t = Budgets::DEFAULT.calibration_kept_bytes)]
     pub calibration_kept_bytes: usize,
+    /// Memory the running jobs may take together, MiB, by each run's estimated peak: a job
+    /// whose estimate exceeds it is refused at submit (422), and a job waits in the queue
+    /// while the running ones leave too little. Half the machine's memory by default.
+    #[arg(long, value_name = "MIB")]
+    pub job_memory_mib: Option<NonZeroU64>,
 }
 
 impl Budgets {
@@ -36,11 +41,31 @@ impl Budgets {
         calibration_max_grid: 256,
         calibration_max_cell_cycles: 1 << 28,
         calibration_kept_bytes: 64 << 20,
+        job_memory_mib: None,
     };
+
+    /// The jobs' memory budget, bytes: `--job-memory-mib`, or half the machine's memory
+    /// (`MemTotal` of `/proc/meminfo`), leaving the rest to the system, the server and
+    /// other programs; 8 GiB where the machine's memory cannot be read.
+    pub fn job_memory_bytes(&self) -> u64 {
+        const MIB: u64 = 1 << 20;
+        match self.job_memory_mib {
+            Some(mib) => mib.get().saturating_mul(MIB),
+            None => physical_memory_bytes().map_or(8 << 30, |bytes| bytes / 2),
+        }
+    }
 }
 
 impl Default for Budgets {
     fn default() -> Self {
         Self::DEFAULT
     }
+}
+
+/// The machine's memory, bytes, from `/proc/meminfo` (Linux); `None` elsewhere.
+fn physical_memory_bytes() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|line| line.starts_with("MemTotal:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
 }

@@ -233,13 +233,14 @@ pub async fn serve_on(
         max_pixels: args.budgets.max_surface_pixels,
         parses: args.budgets.surface_parses.get(),
     };
+    let memory_budget_bytes = args.budgets.job_memory_bytes();
     let (jobs, studies, surfaces) = tokio::task::spawn_blocking(move || {
         let store = Store::open(&data_dir)?;
         let quarantine = store.quarantine_dir().to_owned();
         // Before the jobs load: a study interrupted as it was accepted takes its members.
         let studies = Studies::open(&data_dir, &quarantine, &store, max_members, workers)?;
         let surfaces = Arc::new(Surfaces::open(&data_dir, &quarantine, upload_limits)?);
-        let jobs = Jobs::open(store, capacity, Arc::clone(&surfaces))?;
+        let jobs = Jobs::open(store, capacity, memory_budget_bytes, Arc::clone(&surfaces))?;
         Ok::<_, io::Error>((jobs, Arc::new(studies), surfaces))
     })
     .await
@@ -287,6 +288,7 @@ pub async fn serve_on(
         workers = args.workers.get(),
         data_dir = %data_dir.display(),
         max_connections = limits.max_connections,
+        job_memory_mib = memory_budget_bytes >> 20,
         "tribosim serving on http://{addr} with its data in {}",
         data_dir.display()
     );

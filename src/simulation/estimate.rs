@@ -1,8 +1,10 @@
 //! What a run will cost before it starts: its solves, its wall time and the size of its
-//! result, extrapolated from two measured runs of the paper's scene. A rough guide (a
+//! result, extrapolated from two measured runs of the paper's scene, and its peak memory,
+//! from the cells of its grid. A rough guide (a
 //! factor of about three either way), for a warning before a long run, not a schedule.
 
-use crate::scene::{CycleStep, Scene};
+use crate::contact::Grid;
+use crate::scene::{CycleStep, DomainSize, Scene};
 
 /// The paper's scene (the defaults: auto grid of [`PAPER_CELLS`] cells, auto stepping) run
 /// with `tribosim run '-' -o result.json` at two lengths, on the development machine (2
@@ -24,6 +26,20 @@ const RECORD_BYTES: f64 = 502.0;
 /// at 3600 cycles, 937 kB at 36,000 (the maps grow with the domain); the larger is taken.
 const OTHER_BYTES: f64 = 937e3;
 
+/// Peak memory per cell of the contact grid, bytes: the upper envelope of the paper's scene
+/// run for 2 cycles at a fixed grid, peak RSS by `/usr/bin/time -f %M tribosim run`:
+/// 47.9 MB at 256 cells per side (730 B a cell), 216 MB at 512 (825), 752 MB at 1024 (717),
+/// 2.99 GB at 2048 (713). The FFT's padded transforms of the influence coefficients and
+/// the pressures dominate, which is why the cost goes as the cells.
+const PEAK_BYTES_PER_CELL: f64 = 830.0;
+/// Memory a run holds whatever its grid, bytes: the program, the cycle records and the
+/// result as it is written (the 2048-cell run above held 3.5 GiB as a job of the service,
+/// which keeps its cycles for event streams and writes the result JSON from memory).
+const BASE_PEAK_BYTES: f64 = 64e6;
+/// How far an auto domain's cells may multiply as the groove widens it: the side doubles at
+/// most in the paper's scene over 36,000 cycles, and the cells go as its square.
+const AUTO_DOMAIN_CELL_GROWTH: f64 = 4.0;
+
 /// What a run is expected to cost.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunEstimate {
@@ -33,6 +49,8 @@ pub struct RunEstimate {
     pub wall_s: f64,
     /// Size of the result JSON as `tribosim run` writes it, bytes.
     pub bytes: f64,
+    /// Peak memory of the run, bytes: what the service budgets its jobs by.
+    pub memory_bytes: f64,
 }
 
 /// The exponent of the power law through the two measured points of `values`.
@@ -54,10 +72,17 @@ pub fn estimate(scene: &Scene, cells: usize) -> RunEstimate {
     let per_solve_s = MEASURED_WALL_S[0] / MEASURED_SOLVES[0]
         * along.powf(exponent(MEASURED_WALL_S) - exponent(MEASURED_SOLVES));
     let grid = (cells as f64 / PAPER_CELLS).powi(2);
+    let growth = match scene.numerics.domain_um {
+        DomainSize::Auto => AUTO_DOMAIN_CELL_GROWTH,
+        DomainSize::Micrometres(_) => 1.0,
+    };
+    let cells_then = (cells as f64).powi(2) * growth;
+    let cells_max = (Grid::MAX_CELLS_PER_SIDE as f64).powi(2);
     RunEstimate {
         solves: solves.round() as u64,
         wall_s: solves * per_solve_s * grid,
         bytes: solves * RECORD_BYTES + OTHER_BYTES,
+        memory_bytes: BASE_PEAK_BYTES + PEAK_BYTES_PER_CELL * cells_then.min(cells_max),
     }
 }
 
@@ -111,6 +136,35 @@ mod tests {
         // A grid of half the cells per side costs a quarter.
         let half = estimate(&scene, 72);
         assert!((half.wall_s / every.wall_s - 0.25).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_memory_estimate_lies_above_each_measured_peak() {
+        // Peak RSS of `tribosim run` on the paper's scene for 2 cycles at a fixed grid
+        // (the measurements of PEAK_BYTES_PER_CELL), bytes.
+        let measured = [
+            (256, 47.9e6),
+            (512, 216.2e6),
+            (1024, 752.1e6),
+            (2048, 2994.3e6),
+        ];
+        let mut scene = Scene::default();
+        scene.test.cycles = 2;
+        scene.numerics.domain_um = DomainSize::Micrometres(150.0);
+        for (cells, peak) in measured {
+            let estimate = estimate(&scene, cells).memory_bytes;
+            // Above each, and not so far above that it refuses what the machine can run:
+            // the base dominates the smallest grid, hence its wider margin.
+            let margin = if cells < 512 { 3.0 } else { 1.3 };
+            assert!(
+                estimate > peak && estimate < margin * peak,
+                "{cells}: {estimate:e} against {peak:e}"
+            );
+        }
+        // An auto domain may grow: its cells are budgeted four times over.
+        scene.numerics.domain_um = DomainSize::Auto;
+        let auto = estimate(&scene, 512).memory_bytes;
+        assert!((auto - (BASE_PEAK_BYTES + 4.0 * 512.0 * 512.0 * PEAK_BYTES_PER_CELL)).abs() < 1.0);
     }
 
     #[test]

@@ -1,5 +1,9 @@
 //! The bounded queue of jobs waiting for a worker. Places are reserved before a submission
-//! writes its files, so the bound holds while those writes are under way.
+//! writes its files, so the bound holds while those writes are under way. A worker takes
+//! the first job only when its estimated peak memory fits beside the running jobs' within
+//! the budget, so the workers never run more than the budget holds; a job alone always
+//! runs (one over the budget is refused at submit, and only a budget lowered since it was
+//! accepted leaves one queued over it).
 
 use std::collections::{HashMap, VecDeque};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
@@ -8,10 +12,18 @@ use uuid::Uuid;
 
 use super::job::Job;
 
+/// A waiting job and its estimated peak memory, bytes.
+struct Waiting {
+    job: Arc<Job>,
+    memory_bytes: u64,
+}
+
 struct Pending {
-    jobs: VecDeque<Arc<Job>>,
+    jobs: VecDeque<Waiting>,
     /// Places promised to submissions still writing their files.
     reserved: usize,
+    /// The estimated peak memory of the running jobs together, bytes.
+    running_bytes: u64,
     stopping: bool,
 }
 
@@ -20,20 +32,46 @@ pub(super) struct Queue {
     pending: Mutex<Pending>,
     ready: Condvar,
     capacity: usize,
+    memory_budget_bytes: u64,
+}
+
+/// The memory a running job holds in the budget, given back when it is dropped (the job
+/// ended, or its worker panicked).
+pub(super) struct Lease<'a> {
+    queue: &'a Queue,
+    memory_bytes: u64,
+}
+
+impl Drop for Lease<'_> {
+    fn drop(&mut self) {
+        let mut pending = self.queue.lock();
+        pending.running_bytes = pending.running_bytes.saturating_sub(self.memory_bytes);
+        drop(pending);
+        // Every worker: the head may fit now, and any one of them may take it.
+        self.queue.ready.notify_all();
+    }
 }
 
 impl Queue {
-    /// An empty queue that accepts up to `capacity` submissions.
-    pub(super) fn new(capacity: usize) -> Self {
+    /// An empty queue that accepts up to `capacity` submissions and runs jobs within
+    /// `memory_budget_bytes` together.
+    pub(super) fn new(capacity: usize, memory_budget_bytes: u64) -> Self {
         Self {
             pending: Mutex::new(Pending {
                 jobs: VecDeque::new(),
                 reserved: 0,
+                running_bytes: 0,
                 stopping: false,
             }),
             ready: Condvar::new(),
             capacity,
+            memory_budget_bytes,
         }
+    }
+
+    /// The memory the running jobs may take together, bytes.
+    pub(super) fn memory_budget_bytes(&self) -> u64 {
+        self.memory_budget_bytes
     }
 
     fn lock(&self) -> MutexGuard<'_, Pending> {
@@ -75,25 +113,27 @@ impl Queue {
         pending.reserved = pending.reserved.saturating_sub(count);
     }
 
-    /// Queues a job in the place reserved for it.
-    pub(super) fn admit(&self, job: Arc<Job>) {
+    /// Queues a job, of `memory_bytes` estimated peak, in the place reserved for it.
+    pub(super) fn admit(&self, job: Arc<Job>, memory_bytes: u64) {
         let mut pending = self.lock();
         pending.reserved = pending.reserved.saturating_sub(1);
-        pending.jobs.push_back(job);
+        pending.jobs.push_back(Waiting { job, memory_bytes });
         drop(pending);
         self.ready.notify_one();
     }
 
     /// Queues an accepted job without a reservation: accepted jobs are never dropped, so a
     /// queue restored at startup may exceed its capacity.
-    pub(super) fn push(&self, job: Arc<Job>) {
-        self.lock().jobs.push_back(job);
+    pub(super) fn push(&self, job: Arc<Job>, memory_bytes: u64) {
+        self.lock().jobs.push_back(Waiting { job, memory_bytes });
         self.ready.notify_one();
     }
 
-    /// Takes a job out of the queue (it was cancelled).
+    /// Takes a job out of the queue (it was cancelled). The head may have changed, so the
+    /// workers look again.
     pub(super) fn remove(&self, id: Uuid) {
-        self.lock().jobs.retain(|queued| queued.id != id);
+        self.lock().jobs.retain(|waiting| waiting.job.id != id);
+        self.ready.notify_all();
     }
 
     /// The place of a waiting job, from 1 (the next to run); `None` when it does not wait.
@@ -102,7 +142,7 @@ impl Queue {
         pending
             .jobs
             .iter()
-            .position(|job| job.id == id)
+            .position(|waiting| waiting.job.id == id)
             .map(|i| i + 1)
     }
 
@@ -113,19 +153,33 @@ impl Queue {
             .jobs
             .iter()
             .enumerate()
-            .map(|(i, job)| (job.id, i + 1))
+            .map(|(i, waiting)| (waiting.job.id, i + 1))
             .collect()
     }
 
-    /// The next job, waiting for one; `None` once stopping.
-    pub(super) fn next(&self) -> Option<Arc<Job>> {
+    /// The next job and its lease on the memory budget, waiting until there is one that
+    /// fits beside the running jobs (first come, first served: a large job at the head is
+    /// not overtaken, so it cannot starve); `None` once stopping.
+    pub(super) fn next(&self) -> Option<(Arc<Job>, Lease<'_>)> {
         let mut pending = self.lock();
         loop {
             if pending.stopping {
                 return None;
             }
-            if let Some(job) = pending.jobs.pop_front() {
-                return Some(job);
+            let fits = pending.jobs.front().is_some_and(|head| {
+                pending.running_bytes == 0
+                    || pending.running_bytes.saturating_add(head.memory_bytes)
+                        <= self.memory_budget_bytes
+            });
+            if let Some(Waiting { job, memory_bytes }) =
+                fits.then(|| pending.jobs.pop_front()).flatten()
+            {
+                pending.running_bytes = pending.running_bytes.saturating_add(memory_bytes);
+                let lease = Lease {
+                    queue: self,
+                    memory_bytes,
+                };
+                return Some((job, lease));
             }
             pending = self
                 .ready

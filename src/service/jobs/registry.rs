@@ -20,9 +20,10 @@ use super::job::{Job, JobRecord, JobStatus};
 use super::labels::LabelChange;
 use super::queue::Queue;
 use super::store::{Store, StoredJob};
-use crate::scene::Scene;
+use crate::scene::{FieldError, Scene, SceneErrors};
 use crate::service::files::{Damage, is_disk_full};
 use crate::service::surfaces::{SurfaceUsers, Surfaces, servable, surface_id};
+use crate::simulation::{Plan, describe_size};
 
 /// What DELETE did.
 pub enum Deletion {
@@ -49,7 +50,12 @@ impl Jobs {
     /// the order they were accepted). A succeeded job whose result is damaged runs again; a
     /// job whose scene is damaged is listed as `damaged`. One job's damage never stops the
     /// others from loading.
-    pub fn open(store: Store, capacity: usize, surfaces: Arc<Surfaces>) -> io::Result<Arc<Self>> {
+    pub fn open(
+        store: Store,
+        capacity: usize,
+        memory_budget_bytes: u64,
+        surfaces: Arc<Surfaces>,
+    ) -> io::Result<Arc<Self>> {
         let mut stored = store.load()?;
         stored.sort_by_key(|job| {
             job.record
@@ -61,7 +67,7 @@ impl Jobs {
         let jobs = Arc::new(Self {
             store,
             jobs: Mutex::new(HashMap::new()),
-            queue: Queue::new(capacity),
+            queue: Queue::new(capacity, memory_budget_bytes),
             surfaces,
         });
         for job in stored {
@@ -139,9 +145,10 @@ impl Jobs {
             Some(reason) => tracing::warn!(%id, was = ?was, %reason, "job queued to run again"),
             None => tracing::info!(%id, was = ?was, "job re-queued after restart"),
         }
+        let memory_bytes = peak_memory_bytes(&scene);
         let job = Arc::new(Job::new(record, Some(scene), Some(Vec::new())));
         self.insert(Arc::clone(&job));
-        self.queue.push(job);
+        self.queue.push(job, memory_bytes);
     }
 
     fn insert(&self, job: Arc<Job>) {
@@ -200,12 +207,34 @@ impl Jobs {
         self.queue.capacity()
     }
 
-    /// Accepts a validated scene that the service can run (its surface, if it names one, is
-    /// stored): makes it durable, then queues it. Blocking (file writes).
+    /// The estimated peak memory of a validated scene, bytes, if the service can run it: a
+    /// stored surface it names must be there, and its estimate within the jobs' memory
+    /// budget (refused otherwise with the estimate, the budget and the fields that lower it).
+    pub fn admissible(&self, scene: &Scene) -> Result<u64, SceneErrors> {
+        servable(scene, &self.surfaces)?;
+        let memory_bytes = peak_memory_bytes(scene);
+        let budget_bytes = self.queue.memory_budget_bytes();
+        if memory_bytes > budget_bytes {
+            return Err(SceneErrors(vec![FieldError::new(
+                "numerics.grid",
+                format!(
+                    "the run is estimated to need {} of memory at its peak, over this server's \
+                     budget for jobs of {} (`tribosim serve --job-memory-mib`): fewer cells \
+                     (`numerics.grid`) or a fixed, smaller `numerics.domain_um` need less",
+                    describe_size(memory_bytes as f64),
+                    describe_size(budget_bytes as f64)
+                ),
+            )]));
+        }
+        Ok(memory_bytes)
+    }
+
+    /// Accepts a validated scene that the service can run ([`Jobs::admissible`]): makes it
+    /// durable, then queues it. Blocking (file writes).
     pub fn submit(&self, scene: Scene, labels: LabelChange) -> Result<JobRecord, SubmitError> {
         // Only a scene naming a stored surface waits for (and holds off) its deletion.
         let _hold = surface_id(&scene).map(|_| self.surfaces.hold());
-        servable(&scene, &self.surfaces).map_err(SubmitError::Unservable)?;
+        let memory_bytes = self.admissible(&scene).map_err(SubmitError::Unservable)?;
         if !self.queue.reserve() {
             return Err(SubmitError::QueueFull {
                 capacity: self.queue.capacity(),
@@ -226,20 +255,20 @@ impl Jobs {
         }
         let job = Arc::new(Job::new(record, Some(scene), Some(Vec::new())));
         self.insert(Arc::clone(&job));
-        self.queue.admit(Arc::clone(&job));
+        self.queue.admit(Arc::clone(&job), memory_bytes);
         let record = self.shown(&job);
         tracing::info!(id = %record.id, cycles = record.cycles_total, "job queued");
         Ok(record)
     }
 
-    /// Accepts several validated scenes at once (a study's members), all or none: places
-    /// for all of them are reserved, `begin` records the jobs about to be written (so that
+    /// Accepts several validated scenes at once (a study's members), each with its peak
+    /// memory as [`Jobs::admissible`] gave it, all or none: places for all of them are reserved, `begin` records the jobs about to be written (so that
     /// a crash before `persist` can be undone), each is made durable, `persist` records
     /// what owns them, and only then are they queued. If any step fails, the jobs already
     /// written are removed. Blocking (file writes).
     pub fn submit_many(
         &self,
-        scenes: Vec<Scene>,
+        scenes: Vec<(Scene, u64)>,
         begin: impl FnOnce(&[JobRecord]) -> io::Result<()>,
         persist: impl FnOnce(&[JobRecord]) -> io::Result<()>,
     ) -> Result<Vec<JobRecord>, SubmitError> {
@@ -251,23 +280,23 @@ impl Jobs {
                 retry_after_s: self.retry_after_s(),
             });
         }
-        let planned: Vec<(JobRecord, Scene)> = scenes
+        let planned: Vec<(JobRecord, Scene, u64)> = scenes
             .into_iter()
-            .map(|scene| (JobRecord::queued(&scene), scene))
+            .map(|(scene, memory_bytes)| (JobRecord::queued(&scene), scene, memory_bytes))
             .collect();
-        let all: Vec<JobRecord> = planned.iter().map(|(r, _)| r.clone()).collect();
-        let mut created: Vec<(JobRecord, Scene)> = Vec::with_capacity(count);
+        let all: Vec<JobRecord> = planned.iter().map(|(r, ..)| r.clone()).collect();
+        let mut created: Vec<(JobRecord, Scene, u64)> = Vec::with_capacity(count);
         let mut written = begin(&all);
-        for (record, scene) in planned {
+        for (record, scene, memory_bytes) in planned {
             if written.is_err() {
                 break;
             }
             written = self.store.create(&record, &scene);
             if written.is_ok() {
-                created.push((record, scene));
+                created.push((record, scene, memory_bytes));
             }
         }
-        let records: Vec<JobRecord> = created.iter().map(|(r, _)| r.clone()).collect();
+        let records: Vec<JobRecord> = created.iter().map(|(r, ..)| r.clone()).collect();
         if let Err(e) = written.and_then(|()| persist(&records)) {
             for record in &records {
                 if let Err(e) = self.store.remove(record.id) {
@@ -282,10 +311,10 @@ impl Jobs {
                 SubmitError::Storage(e)
             });
         }
-        for (record, scene) in created {
+        for (record, scene, memory_bytes) in created {
             let job = Arc::new(Job::new(record, Some(scene), Some(Vec::new())));
             self.insert(Arc::clone(&job));
-            self.queue.admit(job);
+            self.queue.admit(job, memory_bytes);
         }
         tracing::info!(jobs = count, "jobs queued together");
         Ok(records)
@@ -345,11 +374,12 @@ impl Jobs {
             state.scene = Some(Arc::new(scene));
             state.cycles = Some(Vec::new());
         });
+        let memory_bytes = job.state().scene.as_deref().map_or(0, peak_memory_bytes);
         if let Err(e) = self.store.write_status(&record) {
             // The disk still says succeeded; the damage is found again at the next start.
             tracing::error!(%id, "cannot rewrite status.json: {e}");
         }
-        self.queue.push(Arc::clone(job));
+        self.queue.push(Arc::clone(job), memory_bytes);
         Some(record)
     }
 
@@ -528,4 +558,11 @@ fn rebuilt(
             ..record
         },
     }
+}
+
+/// A scene's estimated peak memory, bytes ([`crate::simulation::RunEstimate`]); 0 for one the
+/// simulation refuses, which fails at once without holding memory.
+fn peak_memory_bytes(scene: &Scene) -> u64 {
+    // The estimate is a few floating-point operations from the plan; the cast saturates.
+    Plan::new(scene.clone()).map_or(0, |plan| plan.estimate().memory_bytes as u64)
 }

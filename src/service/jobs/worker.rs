@@ -32,7 +32,8 @@ impl Jobs {
                 std::thread::Builder::new()
                     .name(format!("tribosim-worker-{n}"))
                     .spawn(move || {
-                        while let Some(job) = jobs.queue.next() {
+                        // The lease holds the job's memory in the budget until it ends.
+                        while let Some((job, _lease)) = jobs.queue.next() {
                             jobs.run_job(&job, workers);
                         }
                     })

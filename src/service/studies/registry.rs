@@ -23,7 +23,7 @@ use super::record::{StudyRecord, record_of};
 use super::store::{AxisRecord, StoredMember, StoredStudy, StudyFiles};
 use crate::service::files::Damage;
 use crate::service::jobs::{DeleteError, Deletion, JobRecord, JobStatus, Jobs, Store, SubmitError};
-use crate::service::surfaces::{servable, surface_id};
+use crate::service::surfaces::surface_id;
 use crate::simulation::{Build, Summary};
 use crate::study::{MemberRow, Pending, Study, StudyError, StudySummary, describe_values};
 
@@ -145,14 +145,16 @@ impl Studies {
         // Held until the members are queued, so no surface they name is deleted meanwhile.
         let names_surface = members.iter().any(|m| surface_id(&m.scene).is_some());
         let _hold = names_surface.then(|| jobs.surfaces().hold());
+        let mut memory_bytes = Vec::with_capacity(members.len());
         for member in &members {
-            servable(&member.scene, jobs.surfaces()).map_err(|source| {
+            let bytes = jobs.admissible(&member.scene).map_err(|source| {
                 StudySubmitError::Invalid(StudyError::Member {
                     index: member.index,
                     values: describe_values(&member.values),
                     source,
                 })
             })?;
+            memory_bytes.push(bytes);
         }
         let id = Uuid::new_v4();
         let name = study.name();
@@ -168,7 +170,11 @@ impl Studies {
             .iter()
             .map(|member| member.values.iter().cloned().collect())
             .collect();
-        let scenes = members.into_iter().map(|member| member.scene).collect();
+        let scenes = members
+            .into_iter()
+            .map(|member| member.scene)
+            .zip(memory_bytes)
+            .collect();
         let mut stored = None;
         let begin = |records: &[_]| {
             let ids = records.iter().map(|record: &JobRecord| record.id).collect();
