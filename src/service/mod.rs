@@ -205,7 +205,8 @@ pub fn serve(args: ServeArgs) -> Result<(), ServeError> {
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()?;
-    runtime.block_on(async {
+    let grace = Duration::from_secs(args.limits.shutdown_grace_s);
+    let served = runtime.block_on(async {
         let listener = TcpListener::bind(args.addr)
             .await
             .map_err(|source| ServeError::Bind {
@@ -213,7 +214,12 @@ pub fn serve(args: ServeArgs) -> Result<(), ServeError> {
                 source,
             })?;
         serve_on(args, listener, shutdown_signal()).await
-    })
+    });
+    // A request's blocking work (a report, a parse) still under way when the grace period
+    // ended has no one left to answer: the process does not wait for it past another grace
+    // period, where dropping the runtime would wait for it however long it takes.
+    runtime.shutdown_timeout(grace);
+    served
 }
 
 /// Runs the service on `listener` until `shutdown` completes (the address in `args` is not
