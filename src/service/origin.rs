@@ -105,7 +105,7 @@ fn after_colon(rest: &str) -> Option<Option<&str>> {
     match rest.strip_prefix(':') {
         None if rest.is_empty() => Some(None),
         None => None,
-        Some(port) if port.is_empty() => None,
+        Some("") => None,
         Some(port) => Some(Some(port)),
     }
 }
@@ -172,7 +172,7 @@ impl Guard {
 }
 
 /// `Sec-Fetch-Site`: where a browser's request comes from, relative to the server.
-const SEC_FETCH_SITE: HeaderName = HeaderName::from_static("sec-fetch-site");
+const SEC_FETCH_SITE: &str = "sec-fetch-site";
 
 /// The names of the server itself on `addr`'s port: the loopback names, and the address it
 /// listens on when that is another.
@@ -292,14 +292,14 @@ mod tests {
         .expect("guard")
     }
 
-    fn status(guard: &Guard, method: Method, pairs: &[(&str, &str)]) -> u16 {
+    fn status(guard: &Guard, method: &Method, pairs: &[(&str, &str)]) -> u16 {
         let mut headers = HeaderMap::new();
         for &(name, value) in pairs {
             let name = HeaderName::from_bytes(name.as_bytes()).expect("name");
             headers.insert(name, HeaderValue::from_str(value).expect("value"));
         }
         guard
-            .check(&method, &headers)
+            .check(method, &headers)
             .map_or_else(|e| e.status().as_u16(), |()| 200)
     }
 
@@ -322,7 +322,7 @@ mod tests {
     #[test]
     fn only_the_server_s_names_and_the_allowed_hosts_are_served() {
         let guard = guard(false, &["lab.example", "proxy.example:8443"]);
-        let get = |h: &str| status(&guard, Method::GET, &[("host", h)]);
+        let get = |h: &str| status(&guard, &Method::GET, &[("host", h)]);
         for good in [
             "127.0.0.1:8080",
             "localhost:8080",
@@ -341,7 +341,7 @@ mod tests {
         ] {
             assert_eq!(get(bad), 421, "{bad}");
         }
-        assert_eq!(status(&guard, Method::GET, &[]), 421, "no Host");
+        assert_eq!(status(&guard, &Method::GET, &[]), 421, "no Host");
     }
 
     #[test]
@@ -350,7 +350,7 @@ mod tests {
         let post = |pairs: &[(&str, &str)]| {
             let mut all = vec![("host", "127.0.0.1:8080")];
             all.extend_from_slice(pairs);
-            status(&guard, Method::POST, &all)
+            status(&guard, &Method::POST, &all)
         };
         assert_eq!(post(&[]), 200, "no Origin: not a browser");
         for own in [
@@ -380,11 +380,11 @@ mod tests {
             ("origin", "http://evil.example"),
         ];
         assert_eq!(
-            status(&guard, Method::GET, &from_other),
+            status(&guard, &Method::GET, &from_other),
             200,
             "reads are not refused"
         );
-        assert_eq!(status(&guard, Method::DELETE, &from_other), 403);
+        assert_eq!(status(&guard, &Method::DELETE, &from_other), 403);
     }
 
     #[test]
@@ -394,7 +394,7 @@ mod tests {
             ("host", "rebind.example"),
             ("origin", "http://evil.example"),
         ];
-        assert_eq!(status(&guard, Method::POST, &pairs), 200);
+        assert_eq!(status(&guard, &Method::POST, &pairs), 200);
         let addr = "127.0.0.1:8080".parse().expect("addr");
         let error = Guard::new(addr, false, &["http://lab.example/".to_owned()], &[]);
         assert_eq!(error.err().as_deref(), Some("http://lab.example/"));
