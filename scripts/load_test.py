@@ -329,7 +329,7 @@ def surface_uploads(server: Server, checks: Checks) -> None:
     body = matrix_bytes(2048, 2048)
     body = body[: 64 * MIB - 1] if len(body) >= 64 * MIB else body
     upload = lambda: server.request(  # noqa: E731
-        "POST", "/api/v1/surfaces?format=matrix&pixel_um=0.5", body, "text/plain"
+        "POST", "/api/v1/surfaces?format=matrix&pixel_um=0.5", body, "application/octet-stream"
     )
     before, peak, results = peak_during(server, lambda: parallel([upload] * 4))
     # A client that sends its whole body before reading may see the connection closed
@@ -357,7 +357,10 @@ def surface_pixel(server: Server, checks: Checks) -> list[str]:
     small = matrix_bytes(32, 32)
     kept = []
     status, _, answer = server.request(
-        "POST", "/api/v1/surfaces?format=matrix&pixel_um=1e308", small, "text/plain"
+        "POST",
+        "/api/v1/surfaces?format=matrix&pixel_um=1e308",
+        small,
+        "application/octet-stream",
     )
     checks.check("?pixel_um=1e308 refused", status == 422, f"{status} {answer[:120]!r}")
     kept += [answer.decode()] if status == 201 else []
@@ -382,7 +385,7 @@ def surface_pixel(server: Server, checks: Checks) -> list[str]:
             "POST",
             "/api/v1/surfaces" + query,
             data,
-            "text/plain" if query else "application/octet-stream",
+            "application/octet-stream",
         )
         if status == 201:
             kept.append(answer.decode())

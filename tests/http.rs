@@ -132,7 +132,7 @@ fn slow_client(addr: &str) -> Option<Duration> {
     let connected = Instant::now();
     let mut stream = TcpStream::connect(addr).expect("connect");
     stream
-        .write_all(b"GET /healthz HTTP/1.1\r\nHost: x\r\nX-Slow: ")
+        .write_all(format!("GET /healthz HTTP/1.1\r\nHost: {addr}\r\nX-Slow: ").as_bytes())
         .expect("first bytes");
     stream
         .set_read_timeout(Some(Duration::from_millis(200)))
@@ -229,8 +229,12 @@ async fn sigterm_stops_the_server_within_the_grace_despite_half_sent_requests() 
     let mut half_body = TcpStream::connect(&server.addr).expect("connect");
     half_body
         .write_all(
-            b"POST /api/v1/jobs HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\n\
-              Content-Length: 1000\r\n\r\n{\"name\": ",
+            format!(
+                "POST /api/v1/jobs HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\n\
+                 Content-Length: 1000\r\n\r\n{{\"name\": ",
+                server.addr
+            )
+            .as_bytes(),
         )
         .expect("half a body");
     let mut half_head = TcpStream::connect(&server.addr).expect("connect");
@@ -574,7 +578,7 @@ fn a_connection_with_no_traffic_is_closed_after_the_idle_timeout() {
     );
     let mut stream = TcpStream::connect(&server.addr).expect("connect");
     stream
-        .write_all(b"GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n")
+        .write_all(format!("GET /healthz HTTP/1.1\r\nHost: {}\r\n\r\n", server.addr).as_bytes())
         .expect("request");
     stream
         .set_read_timeout(Some(PATIENCE))

@@ -108,9 +108,17 @@ async fn each_format_is_read_listed_and_deleted_and_bad_maps_are_named() {
     let (status, from_gsf) = upload(&client, &base, "", "application/octet-stream", gsf()).await;
     assert_eq!(status, 201, "{from_gsf}");
     let query = "?pixel_um=4&name=matrix%20map";
-    let (status, from_matrix) = upload(&client, &base, query, "text/plain", matrix().into()).await;
+    let (status, from_matrix) = upload(
+        &client,
+        &base,
+        query,
+        "application/octet-stream",
+        matrix().into(),
+    )
+    .await;
     assert_eq!(status, 201, "{from_matrix}");
-    let (status, from_xyz) = upload(&client, &base, "", "text/plain", xyz().into()).await;
+    let (status, from_xyz) =
+        upload(&client, &base, "", "application/octet-stream", xyz().into()).await;
     assert_eq!(status, 201, "{from_xyz}");
     for (answer, format) in [
         (&from_gsf, "gsf"),
@@ -167,35 +175,35 @@ async fn each_format_is_read_listed_and_deleted_and_bad_maps_are_named() {
     let refusals: [(&str, &str, Vec<u8>, &str, &str); 6] = [
         (
             "?pixel_um=1",
-            "text/plain",
+            "application/octet-stream",
             flat.into(),
             "body",
             "psd_slope is NaN",
         ),
         (
             "?pixel_um=1",
-            "text/plain",
+            "application/octet-stream",
             b"1e-7 2e-7\n3e-7 NaN\n".to_vec(),
             "body",
             "column 1, row 1",
         ),
         (
             "?pixel_um=1",
-            "text/plain",
+            "application/octet-stream",
             b"0 0 0\n0 0\n".to_vec(),
             "body",
             "line 2",
         ),
         (
             "?format=matrix",
-            "text/plain",
+            "application/octet-stream",
             b"0 0\n0 0\n".to_vec(),
             "pixel_um",
             "pixel size",
         ),
         (
             "?pixel_um=-1",
-            "text/plain",
+            "application/octet-stream",
             b"0 0\n0 0\n".to_vec(),
             "pixel_um",
             "\"-1\"",
@@ -220,11 +228,25 @@ async fn each_format_is_read_listed_and_deleted_and_bad_maps_are_named() {
 
     // Too big: more pixels per side than the reader takes, or more bytes than the body limit.
     let wide = format!("{}\n{0}\n", vec!["0"; 4097].join(" "));
-    let (status, answer) = upload(&client, &base, "?pixel_um=1", "text/plain", wide.into()).await;
+    let (status, answer) = upload(
+        &client,
+        &base,
+        "?pixel_um=1",
+        "application/octet-stream",
+        wide.into(),
+    )
+    .await;
     assert_eq!(status, 413, "{answer}");
     assert!(answer["error"].as_str().expect("message").contains("4096"));
     let huge = vec![b'0'; (64 << 20) + 1];
-    let (status, answer) = upload(&client, &base, "?pixel_um=1", "text/plain", huge).await;
+    let (status, answer) = upload(
+        &client,
+        &base,
+        "?pixel_um=1",
+        "application/octet-stream",
+        huge,
+    )
+    .await;
     assert_eq!(status, 413, "{answer}");
     let message = answer["error"].as_str().expect("message");
     assert!(message.contains(&(64u64 << 20).to_string()), "{message}");
@@ -246,11 +268,18 @@ async fn a_measured_scene_runs_on_its_stored_surface_which_survives_a_restart() 
     let client = reqwest::Client::new();
     let mut server = ServerProcess::start(dir.path());
     let base = server.base.clone();
-    let (status, surface) = upload(&client, &base, "", "text/plain", xyz().into()).await;
+    let (status, surface) =
+        upload(&client, &base, "", "application/octet-stream", xyz().into()).await;
     assert_eq!(status, 201, "{surface}");
     let id = surface["id"].as_str().expect("id").to_owned();
-    let (status, spare) =
-        upload(&client, &base, "?pixel_um=4", "text/plain", matrix().into()).await;
+    let (status, spare) = upload(
+        &client,
+        &base,
+        "?pixel_um=4",
+        "application/octet-stream",
+        matrix().into(),
+    )
+    .await;
     assert_eq!(status, 201, "{spare}");
 
     // An unknown id is refused at the field that names it, for a job and a study alike.
@@ -362,7 +391,8 @@ async fn a_stopped_measured_run_keeps_its_surface_statistics_in_the_partial_resu
     let client = reqwest::Client::new();
     let mut server = ServerProcess::start(dir.path());
     let base = server.base.clone();
-    let (status, surface) = upload(&client, &base, "", "text/plain", xyz().into()).await;
+    let (status, surface) =
+        upload(&client, &base, "", "application/octet-stream", xyz().into()).await;
     assert_eq!(status, 201, "{surface}");
     let id = surface["id"].as_str().expect("id");
     // Every cycle solved, and far more cycles than the test waits for: still running when
@@ -456,7 +486,7 @@ async fn uploads_are_bounded_before_they_are_read_and_every_accepted_map_reads_b
         &client,
         &base,
         "?pixel_um=1e308",
-        "text/plain",
+        "application/octet-stream",
         small_matrix(),
     )
     .await;
@@ -478,8 +508,10 @@ async fn uploads_are_bounded_before_they_are_read_and_every_accepted_map_reads_b
     let address = base.trim_start_matches("http://").to_owned();
     let open_slow = || {
         let mut slow = std::net::TcpStream::connect(&address).expect("connect");
-        let head = "POST /api/v1/surfaces?pixel_um=4 HTTP/1.1\r\nHost: x\r\n\
-                    Content-Type: text/plain\r\nContent-Length: 100000\r\n\r\n0";
+        let head = format!(
+            "POST /api/v1/surfaces?pixel_um=4 HTTP/1.1\r\nHost: {address}\r\n\
+             Content-Type: application/octet-stream\r\nContent-Length: 100000\r\n\r\n0"
+        );
         slow.write_all(head.as_bytes()).expect("send the head");
         slow.set_nonblocking(true).expect("non-blocking");
         slow
@@ -490,7 +522,7 @@ async fn uploads_are_bounded_before_they_are_read_and_every_accepted_map_reads_b
     for _ in 0..200 {
         let response = client
             .post(format!("{base}/api/v1/surfaces?pixel_um=4"))
-            .header("content-type", "text/plain")
+            .header("content-type", "application/octet-stream")
             .body(small_matrix())
             .send()
             .await
@@ -515,7 +547,7 @@ async fn uploads_are_bounded_before_they_are_read_and_every_accepted_map_reads_b
     let answer = loop {
         let response = client
             .post(format!("{base}/api/v1/surfaces?pixel_um=4"))
-            .header("content-type", "text/plain")
+            .header("content-type", "application/octet-stream")
             .body(small_matrix())
             .send()
             .await
@@ -555,7 +587,14 @@ async fn heights_in_um_or_nm_are_read_in_their_unit() {
     let client = reqwest::Client::new();
     let server = ServerProcess::start(dir.path());
     let base = server.base.clone();
-    let (status, in_m) = upload(&client, &base, "?pixel_um=4", "text/plain", matrix().into()).await;
+    let (status, in_m) = upload(
+        &client,
+        &base,
+        "?pixel_um=4",
+        "application/octet-stream",
+        matrix().into(),
+    )
+    .await;
     assert_eq!(status, 201, "{in_m}");
     let in_nm: String = matrix()
         .lines()
@@ -569,7 +608,14 @@ async fn heights_in_um_or_nm_are_read_in_their_unit() {
         })
         .collect();
     let query = "?pixel_um=4&height_unit=nm";
-    let (status, from_nm) = upload(&client, &base, query, "text/plain", in_nm.into()).await;
+    let (status, from_nm) = upload(
+        &client,
+        &base,
+        query,
+        "application/octet-stream",
+        in_nm.into(),
+    )
+    .await;
     assert_eq!(status, 201, "{from_nm}");
     // Two roundings of each height (times 1e9, then 1e-9) and the statistics' sums: far
     // within 1e-12 of the rms.
@@ -578,7 +624,8 @@ async fn heights_in_um_or_nm_are_read_in_their_unit() {
         ("?pixel_um=4&height_unit=ft", matrix().into_bytes()),
         ("?height_unit=um", gsf()),
     ] {
-        let (status, answer) = upload(&client, &base, query, "text/plain", body).await;
+        let (status, answer) =
+            upload(&client, &base, query, "application/octet-stream", body).await;
         assert_eq!(status, 422, "{answer}");
         assert_eq!(answer["fields"][0]["path"], "height_unit", "{answer}");
     }

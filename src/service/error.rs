@@ -59,6 +59,11 @@ impl ApiError {
         )
     }
 
+    /// 403: the request may not be made from where it comes (a page of another origin).
+    pub fn forbidden(message: impl Into<String>) -> Self {
+        Self::new(StatusCode::FORBIDDEN, message)
+    }
+
     /// 404: no such job, study, ..., or no such route.
     pub fn not_found(message: impl Into<String>) -> Self {
         Self::new(StatusCode::NOT_FOUND, message)
@@ -101,6 +106,11 @@ impl ApiError {
     /// 415: the body is not declared as what the route reads; `message` says what it must be.
     pub fn unsupported_media_type(message: impl Into<String>) -> Self {
         Self::new(StatusCode::UNSUPPORTED_MEDIA_TYPE, message)
+    }
+
+    /// 421: the request names a host (`Host`) the server does not answer to.
+    pub fn misdirected(message: impl Into<String>) -> Self {
+        Self::new(StatusCode::MISDIRECTED_REQUEST, message)
     }
 
     /// 422: a well-formed request whose content is refused, with the fields at fault: the

@@ -35,6 +35,7 @@ mod listen;
 mod listing;
 mod measurements;
 mod meta;
+mod origin;
 mod reply;
 mod reports;
 mod route;
@@ -102,6 +103,13 @@ pub struct ServeArgs {
     /// Origin allowed to call the API from a browser (repeatable); CORS is off without one.
     #[arg(long = "cors-origin", value_name = "ORIGIN")]
     pub cors_origins: Vec<String>,
+    /// Another host name the server answers to (repeatable), as a reverse proxy forwards
+    /// it in `Host`: NAME for any port, NAME:PORT for one. Without a token the server
+    /// serves only requests for its own address (and localhost) and these (421 otherwise),
+    /// and takes changes only from pages of these origins or --cors-origin (403 otherwise);
+    /// with a token nothing is checked.
+    #[arg(long = "allowed-host", value_name = "NAME[:PORT]")]
+    pub allowed_hosts: Vec<String>,
     /// Serve the web page's files (DIR/index.html, and the rest under /static/) from DIR
     /// instead of the copies built into the binary (for working on the page without
     /// rebuilding).
@@ -136,6 +144,12 @@ pub enum ServeError {
     /// A `--cors-origin` that is not a valid header value.
     #[error("invalid --cors-origin {0:?}")]
     CorsOrigin(String),
+    /// An `--allowed-host` that is not a host name with an optional port.
+    #[error(
+        "invalid --allowed-host {0:?}: give a host name as a browser sends it in `Host`, \
+         NAME or NAME:PORT (an IPv6 address in brackets), without a scheme or a path"
+    )]
+    AllowedHost(String),
     /// A token given both directly and in a file.
     #[error("a token is given twice: pass --token-file, or --token or TRIBOSIM_TOKEN, not both")]
     TokenTwice,
@@ -232,6 +246,19 @@ pub async fn serve_on(
     let addr = listener.local_addr()?;
     let token = check_exposure(addr, args.token()?.as_deref())?;
     let cors = cors_layer(&args.cors_origins)?;
+    let guard = origin::Guard::new(
+        addr,
+        token.is_some(),
+        &args.allowed_hosts,
+        &args.cors_origins,
+    )
+    .map_err(ServeError::AllowedHost)?;
+    if token.is_some() && !args.allowed_hosts.is_empty() {
+        tracing::warn!(
+            "--allowed-host has no effect with a token: a server with a token answers to any \
+             host name"
+        );
+    }
     let data_dir = args.data_dir.clone();
     let capacity = args.queue_capacity.get();
     let (max_members, workers) = (args.max_study_members.get(), args.workers.get());
@@ -303,7 +330,8 @@ pub async fn serve_on(
         tracing::info!("shutting down");
         stop.send_replace(true);
     });
-    listen::run(listener, router::router(app, cors), &limits, stopped).await;
+    let router = router::router(app, cors, Arc::new(guard));
+    listen::run(listener, router, &limits, stopped).await;
     signal.abort();
     jobs.stop();
     tokio::task::spawn_blocking(move || {

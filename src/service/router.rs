@@ -1,7 +1,9 @@
 //! The router: every resource's routes merged into the one table ([`routes`]), the token
 //! check on the API's, JSON answers for unknown paths and methods and for errors made below
-//! the handlers, the limits on a request's target and body, compression, and one log line
-//! per request.
+//! the handlers, the limits on a request's target and body, compression, the checks of
+//! `Host` and `Origin` and the security headers (`origin`), and one log line per request.
+
+use std::sync::Arc;
 
 use axum::Router;
 use axum::extract::{DefaultBodyLimit, Request, State};
@@ -14,6 +16,7 @@ use tower_http::trace::{DefaultMakeSpan, DefaultOnResponse, TraceLayer};
 use tracing::Level;
 
 use super::error::ApiError;
+use super::origin::{self, Guard};
 use super::route::{Endpoint, Route};
 use super::state::AppState;
 use super::{assets, calibrations, jobs, measurements, meta, reports, studies, surfaces};
@@ -50,8 +53,9 @@ pub fn routes() -> Vec<Route> {
 }
 
 /// The router: every route of [`routes`], the token check on those that need it, JSON
-/// answers for unknown paths and methods, the body limit, one log line per request.
-pub(crate) fn router(app: AppState, cors: Option<CorsLayer>) -> Router {
+/// answers for unknown paths and methods, the body limit, the [`Guard`] of a server without
+/// a token, the security headers, one log line per request.
+pub(crate) fn router(app: AppState, cors: Option<CorsLayer>, guard: Arc<Guard>) -> Router {
     let (mut public, mut protected) = (Router::new(), Router::new());
     for endpoint in endpoints() {
         let route = endpoint.route;
@@ -75,17 +79,23 @@ pub(crate) fn router(app: AppState, cors: Option<CorsLayer>) -> Router {
         // Results with pressure maps run to megabytes of JSON (gzip: about a fifth). The
         // default predicate leaves event streams alone, so progress is not buffered.
         .layer(CompressionLayer::new())
+        .with_state(app);
+    let router = match cors {
+        Some(cors) => router.layer(cors),
+        None => router,
+    };
+    // Outside CORS, so that a preflight too is refused under a name that is not the
+    // server's; inside the log, so that refusals are logged; and the headers outermost,
+    // so that every answer has them, refusals included.
+    router
+        .layer(axum::middleware::from_fn_with_state(guard, origin::guard))
         .layer(
             TraceLayer::new_for_http()
                 .make_span_with(DefaultMakeSpan::new().level(Level::INFO))
                 .on_request(())
                 .on_response(DefaultOnResponse::new().level(Level::INFO)),
         )
-        .with_state(app);
-    match cors {
-        Some(cors) => router.layer(cors),
-        None => router,
-    }
+        .layer(axum::middleware::from_fn(origin::security_headers))
 }
 
 /// 414 with the JSON body for a request target over [`MAX_URI_BYTES`].

@@ -131,11 +131,10 @@ async function uploadSurface() {
   const query = new URLSearchParams({ name: file.name });
   const pixel = $(FORM.surfacePixel).value.trim();
   if (pixel !== "") query.set("pixel_um", pixel);
-  const binary = /\.gsf$/i.test(file.name);
   status.textContent = `Uploading ${file.name}…`;
   try {
     const r = await api(`/api/v1/surfaces?${query}`, {
-      method: "POST", headers: { "Content-Type": binary ? "application/octet-stream" : "text/plain" }, body: await file.arrayBuffer(),
+      method: "POST", headers: { "Content-Type": "application/octet-stream" }, body: await file.arrayBuffer(),
     });
     if (!r.ok) {
       status.textContent = `${file.name} refused: ${(r.body && r.body.error) || r.status}`;

@@ -133,7 +133,7 @@ function mapSvg(m, k, e, x, { umPerPx, pMax, rough }) {
   let cells = 0;
   if (rough) {
     cells = m.x_um.length * m.y_um.length;
-    out.push(`<image class="contact" x="0" y="0" width="${pw.toFixed(2)}" height="${ph.toFixed(2)}" preserveAspectRatio="none" style="image-rendering:pixelated" href="${contactPng(m, pMax)}"/>`);
+    out.push(`<image class="contact" x="0" y="0" width="${pw.toFixed(2)}" height="${ph.toFixed(2)}" preserveAspectRatio="none" image-rendering="pixelated" href="${contactPng(m, pMax)}"/>`);
   } else {
     cells = cellRects(out, m, e, umPerPx, pMax);
   }

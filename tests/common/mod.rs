@@ -92,6 +92,7 @@ pub fn args(data_dir: &Path) -> ServeArgs {
         token: None,
         token_file: None,
         cors_origins: Vec::new(),
+        allowed_hosts: Vec::new(),
         static_dir: None,
         limits: Limits::default(),
         budgets: Budgets::default(),

@@ -18,6 +18,7 @@ import { form } from "./steps/form.mjs";
 import { listing } from "./steps/listing.mjs";
 import { measurements } from "./steps/measurements.mjs";
 import { ocp } from "./steps/ocp.mjs";
+import { origin } from "./steps/origin.mjs";
 import { report } from "./steps/report.mjs";
 import { rough } from "./steps/rough.mjs";
 import { run } from "./steps/run.mjs";
@@ -32,6 +33,8 @@ const context = await chromium.launchPersistentContext(profile, {
   args: [
     "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
     "--disable-background-networking", "--disable-component-update", "--disable-sync",
+    // A name of another site that resolves to the server, as after DNS rebinding (steps/origin.mjs).
+    "--host-resolver-rules=MAP rebind.test 127.0.0.1",
   ],
   viewport: { width: 1440, height: 1000 },
   acceptDownloads: true,
@@ -43,11 +46,16 @@ try {
   page.setDefaultTimeout(LONG);
   const errors = [];
   page.on("pageerror", (e) => errors.push(String(e)));
+  // Nothing of the page is refused by its content policy: Chromium logs each refusal, and
+  // the securitypolicyviolation event is reported too.
+  await context.addInitScript(() => document.addEventListener("securitypolicyviolation",
+    (e) => console.error(`securitypolicyviolation: ${e.violatedDirective} ${e.blockedURI}`)));
+  page.on("console", (m) => { if (/securitypolicyviolation|Content Security Policy/i.test(m.text())) errors.push(m.text()); });
   // Nothing the page asks for is missing (a browser asks for /favicon.ico without an icon).
   page.on("response", (r) => { if (r.status() === 404 && !r.url().includes("/api/")) errors.push(`404 ${r.url()}`); });
   // What one step finds and a later one uses (the runs' ids, the run's length, ...).
   const found = {};
-  for (const scenario of [form, run, measurements, report, compare, access, study, calibration, listing, cancel, rough, ocp, views, fig11]) {
+  for (const scenario of [form, run, measurements, report, compare, access, study, calibration, listing, cancel, rough, ocp, views, fig11, origin]) {
     await scenario(page, found);
   }
   assert.deepEqual(errors, [], "errors in the page");

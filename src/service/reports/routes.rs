@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use axum::extract::{FromRef, Query, State};
+use axum::http::{HeaderValue, header};
 use axum::response::Response;
 use axum::routing::on;
 use uuid::Uuid;
@@ -16,6 +17,7 @@ use crate::service::error::ApiError;
 use crate::service::extract::{JobId, StudyId, parse_id};
 use crate::service::jobs::Jobs;
 use crate::service::measurements;
+use crate::service::origin::REPORT_POLICY;
 use crate::service::reply::attachment;
 use crate::service::route::{Endpoint, Verb};
 use crate::service::studies::Studies;
@@ -26,6 +28,17 @@ use crate::simulation::SimulationResult;
 pub const MAX_COMPARED: usize = 8;
 
 const HTML: &str = "text/html; charset=utf-8";
+
+/// A report as a download named `filename`, with the content policy of a report (its
+/// styles are inline, which the page's policy refuses).
+fn report_file(filename: &str, html: String) -> Response {
+    let mut response = attachment(HTML, filename, html);
+    response.headers_mut().insert(
+        header::CONTENT_SECURITY_POLICY,
+        HeaderValue::from_static(REPORT_POLICY),
+    );
+    response
+}
 
 /// The routes, on any state that provides the jobs and the studies.
 pub(crate) fn endpoints<S>() -> Vec<Endpoint<S>>
@@ -67,11 +80,7 @@ async fn job_report(State(jobs): State<Arc<Jobs>>, JobId(id): JobId) -> Result<R
         Ok::<_, ApiError>(run_report(&result, &measured)?)
     })
     .await?;
-    Ok(attachment(
-        HTML,
-        &format!("tribosim-{id}-report.html"),
-        html,
-    ))
+    Ok(report_file(&format!("tribosim-{id}-report.html"), html))
 }
 
 /// The job ids of `?jobs=ID,ID,...`: two to [`MAX_COMPARED`], each once.
@@ -121,7 +130,7 @@ async fn jobs_report(
         Ok::<_, ApiError>(comparison_report(&runs)?)
     })
     .await?;
-    Ok(attachment(HTML, "tribosim-comparison-report.html", html))
+    Ok(report_file("tribosim-comparison-report.html", html))
 }
 
 /// `GET /api/v1/studies/{id}/report`: the study's table and figures, taken now.
@@ -136,8 +145,7 @@ async fn study_report_route(
         Ok::<_, ApiError>(study_report(&name, &summary)?)
     })
     .await?;
-    Ok(attachment(
-        HTML,
+    Ok(report_file(
         &format!("tribosim-study-{id}-report.html"),
         html,
     ))

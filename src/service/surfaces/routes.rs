@@ -89,8 +89,10 @@ where
     }
 }
 
-/// A height map's body: the bytes of its file, declared `application/octet-stream` or
-/// `text/plain` (415 otherwise), read as every body is ([`Body`]) under this route's limit.
+/// A height map's body: the bytes of its file, declared `application/octet-stream` (415
+/// otherwise), read as every body is ([`Body`]) under this route's limit. Not `text/plain`
+/// (nor a form's types): a page of another site may send those without the browser asking
+/// the server first (a CORS "simple" request), so a map could be stored from any page.
 struct MapBody(Bytes);
 
 impl<S> FromRequest<S> for MapBody
@@ -101,15 +103,25 @@ where
     type Rejection = ApiError;
 
     async fn from_request(request: Request, state: &S) -> Result<Self, ApiError> {
-        let declared = essence(request.headers());
-        if !matches!(
-            declared.as_deref(),
-            Some("application/octet-stream" | "text/plain")
-        ) {
-            return Err(ApiError::unsupported_media_type(
-                "a height map must be sent with `Content-Type: application/octet-stream` or \
-                 `text/plain`",
-            ));
+        match essence(request.headers()).as_deref() {
+            Some("application/octet-stream") => {}
+            Some(
+                simple @ ("text/plain"
+                | "application/x-www-form-urlencoded"
+                | "multipart/form-data"),
+            ) => {
+                return Err(ApiError::unsupported_media_type(format!(
+                    "a height map must be sent with `Content-Type: application/octet-stream`, \
+                     whatever its format; not `{simple}`, which a page of another site may \
+                     send without the server's consent"
+                )));
+            }
+            _ => {
+                return Err(ApiError::unsupported_media_type(
+                    "a height map must be sent with `Content-Type: application/octet-stream`, \
+                     whatever its format",
+                ));
+            }
         }
         match Body::from_request(request, state).await {
             Ok(Body(bytes)) => Ok(Self(bytes)),

@@ -46,7 +46,7 @@ class Surfaces:
             raise ValueError(f"a height map is a 2-D array, not {heights.ndim}-D")
         text = io.StringIO()
         require_numpy().savetxt(text, heights, fmt=f"%.{HEIGHT_DIGITS}g")
-        return self._upload(text.getvalue().encode(), "text/plain", pixel_um, name, "matrix")
+        return self._upload(text.getvalue().encode(), pixel_um, name, "matrix")
 
     @_UPLOAD.implements
     def upload_file(
@@ -64,12 +64,11 @@ class Surfaces:
         in m. `name` defaults to the file's name."""
         body = Path(path).read_bytes()
         name = Path(path).name if name is None else name
-        return self._upload(body, "application/octet-stream", pixel_um, name, format, height_unit)
+        return self._upload(body, pixel_um, name, format, height_unit)
 
     def _upload(
         self,
         body: bytes,
-        content_type: str,
         pixel_um: float | None,
         name: str | None,
         format: str | None,
@@ -82,7 +81,11 @@ class Surfaces:
             ("height_unit", height_unit),
         ]
         query = {key: value for key, value in given if value is not None}
-        raw = self._http.json(_UPLOAD, params=query, content=body, content_type=content_type)
+        # Bytes whatever the format: the server refuses `text/plain`, which a web page of
+        # another site could send to it without asking.
+        raw = self._http.json(
+            _UPLOAD, params=query, content=body, content_type="application/octet-stream"
+        )
         return Surface.from_json(raw)
 
     @_LIST.implements
