@@ -83,7 +83,8 @@ pub fn parse_scene_with<T>(
 mod tests {
     use super::super::located::SECTIONS;
     use super::super::{
-        AnodicArea, ArchardCalibration, CycleStep, DomainSize, GridSize, Switch, presets,
+        AnodicArea, ArchardCalibration, CycleStep, DomainSize, GridSize, MAX_LISTED_PROBLEMS,
+        Switch, presets,
     };
     use super::*;
     use serde_json::json;
