@@ -165,7 +165,10 @@ impl From<StudyError> for ApiError {
                     .collect(),
             ),
             e @ StudyError::TooManyMembers { .. } => invalid("axes".into(), e.to_string()),
-            e @ StudyError::NoAxes => invalid("axes".into(), e.to_string()),
+            e @ (StudyError::NoAxes | StudyError::TooManyAxes { .. }) => {
+                invalid("axes".into(), e.to_string())
+            }
+            StudyError::Name(e) => invalid("name".into(), format!("`name`: {e}")),
             StudyError::Shape(e) => invalid(
                 String::new(),
                 format!("a study is {{\"base\": SCENE, \"axes\": {{...}}}}: {e}"),
