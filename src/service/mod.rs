@@ -27,6 +27,7 @@ mod assets;
 mod blocking;
 mod budget;
 mod calibrations;
+mod cursor;
 mod error;
 mod extract;
 mod files;
@@ -64,6 +65,7 @@ pub use route::{Route, Verb};
 pub use router::{BODY_LIMIT_BYTES, MAX_URI_BYTES, routes};
 
 use calibrations::{Calibrations, FitLimits};
+use cursor::CursorKey;
 use extract::BodyTimeout;
 use jobs::{Jobs, Store, Streams};
 use state::AppState;
@@ -276,6 +278,7 @@ pub async fn serve_on(
             keep_alive: keep_alive_interval(limits.idle_timeout_s),
             shutdown: stopped.clone(),
         },
+        cursor_key: CursorKey::random(),
     };
     // Absolute, so that whoever started the server from some folder sees where it writes.
     let data_dir = std::fs::canonicalize(&args.data_dir)

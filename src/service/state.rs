@@ -10,6 +10,7 @@ use std::sync::Arc;
 use axum::extract::FromRef;
 
 use super::calibrations::Calibrations;
+use super::cursor::CursorKey;
 use super::extract::BodyTimeout;
 use super::jobs::{Jobs, Streams};
 use super::studies::Studies;
@@ -28,6 +29,8 @@ pub(crate) struct AppState {
     pub(crate) static_dir: Option<Arc<Path>>,
     pub(crate) body_timeout: BodyTimeout,
     pub(crate) streams: Streams,
+    /// The key the lists' cursors are signed with, drawn at start.
+    pub(crate) cursor_key: CursorKey,
 }
 
 impl FromRef<AppState> for Arc<Jobs> {
@@ -70,5 +73,11 @@ impl FromRef<AppState> for BodyTimeout {
 impl FromRef<AppState> for Streams {
     fn from_ref(app: &AppState) -> Self {
         app.streams.clone()
+    }
+}
+
+impl FromRef<AppState> for CursorKey {
+    fn from_ref(app: &AppState) -> Self {
+        app.cursor_key.clone()
     }
 }

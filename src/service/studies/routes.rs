@@ -14,6 +14,7 @@ use super::registry::{Studies, StudiesError, StudyDeletion, StudySubmitError};
 use crate::json::JsonError;
 use crate::scene::FieldError;
 use crate::service::blocking::blocking;
+use crate::service::cursor::CursorKey;
 use crate::service::error::ApiError;
 use crate::service::extract::{BodyTimeout, JsonBody, JsonRequest, StudyId};
 use crate::service::jobs::{Jobs, SubmitError};
@@ -29,6 +30,7 @@ where
     Arc<Studies>: FromRef<S>,
     Arc<Jobs>: FromRef<S>,
     BodyTimeout: FromRef<S>,
+    CursorKey: FromRef<S>,
 {
     vec![
         Endpoint::api(Verb::Post, "/api/v1/studies", |f| on(f, submit_study)),
