@@ -35,9 +35,9 @@ fn could_be_formula(text: &str) -> bool {
             .any(|(at, split)| text[at + split.len()..].starts_with(FORMULA_STARTS))
 }
 
-/// `text` as one CSV cell: a number as it is; text that could be a formula ([`could_be_formula`])
-/// prefixed with `'`; then quoted when it holds a comma, a semicolon, a tab, a quote or a
-/// line break.
+/// `text` as one CSV cell: a number as it is; text that could be a formula, at its start or
+/// after a separator or line break, prefixed with `'`; then quoted when it holds a comma, a
+/// semicolon, a tab, a quote or a line break.
 pub fn cell(text: &str) -> Cow<'_, str> {
     let neutral: Cow<'_, str> = if could_be_formula(text) && text.trim().parse::<f64>().is_err() {
         Cow::Owned(format!("'{text}"))

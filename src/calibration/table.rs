@@ -52,10 +52,10 @@ pub enum TableError {
         /// The row, from 0 for the header.
         row: usize,
     },
-    /// More columns than [`MAX_COLUMNS`], counted from the header before any cell is read.
+    /// More columns than `MAX_COLUMNS` (32), counted from the header before any cell is read.
     #[error("the table has {0} columns; at most {MAX_COLUMNS}")]
     TooManyColumns(usize),
-    /// A column name past [`COLUMN_NAME_MAX_CHARS`] (its start echoed).
+    /// A column name past `COLUMN_NAME_MAX_CHARS` (64; its start echoed).
     #[error("column `{column}`: the name has {chars} characters; at most {COLUMN_NAME_MAX_CHARS}")]
     LongName {
         /// The name's first characters.
