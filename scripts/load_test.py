@@ -607,7 +607,7 @@ def main() -> int:
         "--report-only", action="store_true", help="print the figures without failing on a budget"
     )
     parser.add_argument("--jobs", type=int, default=5000, help="jobs in the store")
-    parser.add_argument("--axes", type=int, default=200, help="range axes in item 1")
+    parser.add_argument("--axes", type=int, default=16, help="range axes in item 1 (at most 16)")
     parser.add_argument("--only", default="", help="comma-separated item numbers to run")
     args = parser.parse_args()
     binary = os.environ.get("TRIBOSIM_BIN") or "target/release/tribosim"

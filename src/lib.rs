@@ -20,4 +20,5 @@ pub mod service;
 pub mod simulation;
 pub mod study;
 pub mod surface;
+pub mod text;
 pub mod wear;

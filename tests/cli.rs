@@ -57,6 +57,24 @@ fn a_scene_typed_as_the_argument_points_to_standard_input() {
     assert!(message.contains("echo '{}' | tribosim run -"), "{message}");
 }
 
+/// A name of a million characters was run and copied into the result; `tribosim run`
+/// refuses it as the service does (`tests/strings_http.rs`), naming the field and its bound.
+#[test]
+fn a_name_past_its_bound_or_with_hidden_characters_is_refused() {
+    let dir = TempDir::new("cli-name");
+    let long = format!(r#"{{"name": "{}"}}"#, "x".repeat(201));
+    let output = run_in(dir.path(), &["run", "-"], &long);
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(
+        message.contains("name: must be a string of at most 200 characters"),
+        "{message}"
+    );
+    let output = run_in(dir.path(), &["run", "-"], r#"{"name": "a\u0000b"}"#);
+    assert!(!output.status.success());
+    assert!(stderr(&output).contains("U+0000"), "{}", stderr(&output));
+}
+
 #[test]
 fn near_misses_name_the_field_the_preset_and_the_flag_meant() {
     let dir = TempDir::new("cli-near");

@@ -16,6 +16,16 @@
 use serde_json::Value;
 use thiserror::Error;
 
+/// The most columns a table may have: a fit reads at most four, and a header of 100,000
+/// names would cost a comparison of every pair in the check for names given twice.
+pub const MAX_COLUMNS: usize = 32;
+
+/// The longest column name, in characters: a quantity and its unit (`current_density_a_cm2`).
+pub const COLUMN_NAME_MAX_CHARS: usize = 64;
+
+/// How much of a cell that is not a number an error echoes, in characters.
+const ECHOED_CELL_CHARS: usize = 40;
+
 /// Why a table could not be read, or lacks what a fit needs.
 #[derive(Debug, Error)]
 pub enum TableError {
@@ -42,6 +52,17 @@ pub enum TableError {
         /// The row, from 0 for the header.
         row: usize,
     },
+    /// More columns than `MAX_COLUMNS` (32), counted from the header before any cell is read.
+    #[error("the table has {0} columns; at most {MAX_COLUMNS}")]
+    TooManyColumns(usize),
+    /// A column name past `COLUMN_NAME_MAX_CHARS` (64; its start echoed).
+    #[error("column `{column}`: the name has {chars} characters; at most {COLUMN_NAME_MAX_CHARS}")]
+    LongName {
+        /// The name's first characters.
+        column: String,
+        /// Its length.
+        chars: usize,
+    },
     /// A cell that is not a finite number.
     #[error("column `{column}`: row {row} is `{text}`, not a finite number")]
     NotANumber {
@@ -49,7 +70,7 @@ pub enum TableError {
         column: String,
         /// The data row, from 1.
         row: usize,
-        /// What the cell holds.
+        /// What the cell holds (its first 40 characters).
         text: String,
     },
     /// A column named twice or more in the header (after trimming): which one a fit would
@@ -109,6 +130,7 @@ impl Table {
         let header = lines.next().ok_or(TableError::Empty)?;
         let delimiter = if header.contains(';') { ';' } else { ',' };
         let names = fields(header, delimiter).ok_or(TableError::Unclosed { row: 0 })?;
+        check_header(&names)?;
         let mut columns = vec![Vec::new(); names.len()];
         for (index, line) in lines.enumerate() {
             let row = index + 1;
@@ -139,6 +161,7 @@ impl Table {
             Value::Array(rows) => {
                 let first = rows.first().and_then(Value::as_object);
                 let names: Vec<String> = first.ok_or(TableError::Empty)?.keys().cloned().collect();
+                check_header(&names)?;
                 let mut columns = vec![Vec::new(); names.len()];
                 for (index, row) in rows.iter().enumerate() {
                     let object = row.as_object().ok_or_else(|| {
@@ -152,6 +175,7 @@ impl Table {
                 Self::checked(&names, columns)
             }
             Value::Object(map) => {
+                check_header(&map.keys().collect::<Vec<_>>())?;
                 let mut names = Vec::new();
                 let mut columns = Vec::new();
                 for (name, cells) in map {
@@ -308,8 +332,26 @@ fn number(column: &str, row: usize, value: Option<f64>, text: &str) -> Result<f6
         .ok_or_else(|| TableError::NotANumber {
             column: column.to_owned(),
             row,
-            text: text.to_owned(),
+            text: crate::text::cut(text, ECHOED_CELL_CHARS),
         })
+}
+
+/// Refuses a header of more than [`MAX_COLUMNS`] names or a name past
+/// [`COLUMN_NAME_MAX_CHARS`], before any cell is read.
+fn check_header<S: AsRef<str>>(names: &[S]) -> Result<(), TableError> {
+    if names.len() > MAX_COLUMNS {
+        return Err(TableError::TooManyColumns(names.len()));
+    }
+    for name in names {
+        let chars = name.as_ref().chars().count();
+        if chars > COLUMN_NAME_MAX_CHARS {
+            return Err(TableError::LongName {
+                column: crate::text::cut(name.as_ref(), COLUMN_NAME_MAX_CHARS),
+                chars,
+            });
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -395,5 +437,22 @@ mod tests {
         let quoted = Table::parse("\"a, b\",c\n1,\"2\"\n").expect("valid");
         assert_eq!(quoted.names(), ["a, b", "c"]);
         assert_eq!(spellings("volume_mm3"), ["volume_mm3", "volume_um3"]);
+    }
+
+    /// A header of 100,000 names once reached a check of every pair; it is refused on its
+    /// count, and a long name or cell is echoed cut.
+    #[test]
+    fn a_wide_header_or_a_long_name_is_refused_before_the_cells() {
+        let header: Vec<String> = (0..100_000).map(|i| format!("c{i}")).collect();
+        let csv = format!("{}\n1\n", header.join(","));
+        assert!(matches!(
+            Table::from_csv(&csv),
+            Err(TableError::TooManyColumns(100_000))
+        ));
+        let long = "n".repeat(10_000);
+        let refused = Table::from_csv(&format!("cycles,{long}\n1,2\n")).expect_err("long");
+        assert!(refused.to_string().len() < 200, "{refused}");
+        let refused = Table::from_csv(&format!("cycles\n{long}\n")).expect_err("no number");
+        assert!(refused.to_string().len() < 200, "{refused}");
     }
 }

@@ -6,8 +6,9 @@ use super::format::num;
 /// The values a scene field accepts.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Range {
-    /// Any text.
-    Text,
+    /// One line of text of at most this many characters, with no character the text rule
+    /// refuses ([`crate::text`]).
+    Text(usize),
     /// An object of the fields listed under its path.
     Object,
     /// An object of fields, or `null` (or absent) to leave the section out.
@@ -55,7 +56,7 @@ impl Range {
                 value.fract() == 0.0 && value >= lo as f64 && value <= hi as f64
             }
             Self::AutoOrOne => value.to_bits() == 1f64.to_bits(),
-            Self::Text | Self::Object | Self::OptionalObject | Self::OneOf(_) => false,
+            Self::Text(_) | Self::Object | Self::OptionalObject | Self::OneOf(_) => false,
             Self::HardnessTable | Self::Bool | Self::AutoOrCycles(_) => false,
         }
     }
@@ -90,7 +91,7 @@ impl Range {
             format!(" of {unit}")
         };
         match self {
-            Self::Text => "a string".to_owned(),
+            Self::Text(most) => crate::text::describe(most, crate::text::Lines::One),
             Self::Object => "an object of the fields below".to_owned(),
             Self::OptionalObject => {
                 "an object of the fields below, or null or absent for none".to_owned()

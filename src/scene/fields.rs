@@ -34,9 +34,10 @@ const ELASTIC_FEEDS: &str = "E*, G*, nu*, delta-nu (eqs. 6, 8) in the influence 
 pub(super) const NAME: Field = Field {
     path: "name",
     unit: "",
-    range: Range::Text,
-    why: "",
-    meaning: "Free-form label, shown in the job list.",
+    range: Range::Text(crate::text::NAME_MAX_CHARS),
+    why: "it is kept in every job record and list page, and names the downloads",
+    meaning: "Free-form label, shown in the job list. A study's member is named after its \
+              base's name and its values, cut to fit.",
     feeds: "",
 };
 

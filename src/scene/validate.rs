@@ -3,14 +3,14 @@
 //! the allowed range. Whether the contact such a scene describes can be simulated is
 //! judged by the simulation (`simulation::Plan::new`).
 
-use super::field::Field;
+use super::field::{Field, Range};
 use super::fields::{
     ANODIC_AREA_FACTOR, ANODIC_CURRENT, ARCHARD_K, BALL_MODULUS, BALL_POISSON, BALL_RADIUS,
     CALIBRATION_HARDNESS, CALIBRATION_LOAD, CALIBRATION_SPEED, CALIBRATION_TIME,
     CALIBRATION_TRACK_RADIUS, CALIBRATION_VOLUME, CORROSION_POTENTIAL, CYCLE_STEP_BOUND, CYCLES,
     DENSITY, DISC_HARDNESS, DISC_MODULUS, DISC_POISSON, DOMAIN, EXPOSED_AREA, FRICTION, GRID, LOAD,
-    MOLAR_MASS, OCP_AFTER, OCP_BEFORE, REGIME_CHANGE_CYCLE, REGIME_CHANGE_K_BEFORE,
-    REPASSIVATION_TIME, SPEED, SURFACE_HURST, SURFACE_LONG_CUTOFF, SURFACE_RMS_HEIGHT,
+    MOLAR_MASS, NAME, OCP_AFTER, OCP_BEFORE, REGIME_CHANGE_CYCLE, REGIME_CHANGE_K_BEFORE,
+    REPASSIVATION_TIME, SPEED, SURFACE_HURST, SURFACE_ID, SURFACE_LONG_CUTOFF, SURFACE_RMS_HEIGHT,
     SURFACE_RMS_SLOPE, SURFACE_SEED, SURFACE_SHORT_CUTOFF, TAFEL_A, TAFEL_B, TAFEL_ETA_MAX,
     TAFEL_ETA_MIN, THREADS, TOLERANCE, TRACK_RADIUS, VALENCE, YIELD_FACTOR,
 };
@@ -19,10 +19,12 @@ use super::surface::SurfaceKind;
 use super::{
     DomainSize, FieldError, GridSize, MAX_RECORD_CYCLES, RecordCycles, Scene, SolverThreads,
 };
+use crate::text::TextError;
 
 /// All problems with `scene`'s own fields, empty when each is valid.
 pub(super) fn check(scene: &Scene) -> Vec<FieldError> {
     let mut c = Checks::default();
+    c.text(&NAME, &scene.name);
     let ball = &scene.ball;
     c.number(&BALL_RADIUS, ball.radius_mm);
     c.number(&BALL_MODULUS, ball.youngs_modulus_gpa);
@@ -129,11 +131,10 @@ fn check_surface(c: &mut Checks, scene: &Scene) {
         );
     }
     match surface.kind {
-        SurfaceKind::Measured => {
-            if surface.id.as_deref().is_none_or(str::is_empty) {
-                c.fail("disc.surface.id", "a measured surface needs the map's id");
-            }
-        }
+        SurfaceKind::Measured => match surface.id.as_deref() {
+            None | Some("") => c.fail("disc.surface.id", "a measured surface needs the map's id"),
+            Some(id) => c.text(&SURFACE_ID, id),
+        },
         SurfaceKind::Synthetic => check_synthetic(c, surface),
     }
 }
@@ -351,6 +352,21 @@ impl Checks {
         }
     }
 
+    /// The text `value` within `field`'s bound and the text rule ([`crate::text`]), else a
+    /// failure at its path naming the bound or the character refused.
+    fn text(&mut self, field: &Field, value: &str) {
+        let Range::Text(most) = field.range else {
+            return;
+        };
+        match crate::text::check(value, most, crate::text::Lines::One) {
+            Ok(()) => {}
+            Err(TextError::TooLong { chars, .. }) => {
+                self.fail(field.path, field.message(&format!("{chars} characters")));
+            }
+            Err(forbidden) => self.fail(field.path, forbidden.to_string()),
+        }
+    }
+
     /// The whole number `value` within `field`'s range, else a failure at its path.
     fn whole(&mut self, field: &Field, value: u64) {
         if !field.range.admits_whole(value) {
@@ -464,5 +480,38 @@ mod tests {
             c.tafel_overpotential_max_v = -0.05;
         }
         assert!(check(&scene).is_empty(), "{:?}", check(&scene));
+    }
+    /// A name of a million characters was accepted and copied into every record and list
+    /// page; names are bounded and hold no hidden characters, on the command line and the
+    /// service alike (both validate here).
+    #[test]
+    fn the_name_is_bounded_and_holds_no_hidden_characters() {
+        let mut scene = Scene {
+            name: "é".repeat(crate::text::NAME_MAX_CHARS),
+            ..Scene::default()
+        };
+        assert!(check(&scene).is_empty(), "{:?}", check(&scene));
+        scene.name = "x".repeat(1_000_000);
+        let errors = check(&scene);
+        assert_eq!(errors.len(), 1);
+        assert_eq!(errors[0].path, "name");
+        assert!(
+            errors[0]
+                .message
+                .starts_with("must be a string of at most 200 characters")
+                && errors[0].message.ends_with("got 1000000 characters"),
+            "{}",
+            errors[0].message
+        );
+        scene.name = "run\u{202e}3 N".to_owned();
+        let errors = check(&scene);
+        assert_eq!(errors[0].path, "name");
+        assert!(
+            errors[0]
+                .message
+                .starts_with("holds U+202E (a bidirectional control) at character 4"),
+            "{}",
+            errors[0].message
+        );
     }
 }

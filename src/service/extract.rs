@@ -71,10 +71,7 @@ pub(crate) fn parse_id(raw: &str, what: &str) -> Result<Uuid, ApiError> {
 
 /// The first [`ECHOED_ID_CHARS`] characters of `raw`, with an ellipsis if there were more.
 pub(crate) fn cut(raw: &str) -> String {
-    match raw.char_indices().nth(ECHOED_ID_CHARS) {
-        Some((end, _)) => format!("{}...", &raw[..end]),
-        None => raw.to_owned(),
-    }
+    crate::text::cut(raw, ECHOED_ID_CHARS)
 }
 
 /// Seconds a request's body may take to arrive (`--body-timeout-s`), the part of the state

@@ -3,14 +3,15 @@
 //! id), and the next page's URL in a `Link: <...>; rel="next"` header, as GitHub's API pages;
 //! the body stays the JSON array it was. The next page starts after a cursor, the last
 //! item's creation time and id, so items created meanwhile (newer, on the first page) shift
-//! nothing. A resource filters its list by query parameters, one [`Filter`] each: adding a
-//! filter is one entry in the resource's list of filters.
+//! nothing; the cursor is signed for its list and filters (`cursor.rs`), so one the server
+//! did not give for this list is a 400. A resource filters its list by query parameters, one
+//! [`Filter`] each: adding a filter is one entry in the resource's list of filters.
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
 use axum::Json;
-use axum::extract::{FromRequestParts, Query};
+use axum::extract::{FromRef, FromRequestParts, Query};
 use axum::http::request::Parts;
 use axum::http::{HeaderValue, header};
 use axum::response::{IntoResponse, Response};
@@ -18,6 +19,7 @@ use serde::Serialize;
 use time::OffsetDateTime;
 use uuid::Uuid;
 
+use super::cursor::{Cursor, CursorKey, ListScope};
 use super::error::ApiError;
 
 /// Items a page has when `?limit` is not given: a screenful, and about 30 KB of jobs.
@@ -108,51 +110,41 @@ impl<T> Filter<T> {
     }
 }
 
-/// Where a page starts: after the item created at `created_at` with `id`.
-#[derive(Clone, Copy, PartialEq, Eq)]
-struct Cursor {
-    created_at_ns: i128,
-    id: Uuid,
-}
-
-impl Cursor {
-    fn of<T: Listed>(item: &T) -> Self {
-        Self {
-            created_at_ns: item.created_at().unix_timestamp_nanos(),
-            id: item.id(),
-        }
-    }
-
-    /// Whether `item` comes after this cursor in the list's order (newest first, then id).
-    fn precedes<T: Listed>(self, item: &T) -> bool {
-        let at = item.created_at().unix_timestamp_nanos();
-        at < self.created_at_ns || (at == self.created_at_ns && item.id() > self.id)
-    }
-
-    /// `<nanoseconds>-<id>`: opaque to clients, which pass it back as given.
-    fn encode(self) -> String {
-        format!("{}-{}", self.created_at_ns, self.id.simple())
-    }
-
-    fn decode(text: &str) -> Option<Self> {
-        let (at, id) = text.rsplit_once('-')?;
-        Some(Self {
-            created_at_ns: at.parse().ok()?,
-            id: Uuid::try_parse(id).ok()?,
-        })
+/// The cursor of `item`, the last of a page.
+fn cursor_of<T: Listed>(item: &T) -> Cursor {
+    Cursor {
+        created_at_ns: item.created_at().unix_timestamp_nanos(),
+        id: item.id(),
     }
 }
 
-/// The query of a list, as given: `limit`, `cursor` and the filters' parameters.
-pub(crate) struct ListQuery(BTreeMap<String, String>);
+/// Whether `item` comes after `cursor` in the list's order (newest first, then id).
+fn after<T: Listed>(cursor: Cursor, item: &T) -> bool {
+    let at = item.created_at().unix_timestamp_nanos();
+    at < cursor.created_at_ns || (at == cursor.created_at_ns && item.id() > cursor.id)
+}
 
-impl<S: Send + Sync> FromRequestParts<S> for ListQuery {
+/// The query of a list, as given (`limit`, `cursor` and the filters' parameters), and the
+/// key its cursors are signed with.
+pub(crate) struct ListQuery {
+    params: BTreeMap<String, String>,
+    key: CursorKey,
+}
+
+impl<S> FromRequestParts<S> for ListQuery
+where
+    S: Send + Sync,
+    CursorKey: FromRef<S>,
+{
     type Rejection = ApiError;
 
     async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
-        let Query(map) =
+        let Query(params) =
             Query::<BTreeMap<String, String>>::from_request_parts(parts, state).await?;
-        Ok(Self(map))
+        Ok(Self {
+            params,
+            key: CursorKey::from_ref(state),
+        })
     }
 }
 
@@ -173,7 +165,7 @@ impl ListQuery {
         filters: &[Filter<T>],
     ) -> Result<Page<T>, ApiError> {
         let mut tests = Vec::new();
-        for (name, value) in &self.0 {
+        for (name, value) in &self.params {
             match filters.iter().find(|f| f.name() == name) {
                 Some(filter) => tests.push(filter.test(value)?),
                 None if name == "limit" || name == "cursor" => {}
@@ -190,23 +182,40 @@ impl ListQuery {
             }
         }
         let limit = self.limit()?;
-        let after = self.cursor()?;
+        let scope = self.scope(path);
+        let start = self.cursor(&scope)?;
         items.retain(|item| {
-            after.is_none_or(|cursor| cursor.precedes(item)) && tests.iter().all(|t| t(item))
+            start.is_none_or(|cursor| after(cursor, item)) && tests.iter().all(|t| t(item))
         });
         items.sort_by(|a, b| {
             b.created_at()
                 .cmp(&a.created_at())
                 .then(a.id().cmp(&b.id()))
         });
-        let next =
-            (items.len() > limit).then(|| self.next_url(path, Cursor::of(&items[limit - 1])));
+        let next = (items.len() > limit).then(|| {
+            let cursor = cursor_of(&items[limit - 1]).encode(&self.key, &scope);
+            self.next_url(path, &cursor)
+        });
         items.truncate(limit);
         Ok(Page { items, next })
     }
 
+    /// The list a cursor of this query belongs to: `path` and every parameter but `limit`
+    /// and `cursor` (a page size may change mid-walk; the filters may not).
+    fn scope<'a>(&self, path: &'a str) -> ListScope<'a> {
+        ListScope {
+            path,
+            filters: self
+                .params
+                .iter()
+                .filter(|(name, _)| !matches!(name.as_str(), "limit" | "cursor"))
+                .map(|(name, value)| format!("{name}={value}"))
+                .collect(),
+        }
+    }
+
     fn limit(&self) -> Result<usize, ApiError> {
-        let Some(text) = self.0.get("limit") else {
+        let Some(text) = self.params.get("limit") else {
             return Ok(DEFAULT_LIMIT);
         };
         match text.parse::<usize>() {
@@ -217,14 +226,17 @@ impl ListQuery {
         }
     }
 
-    fn cursor(&self) -> Result<Option<Cursor>, ApiError> {
-        self.0
+    /// The cursor the query gives, if the server gave it for this list (its path and
+    /// filters) since it started; a 400 otherwise.
+    fn cursor(&self, scope: &ListScope<'_>) -> Result<Option<Cursor>, ApiError> {
+        self.params
             .get("cursor")
             .map(|text| {
-                Cursor::decode(text).ok_or_else(|| {
+                Cursor::decode(text, &self.key, scope).ok_or_else(|| {
                     ApiError::bad_request(format!(
-                        "?cursor={:?} is not a cursor this server gave (take it from the \
-                         previous page's Link header)",
+                        "?cursor={:?} is not a cursor this server gave for this list and \
+                         these filters (take it from the previous page's Link header; after \
+                         a restart of the server, start again from the first page)",
                         super::extract::cut(text)
                     ))
                 })
@@ -233,16 +245,15 @@ impl ListQuery {
     }
 
     /// The URL of the page after `cursor`: this query with the cursor replaced.
-    fn next_url(&self, path: &str, cursor: Cursor) -> String {
+    fn next_url(&self, path: &str, cursor: &str) -> String {
         let mut url = path.to_owned();
         let mut separator = '?';
-        let cursor = cursor.encode();
         let params = self
-            .0
+            .params
             .iter()
             .filter(|(name, _)| name.as_str() != "cursor")
             .map(|(name, value)| (name.as_str(), value.as_str()))
-            .chain([("cursor", cursor.as_str())]);
+            .chain([("cursor", cursor)]);
         for (name, value) in params {
             url.push(separator);
             separator = '&';
@@ -315,12 +326,13 @@ mod tests {
     }
 
     fn query(pairs: &[(&str, &str)]) -> ListQuery {
-        ListQuery(
-            pairs
+        ListQuery {
+            params: pairs
                 .iter()
                 .map(|(k, v)| ((*k).to_owned(), (*v).to_owned()))
                 .collect(),
-        )
+            key: CursorKey::fixed(1),
+        }
     }
 
     /// The cursor a next URL carries, decoded from its percent-encoding.
@@ -399,5 +411,49 @@ mod tests {
                 "{bad:?}"
             );
         }
+    }
+
+    /// The status of the page `pairs` asks for at `path`: 200 or the refusal's.
+    fn status(path: &str, pairs: &[(&str, &str)]) -> u16 {
+        query(pairs)
+            .page(path, items(), FILTERS)
+            .map_or_else(|e| e.status().as_u16(), |_| 200)
+    }
+
+    /// Forged but well-formed cursors, and cursors from another list or filter, were paged
+    /// from; the docs say a cursor the server did not give is a 400, and now it is.
+    #[test]
+    fn a_cursor_not_given_for_this_list_and_these_filters_is_a_400() {
+        let first = query(&[("status", "done"), ("limit", "1")]).page("/x", items(), FILTERS);
+        let next = first.ok().and_then(|p| p.next).unwrap_or_default();
+        let cursor = cursor_of(&next);
+        let genuine = [
+            ("status", "done"),
+            ("limit", "2"),
+            ("cursor", cursor.as_str()),
+        ];
+        assert_eq!(status("/x", &genuine), 200, "{next}");
+        let other_filter = [("status", "queued"), ("cursor", cursor.as_str())];
+        assert_eq!(status("/x", &other_filter), 400);
+        assert_eq!(status("/x", &[("cursor", cursor.as_str())]), 400);
+        assert_eq!(
+            status("/y", &[("status", "done"), ("cursor", cursor.as_str())]),
+            400
+        );
+        // The position of a real item under a made-up MAC, and the old unsigned form.
+        let forged = format!(
+            "109000000000-{}-{}",
+            Uuid::from_u128(9).simple(),
+            "0".repeat(32)
+        );
+        assert_eq!(
+            status("/x", &[("status", "done"), ("cursor", forged.as_str())]),
+            400
+        );
+        let unsigned = format!("109000000000-{}", Uuid::from_u128(9).simple());
+        assert_eq!(
+            status("/x", &[("status", "done"), ("cursor", unsigned.as_str())]),
+            400
+        );
     }
 }

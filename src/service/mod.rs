@@ -27,6 +27,7 @@ mod assets;
 mod blocking;
 mod budget;
 mod calibrations;
+mod cursor;
 mod error;
 mod extract;
 mod files;
@@ -65,6 +66,7 @@ pub use route::{Route, Verb};
 pub use router::{BODY_LIMIT_BYTES, MAX_URI_BYTES, routes};
 
 use calibrations::{Calibrations, FitLimits};
+use cursor::CursorKey;
 use extract::BodyTimeout;
 use jobs::{Jobs, Store, Streams};
 use state::AppState;
@@ -315,6 +317,7 @@ pub async fn serve_on(
             shutdown: stopped.clone(),
         },
         data_dir: meta::DataDir(Arc::from(data_dir.as_path())),
+        cursor_key: CursorKey::random(),
     };
     tracing::info!(
         %addr,

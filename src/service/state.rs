@@ -10,6 +10,7 @@ use std::sync::Arc;
 use axum::extract::FromRef;
 
 use super::calibrations::Calibrations;
+use super::cursor::CursorKey;
 use super::extract::BodyTimeout;
 use super::jobs::{Jobs, Streams};
 use super::meta::DataDir;
@@ -31,6 +32,8 @@ pub(crate) struct AppState {
     pub(crate) streams: Streams,
     /// The data folder, whose health `/healthz` reports.
     pub(crate) data_dir: DataDir,
+    /// The key the lists' cursors are signed with, drawn at start.
+    pub(crate) cursor_key: CursorKey,
 }
 
 impl FromRef<AppState> for Arc<Jobs> {
@@ -79,5 +82,11 @@ impl FromRef<AppState> for Streams {
 impl FromRef<AppState> for DataDir {
     fn from_ref(app: &AppState) -> Self {
         app.data_dir.clone()
+    }
+}
+
+impl FromRef<AppState> for CursorKey {
+    fn from_ref(app: &AppState) -> Self {
+        app.cursor_key.clone()
     }
 }

@@ -7,6 +7,16 @@ use serde::de::{Deserialize, Deserializer, MapAccess, Visitor};
 use serde_json::{Number, Value};
 
 use super::StudyError;
+use crate::text::{Lines, NAME_MAX_CHARS, check, cut};
+
+/// The longest axis path, in characters: the scene's longest field path is under 50.
+pub const AXIS_PATH_MAX_CHARS: usize = 100;
+
+/// The longest axis value, in characters: a string's own (a name's bound, since an axis of
+/// `name` gives members their names), any other value's as compact JSON (a hardness table
+/// of about 15 rows). Every member's name and scene carry their values, so a value is a
+/// setting, not a data set.
+pub const AXIS_VALUE_MAX_CHARS: usize = NAME_MAX_CHARS;
 
 /// The most intervals a range may have: a study of a million runs is years of a
 /// workstation's time. A range's values are not built when the study is read (each is
@@ -92,9 +102,17 @@ fn number(x: f64, integers: bool) -> Value {
 }
 
 impl Axis {
-    /// Reads an axis's values as written, refusing (and naming the axis) an empty list, a
-    /// malformed range, or a range with no steps.
+    /// Reads an axis's values as written, refusing (and naming the axis) a path past
+    /// [`AXIS_PATH_MAX_CHARS`] or holding a character the text rule refuses, an empty list,
+    /// a value past [`AXIS_VALUE_MAX_CHARS`] (or a string the rule refuses), a malformed
+    /// range, or a range with no steps.
     pub fn from_json(path: String, json: &Value) -> Result<Self, StudyError> {
+        if let Err(e) = check(&path, AXIS_PATH_MAX_CHARS, Lines::One) {
+            return Err(StudyError::Axis {
+                axis: cut(&path, AXIS_PATH_MAX_CHARS),
+                message: format!("the path: {e}"),
+            });
+        }
         let fail = |message: String| StudyError::Axis {
             axis: path.clone(),
             message,
@@ -105,7 +123,12 @@ impl Axis {
             ));
         }
         let values = match json {
-            Value::Array(values) => AxisValues::List(values.clone()),
+            Value::Array(values) => {
+                values.iter().enumerate().try_for_each(|(i, value)| {
+                    check_value(value).map_err(|e| fail(format!("value [{i}]: {e}")))
+                })?;
+                AxisValues::List(values.clone())
+            }
             Value::Object(_) => range(json, fail)?,
             other => {
                 return Err(fail(format!(
@@ -117,6 +140,25 @@ impl Axis {
             return Err(fail("has no values; give at least one".into()));
         }
         Ok(Self { path, values })
+    }
+}
+
+/// A listed value within [`AXIS_VALUE_MAX_CHARS`]: a string as a name is checked
+/// ([`crate::text`]), any other value by the length of its compact JSON.
+fn check_value(value: &Value) -> Result<(), crate::text::TextError> {
+    match value {
+        Value::String(text) => check(text, AXIS_VALUE_MAX_CHARS, Lines::One),
+        other => {
+            let chars = other.to_string().chars().count();
+            if chars > AXIS_VALUE_MAX_CHARS {
+                Err(crate::text::TextError::TooLong {
+                    chars,
+                    max: AXIS_VALUE_MAX_CHARS,
+                })
+            } else {
+                Ok(())
+            }
+        }
     }
 }
 

@@ -4,6 +4,7 @@
 use serde_json::{Map, Value};
 
 use crate::simulation::parse_scene;
+use crate::text::NAME_MAX_CHARS;
 
 use super::{Member, Study, StudyError, describe_values};
 
@@ -55,12 +56,37 @@ impl Study {
             .into_scene();
         // Every member would otherwise carry the base's name, which for a member at another
         // load names the wrong test in a job list or a result file.
-        scene.name = format!("{} [{described}]", scene.name);
+        scene.name = member_name(&scene.name, &described);
         Ok(Member {
             index,
             values,
             scene,
         })
+    }
+}
+
+/// A member's name: its base's name and its values, `base [a = 1, b = 2]`, within the
+/// scene's bound on names ([`NAME_MAX_CHARS`]), which the member's scene is held to when it
+/// runs as every scene is. Past the bound the base's name is cut first, being the same in
+/// every member, where the values tell the members apart; values longer than the whole
+/// bound are cut at their end. A cut is marked `…`.
+fn member_name(base: &str, described: &str) -> String {
+    let values = format!("[{described}]");
+    let whole = format!("{base} {values}");
+    if whole.chars().count() <= NAME_MAX_CHARS {
+        return whole;
+    }
+    let value_chars = values.chars().count();
+    // The base keeps what the values and "… " leave.
+    match NAME_MAX_CHARS.checked_sub(value_chars + 2) {
+        Some(keep) => {
+            let head: String = base.chars().take(keep).collect();
+            format!("{head}… {values}")
+        }
+        None => {
+            let head: String = values.chars().take(NAME_MAX_CHARS - 2).collect();
+            format!("{head}…]")
+        }
     }
 }
 
@@ -106,9 +132,9 @@ mod tests {
 
     #[test]
     fn many_large_ranges_are_refused_on_their_counts_alone() {
-        // 200 axes of a million steps: built in full, each would take 32 MB (6 GB in all);
-        // counted, the study is refused at once.
-        let axes: Map<String, Value> = (0..200)
+        // The most axes, each of a million steps: built in full, each would take 32 MB
+        // (half a GB in all); counted, the study is refused at once.
+        let axes: Map<String, Value> = (0..crate::study::MAX_AXES)
             .map(|i| {
                 let range = serde_json::json!({"from": 0, "to": 1, "steps": 1_000_000});
                 (format!("test.a{i}"), range)
@@ -122,5 +148,33 @@ mod tests {
             matches!(err, StudyError::TooManyMembers { limit: 1000, .. }),
             "{err}"
         );
+    }
+
+    /// A member's name once grew with its base's name and values without bound (a study
+    /// of 900 KB added 158 MB to the store); it now stays within the scene's bound on names,
+    /// its values kept whole where they fit.
+    #[test]
+    fn a_member_name_stays_within_the_bound_and_keeps_its_values() {
+        assert_eq!(member_name("run", "a = 1"), "run [a = 1]");
+        let long_base = "b".repeat(NAME_MAX_CHARS);
+        let name = member_name(&long_base, "test.load_n = 2");
+        assert_eq!(name.chars().count(), NAME_MAX_CHARS);
+        assert!(name.ends_with("b… [test.load_n = 2]"), "{name}");
+        let long_values = "v".repeat(3 * NAME_MAX_CHARS);
+        let name = member_name("run", &long_values);
+        assert_eq!(name.chars().count(), NAME_MAX_CHARS);
+        assert!(name.starts_with("[vvv") && name.ends_with("v…]"), "{name}");
+        // Every member of a study passes the scene's own check of its name.
+        let text = serde_json::json!({
+            "base": {"name": long_base, "test": {"cycles": 20}, "numerics": {"grid": 32}},
+            "axes": {"test.load_n": [2, 5]}
+        })
+        .to_string();
+        let members = Study::parse(&text)
+            .and_then(|s| s.members(10))
+            .expect("valid");
+        for member in members {
+            assert_eq!(member.scene.validate(), Ok(()), "{}", member.scene.name);
+        }
     }
 }

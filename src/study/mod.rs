@@ -18,8 +18,9 @@ use thiserror::Error;
 
 use crate::json::JsonError;
 use crate::scene::{Scene, SceneErrors};
+use crate::text::{Lines, NAME_MAX_CHARS, TextError, check};
 
-pub use axes::{Axis, AxisValues, MAX_RANGE_STEPS};
+pub use axes::{AXIS_PATH_MAX_CHARS, AXIS_VALUE_MAX_CHARS, Axis, AxisValues, MAX_RANGE_STEPS};
 pub use run::{MemberOutcome, run_members};
 pub use summary::{MemberRow, Pending, StudySummary};
 
@@ -27,6 +28,11 @@ pub use summary::{MemberRow, Pending, StudySummary};
 /// (about 6 s a run on one core) 1000 members are hours of a workstation's time, which a
 /// user should ask for knowingly.
 pub const MAX_MEMBERS: usize = 1000;
+
+/// The most axes a study may have: at two values each, 16 axes are 65,536 members, far past
+/// any member limit; an axis of one value is an override, which belongs in the base. Counted
+/// before any axis is read, and it bounds a member's name, which lists every axis's value.
+pub const MAX_AXES: usize = 16;
 
 /// A base scene and the axes along which it varies.
 #[derive(Debug, Clone, PartialEq)]
@@ -63,6 +69,15 @@ pub enum StudyError {
     /// `base` is not a JSON object, so no scene.
     #[error("`base` must be a scene (a JSON object)")]
     BaseNotObject,
+    /// The study's `name` is too long or holds a character the text rule refuses.
+    #[error("`name`: {0}")]
+    Name(#[source] TextError),
+    /// More axes than [`MAX_AXES`].
+    #[error("the study has {axes} axes; at most {MAX_AXES}")]
+    TooManyAxes {
+        /// How many axes it has.
+        axes: usize,
+    },
     /// A study with no axes is a single run.
     #[error("the study has no axes; give at least one under `axes` (or use `tribosim run`)")]
     NoAxes,
@@ -121,10 +136,20 @@ struct StudyFile {
 impl Study {
     /// Parses a study: `{"name": ..., "base": SCENE, "axes": {"test.load_n": [2, 5, 10],
     /// ...}}` (`name` optional), each axis a list of values or `{"from": A, "to": B,
-    /// "steps": N}`. Refuses a key given twice anywhere, as a scene does.
+    /// "steps": N}`. Refuses a key given twice anywhere, as a scene does; a name as a
+    /// scene's name is refused ([`NAME_MAX_CHARS`], [`crate::text`]); more than
+    /// [`MAX_AXES`] axes, counted before any is read.
     pub fn parse(text: &str) -> Result<Self, StudyError> {
         crate::json::from_str(text)?;
         let file: StudyFile = serde_json::from_str(text).map_err(StudyError::Shape)?;
+        if let Some(name) = &file.name {
+            check(name, NAME_MAX_CHARS, Lines::One).map_err(StudyError::Name)?;
+        }
+        if file.axes.0.len() > MAX_AXES {
+            return Err(StudyError::TooManyAxes {
+                axes: file.axes.0.len(),
+            });
+        }
         let axes = file
             .axes
             .0

@@ -99,8 +99,8 @@ pub(in crate::scene) const SURFACE_SEED: Field = Field {
 pub(in crate::scene) const SURFACE_ID: Field = Field {
     path: "disc.surface.id",
     unit: "",
-    range: Range::Text,
-    why: "",
+    range: Range::Text(crate::text::NAME_MAX_CHARS),
+    why: "a file's name or a stored surface's id",
     meaning: "Measured: the map's name; `tribosim run --surface FILE` sets it to the file's \
               name and supplies the map; on the service, the id `POST /api/v1/surfaces` \
               answered.",

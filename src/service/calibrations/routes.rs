@@ -19,6 +19,7 @@ use super::request::{CalibrationRequest, Inputs, invalid};
 use crate::calibration::{CalibrationError, FitKind, Table, check, run_size};
 use crate::scene::Scene;
 use crate::service::blocking::blocking;
+use crate::service::cursor::CursorKey;
 use crate::service::error::ApiError;
 use crate::service::extract::{BodyTimeout, CalibrationId, JsonBody, JsonRequest};
 use crate::service::listing::{ListQuery, Page};
@@ -35,6 +36,7 @@ where
     S: Clone + Send + Sync + 'static,
     Arc<Calibrations>: FromRef<S>,
     BodyTimeout: FromRef<S>,
+    CursorKey: FromRef<S>,
 {
     vec![
         Endpoint::api(Verb::Post, "/api/v1/calibrations", |f| {

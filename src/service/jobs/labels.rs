@@ -3,11 +3,14 @@
 //! after (`PATCH /api/v1/jobs/{id}` with JSON), each bounded so that a job record stays
 //! small in `status.json` and in every list page.
 
+use std::collections::HashSet;
+
 use serde_json::Value;
 
 use super::job::JobRecord;
 use crate::scene::FieldError;
 use crate::service::error::ApiError;
+use crate::text::{Lines, check};
 
 /// The longest sample id, in characters: a lab's specimen code, not a text.
 pub const SAMPLE_MAX_CHARS: usize = 100;
@@ -17,6 +20,13 @@ pub const NOTE_MAX_CHARS: usize = 2000;
 pub const TAGS_MAX: usize = 20;
 /// The longest tag, in characters.
 pub const TAG_MAX_CHARS: usize = 40;
+/// The most tags one request may give, empty and repeated ones included: counted before any
+/// tag is read, so a request of 100,000 tags costs a count, not 100,000 checks. Five times
+/// [`TAGS_MAX`] leaves room for a client that repeats or leaves some empty.
+pub const TAG_ITEMS_MAX: usize = 5 * TAGS_MAX;
+/// The most problems a refusal names; the rest are counted in one more entry, so a refusal
+/// stays small however many fields are at fault.
+const NAMED_ERRORS_MAX: usize = 10;
 
 /// A change of a job's labels: `None` leaves a label as it is; `Some(None)` (or no tags)
 /// clears it.
@@ -27,30 +37,54 @@ pub struct LabelChange {
     tags: Option<Vec<String>>,
 }
 
-/// A text label trimmed, `None` when empty; refused past `max` characters.
-fn text(field: &str, value: &str, max: usize, errors: &mut Vec<FieldError>) -> Option<String> {
+/// A text label trimmed, `None` when empty; refused past `max` characters or holding a
+/// character the text rule refuses ([`crate::text`]; a note may span lines).
+fn text(
+    field: &str,
+    value: &str,
+    max: usize,
+    lines: Lines,
+    errors: &mut Vec<FieldError>,
+) -> Option<String> {
     let value = value.trim();
-    let chars = value.chars().count();
-    if chars > max {
-        errors.push(FieldError::new(
-            field,
-            format!("{chars} characters; at most {max}"),
-        ));
+    if let Err(e) = check(value, max, lines) {
+        errors.push(FieldError::new(field, e.to_string()));
     }
     (!value.is_empty()).then(|| value.to_owned())
 }
 
-/// Tags trimmed, empty ones dropped, each given once; refused past [`TAGS_MAX`] tags, a tag
-/// past [`TAG_MAX_CHARS`] or holding a comma (the list filter's separator).
+/// One line of text: a sample, a tag.
+fn line(field: &str, value: &str, max: usize, errors: &mut Vec<FieldError>) -> Option<String> {
+    text(field, value, max, Lines::One, errors)
+}
+
+/// The refusal of `count` tag items, past [`TAG_ITEMS_MAX`], if it is.
+fn too_many_items(count: usize) -> Option<FieldError> {
+    (count > TAG_ITEMS_MAX).then(|| {
+        FieldError::new(
+            "tags",
+            format!(
+                "{count} tags given; at most {TAGS_MAX} tags ({TAG_ITEMS_MAX} items with \
+                 empty and repeated ones)"
+            ),
+        )
+    })
+}
+
+/// Tags trimmed, empty ones dropped, each given once (in the order first given); refused
+/// past [`TAGS_MAX`] tags, a tag past [`TAG_MAX_CHARS`], holding a comma (the list filter's
+/// separator) or a character the text rule refuses. The caller has checked the count of
+/// items against [`TAG_ITEMS_MAX`].
 fn tags<'a>(values: impl Iterator<Item = &'a str>, errors: &mut Vec<FieldError>) -> Vec<String> {
     let mut tags: Vec<String> = Vec::new();
+    let mut seen: HashSet<String> = HashSet::new();
     for (i, value) in values.enumerate() {
         let field = format!("tags[{i}]");
         if value.contains(',') {
             errors.push(FieldError::new(&field, "a tag cannot hold a comma"));
         }
-        let tag = text(&field, value, TAG_MAX_CHARS, errors);
-        if let Some(tag) = tag.filter(|t| !tags.contains(t)) {
+        let tag = line(&field, value, TAG_MAX_CHARS, errors);
+        if let Some(tag) = tag.filter(|t| seen.insert(t.clone())) {
             tags.push(tag);
         }
     }
@@ -78,13 +112,18 @@ impl From<LabelErrors> for ApiError {
     }
 }
 
-/// `change` unless there are `errors`.
-fn checked(change: LabelChange, errors: Vec<FieldError>) -> Result<LabelChange, LabelErrors> {
+/// `change` unless there are `errors`; of those, the first [`NAMED_ERRORS_MAX`] and a count
+/// of the rest.
+fn checked(change: LabelChange, mut errors: Vec<FieldError>) -> Result<LabelChange, LabelErrors> {
     if errors.is_empty() {
-        Ok(change)
-    } else {
-        Err(LabelErrors(errors))
+        return Ok(change);
     }
+    if errors.len() > NAMED_ERRORS_MAX {
+        let more = errors.len() - NAMED_ERRORS_MAX;
+        errors.truncate(NAMED_ERRORS_MAX);
+        errors.push(FieldError::new("", format!("and {more} more problems")));
+    }
+    Err(LabelErrors(errors))
 }
 
 impl LabelChange {
@@ -94,10 +133,13 @@ impl LabelChange {
         note: Option<&str>,
         tag_list: Option<&str>,
     ) -> Result<Self, LabelErrors> {
+        if let Some(refused) = tag_list.and_then(|t| too_many_items(t.split(',').count())) {
+            return Err(LabelErrors(vec![refused]));
+        }
         let mut errors = Vec::new();
         let change = Self {
-            sample: sample.map(|s| text("sample", s, SAMPLE_MAX_CHARS, &mut errors)),
-            note: note.map(|n| text("note", n, NOTE_MAX_CHARS, &mut errors)),
+            sample: sample.map(|s| line("sample", s, SAMPLE_MAX_CHARS, &mut errors)),
+            note: note.map(|n| text("note", n, NOTE_MAX_CHARS, Lines::Many, &mut errors)),
             tags: tag_list.map(|t| tags(t.split(','), &mut errors)),
         };
         checked(change, errors)
@@ -115,14 +157,14 @@ impl LabelChange {
         for (key, value) in object {
             match key.as_str() {
                 "sample" | "note" => {
-                    let max = if key == "sample" {
-                        SAMPLE_MAX_CHARS
+                    let (max, lines) = if key == "sample" {
+                        (SAMPLE_MAX_CHARS, Lines::One)
                     } else {
-                        NOTE_MAX_CHARS
+                        (NOTE_MAX_CHARS, Lines::Many)
                     };
                     let label = match value {
                         Value::Null => None,
-                        Value::String(s) => text(key, s, max, &mut errors),
+                        Value::String(s) => text(key, s, max, lines, &mut errors),
                         _ => {
                             errors.push(FieldError::new(key, "a string or null"));
                             None
@@ -162,11 +204,16 @@ impl LabelChange {
     }
 }
 
-/// `tags` of a PATCH: an array of strings, or null for none.
+/// `tags` of a PATCH: an array of strings, or null for none; an array past
+/// [`TAG_ITEMS_MAX`] refused on its length alone.
 fn json_tags(value: &Value, errors: &mut Vec<FieldError>) -> Vec<String> {
     match value {
         Value::Null => Vec::new(),
         Value::Array(items) => {
+            if let Some(refused) = too_many_items(items.len()) {
+                errors.push(refused);
+                return Vec::new();
+            }
             let mut strings = Vec::new();
             for (i, item) in items.iter().enumerate() {
                 match item.as_str() {
@@ -231,5 +278,80 @@ mod tests {
         assert_eq!(record.sample, None);
         assert_eq!(record.note.as_deref(), Some("kept"));
         assert_eq!(record.tags, ["x"]);
+    }
+    #[test]
+    fn hidden_characters_are_refused_naming_the_field_the_character_and_its_place() {
+        let error = LabelChange::from_json(&json!({"tags": ["ok", "\u{202e}gpj.exe"]}))
+            .expect_err("a right-to-left override");
+        let LabelErrors(errors) = error;
+        assert_eq!(errors.len(), 1, "{errors:?}");
+        assert_eq!(errors[0].path, "tags[1]");
+        assert!(
+            errors[0]
+                .message
+                .starts_with("holds U+202E (a bidirectional control) at character 1"),
+            "{}",
+            errors[0].message
+        );
+        for (sample, what) in [
+            ("a\0b", "U+0000"),
+            ("x\u{200b}y", "U+200B"),
+            ("S\tT", "U+0009"),
+        ] {
+            let error = LabelChange::from_query(Some(sample), None, None).expect_err(what);
+            let LabelErrors(errors) = error;
+            assert_eq!(errors[0].path, "sample");
+            assert!(errors[0].message.contains(what), "{}", errors[0].message);
+        }
+        // A note is a paragraph: line feeds and tabs are its text.
+        let change = LabelChange::from_json(&json!({"note": "one\n\ttwo"})).expect("a paragraph");
+        assert_eq!(change.note, Some(Some("one\n\ttwo".to_owned())));
+        let error = LabelChange::from_json(&json!({"note": "a\u{2066}b"})).expect_err("an isolate");
+        assert_eq!(fields(error), ["note"]);
+    }
+
+    /// Two PATCHes of 100,000 distinct tags each once held the server for 43 s (a quadratic
+    /// de-duplication of every tag before the count). They are refused on their count, with
+    /// one problem named; speed is not asserted, the shape of the refusal is.
+    #[test]
+    fn a_hundred_thousand_tags_are_refused_on_their_count_in_one_problem() {
+        let many: Vec<String> = (0..100_000).map(|i| format!("t{i}")).collect();
+        let error = LabelChange::from_json(&json!({"tags": many})).expect_err("too many");
+        let LabelErrors(errors) = error;
+        assert_eq!(errors.len(), 1, "{errors:?}");
+        assert_eq!(errors[0].path, "tags");
+        assert!(
+            errors[0]
+                .message
+                .starts_with("100000 tags given; at most 20"),
+            "{}",
+            errors[0].message
+        );
+        let error = LabelChange::from_query(None, None, Some(&many.join(","))).expect_err("many");
+        assert_eq!(fields(error), ["tags"]);
+
+        // At the item bound, every tag is read (in linear time) and the distinct ones counted.
+        let most: Vec<String> = (0..TAG_ITEMS_MAX).map(|i| format!("t{}", i % 30)).collect();
+        let error = LabelChange::from_json(&json!({"tags": most})).expect_err("30 distinct");
+        let LabelErrors(errors) = error;
+        assert_eq!(errors.len(), 1);
+        assert_eq!(errors[0].message, "30 tags; at most 20");
+    }
+
+    #[test]
+    fn a_refusal_names_the_first_problems_and_counts_the_rest() {
+        let bad: Vec<Value> = (0..TAG_ITEMS_MAX).map(|_| Value::from(1)).collect();
+        let error = LabelChange::from_json(&json!({"tags": bad})).expect_err("not strings");
+        let LabelErrors(errors) = error;
+        assert_eq!(errors.len(), NAMED_ERRORS_MAX + 1);
+        assert_eq!(errors[NAMED_ERRORS_MAX].path, "");
+        assert_eq!(errors[NAMED_ERRORS_MAX].message, "and 90 more problems");
+        let keys: serde_json::Map<String, Value> = (0..100_000)
+            .map(|i| (format!("k{i}"), Value::Null))
+            .collect();
+        let error = LabelChange::from_json(&Value::Object(keys)).expect_err("unknown keys");
+        let LabelErrors(errors) = error;
+        assert_eq!(errors.len(), NAMED_ERRORS_MAX + 1);
+        assert_eq!(errors[NAMED_ERRORS_MAX].message, "and 99990 more problems");
     }
 }

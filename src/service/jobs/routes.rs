@@ -20,6 +20,7 @@ use super::labels::LabelChange;
 use super::registry::{Deletion, Jobs};
 use crate::scene::{FieldError, Scene, SceneErrors};
 use crate::service::blocking::blocking;
+use crate::service::cursor::CursorKey;
 use crate::service::error::ApiError;
 use crate::service::extract::{BodyTimeout, JobId, JsonBody, JsonRequest};
 use crate::service::listing::{ListQuery, Page};
@@ -35,6 +36,7 @@ where
     Arc<Jobs>: FromRef<S>,
     Streams: FromRef<S>,
     BodyTimeout: FromRef<S>,
+    CursorKey: FromRef<S>,
 {
     vec![
         Endpoint::api(Verb::Post, "/api/v1/jobs", |f| on(f, submit_job)),

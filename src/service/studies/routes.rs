@@ -14,6 +14,7 @@ use super::registry::{Studies, StudiesError, StudyDeletion, StudySubmitError};
 use crate::json::JsonError;
 use crate::scene::FieldError;
 use crate::service::blocking::blocking;
+use crate::service::cursor::CursorKey;
 use crate::service::error::ApiError;
 use crate::service::extract::{BodyTimeout, JsonBody, JsonRequest, StudyId};
 use crate::service::jobs::{Jobs, SubmitError};
@@ -29,6 +30,7 @@ where
     Arc<Studies>: FromRef<S>,
     Arc<Jobs>: FromRef<S>,
     BodyTimeout: FromRef<S>,
+    CursorKey: FromRef<S>,
 {
     vec![
         Endpoint::api(Verb::Post, "/api/v1/studies", |f| on(f, submit_study)),
@@ -165,7 +167,10 @@ impl From<StudyError> for ApiError {
                     .collect(),
             ),
             e @ StudyError::TooManyMembers { .. } => invalid("axes".into(), e.to_string()),
-            e @ StudyError::NoAxes => invalid("axes".into(), e.to_string()),
+            e @ (StudyError::NoAxes | StudyError::TooManyAxes { .. }) => {
+                invalid("axes".into(), e.to_string())
+            }
+            StudyError::Name(e) => invalid("name".into(), format!("`name`: {e}")),
             StudyError::Shape(e) => invalid(
                 String::new(),
                 format!("a study is {{\"base\": SCENE, \"axes\": {{...}}}}: {e}"),

@@ -12,9 +12,7 @@ use crate::surface::{
     Format, HeightMap, MAX_PIXEL_M, MIN_PIXEL_M, Statistics, SurfaceError, declared_pixels, read,
     read_as,
 };
-
-/// The longest name kept with a surface, in characters.
-const MAX_NAME_CHARS: usize = 200;
+use crate::text::{Lines, NAME_MAX_CHARS, check};
 
 /// The query of an upload: each a string, so a bad value gets this API's own message.
 #[derive(Deserialize)]
@@ -106,13 +104,9 @@ impl UploadQuery {
                     })?,
             ),
         };
+        // A name as a scene's: the same bound and the same rule on characters.
         let name = self.name.unwrap_or_default();
-        if name.chars().count() > MAX_NAME_CHARS {
-            return Err(invalid(
-                "name",
-                format!("the name is longer than {MAX_NAME_CHARS} characters"),
-            ));
-        }
+        check(&name, NAME_MAX_CHARS, Lines::One).map_err(|e| invalid("name", e.to_string()))?;
         Ok(UploadOptions {
             format,
             pixel_m,
