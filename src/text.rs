@@ -117,6 +117,17 @@ pub fn check(text: &str, max_chars: usize, lines: Lines) -> Result<(), TextError
     }
 }
 
+/// `text` made to pass [`check`] for one line of at most `max_chars` characters: its
+/// [`forbidden`] characters dropped, then cut to its first `max_chars`. For text accepted
+/// before the rule bound it (a job's scene stored by an earlier version), which must still
+/// run rather than fail on its name.
+pub fn tidy(text: &str, max_chars: usize) -> String {
+    text.chars()
+        .filter(|&c| forbidden(c, Lines::One).is_none())
+        .take(max_chars)
+        .collect()
+}
+
 /// The first `max_chars` characters of `text`, with `...` after them if there were more: how
 /// much of a refused text an error echoes, so that the refusal of a megabyte is not one.
 pub fn cut(text: &str, max_chars: usize) -> String {
@@ -148,6 +159,16 @@ mod tests {
             .err()
             .map(|e| e.to_string())
             .unwrap_or_default()
+    }
+
+    #[test]
+    fn a_tidied_text_passes_the_rule() {
+        let stored = format!("\u{202E}gpj.exe {}", "é".repeat(300));
+        let tidied = tidy(&stored, 200);
+        assert_eq!(check(&tidied, 200, Lines::One), Ok(()));
+        assert!(tidied.starts_with("gpj.exe é"), "{tidied}");
+        assert_eq!(tidied.chars().count(), 200);
+        assert_eq!(tidy("fine", 200), "fine");
     }
 
     #[test]

@@ -1,4 +1,4 @@
-//! Issue 44's strings over HTTP, against the service in this process: every name has a
+//! User strings over HTTP, against the service in this process: every name has a
 //! bound and refuses hidden characters (as `tribosim run` does, `tests/cli.rs`), a hundred
 //! thousand tags are refused in one problem, a study's summary.csv keeps a `;` value in its
 //! cell, and a list's cursor works only in the list and filters that gave it.
@@ -168,5 +168,47 @@ async fn a_cursor_works_only_in_the_list_and_filters_that_gave_it() {
     // The whole list, for the record: three jobs, none repeated.
     let all = get_json(&client, &server.url("/api/v1/jobs")).await;
     assert_eq!(all.as_array().map(Vec::len), Some(3));
+    server.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_job_stored_before_names_were_bounded_still_runs() {
+    let dir = TempDir::new("strings-stored");
+    let client = reqwest::Client::new();
+    let server = Server::start(args(dir.path())).await;
+    let job = submit(&client, &server.base, &small_scene(3)).await;
+    let id = job["id"].as_str().expect("id").to_owned();
+    wait_for_job(&client, &server.base, &id, is_final).await;
+    server.stop().await;
+
+    // As an earlier version stored it: a name of 1000 characters with a bidi override, and
+    // the job queued when the server stopped.
+    let job_dir = dir.path().join("jobs").join(&id);
+    let read = |file: &str| -> Value {
+        serde_json::from_slice(&std::fs::read(job_dir.join(file)).expect("read")).expect("JSON")
+    };
+    let write = |file: &str, value: &Value| {
+        std::fs::write(job_dir.join(file), serde_json::to_vec(value).expect("JSON"))
+            .expect("write");
+    };
+    let long = format!("\u{202E}{}", "n".repeat(1000));
+    let mut scene = read("scene.json");
+    scene["name"] = Value::from(long.clone());
+    write("scene.json", &scene);
+    let mut status = read("status.json");
+    status["status"] = json!("queued");
+    status["name"] = Value::from(long);
+    write("status.json", &status);
+
+    let server = Server::start(args(dir.path())).await;
+    let done = wait_for_job(&client, &server.base, &id, is_final).await;
+    assert_eq!(done["status"], "succeeded", "{done}");
+    let result = get_json(&client, &server.url(&format!("/api/v1/jobs/{id}/result"))).await;
+    let name = result["scene"]["name"].as_str().unwrap_or_default();
+    assert_eq!(
+        name,
+        "n".repeat(200),
+        "the name as run: hidden characters dropped, cut to 200"
+    );
     server.stop().await;
 }

@@ -34,6 +34,7 @@ use crate::scene::Scene;
 use crate::service::files::{
     Damage, Digest, quarantine, read_json, sweep_temporaries, sync_dir, to_json, write_atomic,
 };
+use crate::text::{Lines, NAME_MAX_CHARS};
 
 const SCENE: &str = "scene.json";
 const STATUS: &str = "status.json";
@@ -213,7 +214,7 @@ impl Store {
 
     /// A job's scene, read back. Blocking.
     pub fn read_scene(&self, id: Uuid) -> Result<Scene, Damage> {
-        read_json(&self.dir(id), SCENE)
+        read_scene(&self.dir(id))
     }
 
     /// Starts a job's cycle log afresh (a re-run replaces what an interrupted run wrote).
@@ -281,12 +282,23 @@ impl Store {
             jobs.push(StoredJob {
                 id,
                 record,
-                scene: read_json(&path, SCENE),
+                scene: read_scene(&path),
                 modified,
             });
         }
         Ok(jobs)
     }
+}
+
+/// The scene stored in a job's directory `dir`. A name stored before names were bounded
+/// (200 characters, no hidden characters) is tidied to pass the bound, so the job runs
+/// (each run checks its scene again) instead of failing on a name that was accepted.
+fn read_scene(dir: &Path) -> Result<Scene, Damage> {
+    let mut scene: Scene = read_json(dir, SCENE)?;
+    if crate::text::check(&scene.name, NAME_MAX_CHARS, Lines::One).is_err() {
+        scene.name = crate::text::tidy(&scene.name, NAME_MAX_CHARS);
+    }
+    Ok(scene)
 }
 
 /// Removes a file or a directory tree.
