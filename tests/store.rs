@@ -8,6 +8,7 @@
 mod common;
 
 use std::collections::BTreeMap;
+use std::ffi::OsStr;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -382,37 +383,45 @@ async fn a_cancelled_job_stays_cancelled_after_kill_9() {
     assert!(job["started_at"].is_string(), "{job}");
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn a_full_disk_answers_507_and_leaves_nothing_behind() {
-    // A 4 MiB tmpfs, filled, as the data directory: mounted in a user and mount namespace of
-    // the server's own, so no privilege is needed where unprivileged namespaces are allowed.
+/// The server on a data directory `dir` that `script` mounts as a tmpfs in a user and mount
+/// namespace of the server's own, so no privilege is needed where unprivileged namespaces
+/// are allowed. `sh -c script` gets `dir` as `$0`, then `extra`, then the server's command
+/// to exec. With the folder as the server sees it (through its `/proc` root); `None`, said
+/// on stderr, where `unshare --user --mount` is not available.
+fn server_on_tmpfs(dir: &Path, script: &str, extra: &[&OsStr]) -> Option<(ServerProcess, PathBuf)> {
     let namespaces = Command::new("unshare")
         .args(["--user", "--map-root-user", "--mount", "true"])
         .status()
         .is_ok_and(|status| status.success());
     if !namespaces {
         eprintln!("skipped: `unshare --user --mount` is not available here");
-        return;
+        return None;
     }
-    let dir = TempDir::new("full-disk");
-    let serve = serve_command(dir.path(), 1);
+    let serve = serve_command(dir, 1);
     let mut command = Command::new("unshare");
     command
-        .args(["--user", "--map-root-user", "--mount", "sh", "-c"])
-        .arg(
-            "mount -t tmpfs -o size=4m tribosim \"$0\" && \
-             { cat /dev/zero > \"$0/filler\" 2>/dev/null; exec \"$@\"; }",
-        )
-        .arg(dir.path())
+        .args(["--user", "--map-root-user", "--mount", "sh", "-c", script])
+        .arg(dir)
+        .args(extra)
         .arg(serve.get_program())
         .args(serve.get_args());
     let server = ServerProcess::spawn(command);
-    // The tmpfs is visible only inside the server's namespace, through its /proc root.
     let inside = PathBuf::from(format!("/proc/{}/root", server.pid())).join(
-        dir.path()
-            .strip_prefix("/")
+        dir.strip_prefix("/")
             .expect("an absolute temporary directory"),
     );
+    Some((server, inside))
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_full_disk_answers_507_and_leaves_nothing_behind() {
+    // A 4 MiB tmpfs, filled, as the data directory.
+    let dir = TempDir::new("full-disk");
+    let script = "mount -t tmpfs -o size=4m tribosim \"$0\" && \
+                  { cat /dev/zero > \"$0/filler\" 2>/dev/null; exec \"$@\"; }";
+    let Some((server, inside)) = server_on_tmpfs(dir.path(), script, &[]) else {
+        return;
+    };
     let client = reqwest::Client::new();
     let response = client
         .post(server.url("/api/v1/jobs"))
@@ -470,34 +479,17 @@ async fn a_full_disk_answers_507_and_leaves_nothing_behind() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_read_only_store_answers_503_with_the_reason_and_keeps_what_it_holds() {
-    // The data directory a tmpfs in the server's own user and mount namespace, as in the
-    // full-disk test, remounted read-only by a watcher in that namespace once the test
-    // creates the trigger file (given up after 60 s, so no process outlives a failed test).
-    let namespaces = Command::new("unshare")
-        .args(["--user", "--map-root-user", "--mount", "true"])
-        .status()
-        .is_ok_and(|status| status.success());
-    if !namespaces {
-        eprintln!("skipped: `unshare --user --mount` is not available here");
-        return;
-    }
+    // Remounted read-only by a watcher in the server's namespace once the test creates the
+    // trigger file (given up after 60 s, so no process outlives a failed test).
     let dir = TempDir::new("read-only");
     let signals = TempDir::new("read-only-trigger");
     let trigger = signals.path().join("remount");
-    let serve = serve_command(dir.path(), 1);
-    let mut command = Command::new("unshare");
-    command
-        .args(["--user", "--map-root-user", "--mount", "sh", "-c"])
-        .arg(
-            "mount -t tmpfs -o size=16m tribosim \"$0\" || exit 1; trigger=\"$1\"; shift; \
-             ( i=0; while [ ! -e \"$trigger\" ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; \
-               [ -e \"$trigger\" ] && mount -o remount,ro \"$0\" ) & exec \"$@\"",
-        )
-        .arg(dir.path())
-        .arg(&trigger)
-        .arg(serve.get_program())
-        .args(serve.get_args());
-    let server = ServerProcess::spawn(command);
+    let script = "mount -t tmpfs -o size=16m tribosim \"$0\" || exit 1; trigger=\"$1\"; shift; \
+                  ( i=0; while [ ! -e \"$trigger\" ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; \
+                    [ -e \"$trigger\" ] && mount -o remount,ro \"$0\" ) & exec \"$@\"";
+    let Some((server, _)) = server_on_tmpfs(dir.path(), script, &[trigger.as_os_str()]) else {
+        return;
+    };
     let client = reqwest::Client::new();
     let job = submit(&client, &server.base, &small_scene(5)).await;
     let id = job["id"].as_str().expect("id").to_owned();
