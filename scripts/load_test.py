@@ -521,9 +521,7 @@ def hostile_parsing(server: Server, checks: Checks, rounds: int) -> None:
     poller.start()
     answers = []
     for _ in range(rounds):
-        answers += parallel(
-            [lambda m=m, p=p, b=b: server.request(m, p, b) for m, p, b in bodies]
-        )
+        answers += parallel([lambda m=m, p=p, b=b: server.request(m, p, b) for m, p, b in bodies])
     stop.set()
     poller.join()
     worst = max(latencies)
