@@ -228,9 +228,10 @@ fn fig11(study: &PaperStudy, n: &PaperNumbers) -> String {
          length. Read so, the curves follow the paper's order at 10 and 60 s, and the EPP \
          one its \"prominent increase at the first cycles\" ({first:.2} at cycle 1), but at \
          300 s both exceed Table 3, by {e300:+.0}% (elastic) and {p300:+.0}% (EPP), the \
-         elastic dent alone being {dent:.2}: the elastic model would no longer underestimate \
-         the measurement, and the EPP one would overestimate it late as well as early, \
-         against the paper's reading of its own figure. That volume also depends on the \
+         elastic dent alone being {dent:.2}: both would lie over the measurement, against two \
+         of the paper's statements, that \"the experimental evolution of wear lies between \
+         the numerical results\" and that \"at longer times, the results for the elastic \
+         behaviour follow the experimental trend\". That volume also depends on the \
          window (the elastic dent still adds 0.06 um at +-128 um). Both models' grooves \
          exceed Table 3 at 300 s since k is fitted on the 3600 s point (Section 5.2: \"only \
          the final value of wear volume is used for determining the wear coefficient\").\n",
