@@ -5,12 +5,17 @@
 //! Every tolerance is the difference the grid makes, measured by running the same scenes on
 //! the paper's window in 128 cells of 2 um ([`tribosim::bench::COARSE_GRID`]) against the
 //! paper's 256 cells of 1 um, and for the whole test `{}` at 96 and 192 cells against the
-//! auto grid's 144 (`tribosim run`; the numbers are in each assertion's comment).
+//! auto grid's 144 (`tribosim run`; the numbers are in each assertion's comment). The
+//! readings of eq. 13 are held on 2 um cells, the page's own, and their tolerances are the
+//! solver's tolerance floor instead (`the_readings_of_eq_13`).
 
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
-use tribosim::bench::{PAPER_GRID, PaperStudy, paper_markdown, write_paper};
+use tribosim::bench::{
+    COARSE_GRID, PAPER_GRID, PaperStudy, Reading, ReadingRun, Verdict, paper_markdown,
+    run_readings, statements, write_paper,
+};
 
 const REGENERATE: &str = "cargo run --release -- bench paper --markdown docs/paper.md \
                           (or TRIBOSIM_WRITE_DOCS=1 cargo test --release --test paper)";
@@ -36,10 +41,18 @@ fn the_depths_of_fig_12_and_the_end_of_yielding_of_fig_10() {
     // (2.2e-4 um both); loaded 0.53080 / 0.53047 and 0.97430 / 0.97398 (3.4e-4, 3.2e-4).
     near("groove at 10", n.groove_depth_um[0], 0.19725, 2.2e-4);
     near("groove at 300", n.groove_depth_um[1], 0.69191, 2.2e-4);
+    // The loaded surface is an output, tracked and no criterion: that the paper's Figs.
+    // 11-12 show it is a conjecture. Of its 0.531 um at 10, 0.197 is groove.
     near("loaded at 10", n.loaded_depth_um[0], 0.53080, 3.4e-4);
     near("loaded at 300", n.loaded_depth_um[1], 0.97430, 3.4e-4);
-    // The paper's two statements, which the loaded surface meets and the groove does not.
-    assert!(n.loaded_depth_um[0] > 0.5 && n.loaded_depth_um[1] < 1.0);
+    // The elastic disc's loaded surface at cycle 1, a dent with no yielding: 0.38480 um,
+    // tracked at the loaded depths' grid tolerance.
+    near(
+        "elastic loaded at 1",
+        n.elastic_loaded_first_um,
+        0.38480,
+        3.4e-4,
+    );
     // Cycle 12 on both grids (and on the auto grid of `{}`).
     assert_eq!(n.plastic_gone_cycle, 12);
 }
@@ -122,6 +135,188 @@ fn the_volumes_of_fig_11_and_table_3() {
             mechanical[i],
             mechanical_tolerance[i],
         );
+    }
+}
+
+#[test]
+fn the_papers_first_cycles_against_the_groove() {
+    // The verdicts the groove gets today, in the order of `statements`, and by how much it
+    // misses (um, 1e-3 mm^3): the gaps are tracked here, so a change that closes or widens
+    // one fails. The misses are Table 3 less the groove values held above, so their
+    // tolerance is theirs (2.2e-4 um, 2.7e-7 mm^3 = 2.7e-4 of 1e-3 mm^3).
+    let expected = [
+        (
+            "depth 0.5 um at 10 s",
+            Verdict::Missed(0.5 - 0.19725),
+            2.2e-4,
+        ),
+        (
+            "EPP over Table 3 at 10 s",
+            Verdict::Missed(0.97 - 0.21716),
+            2.7e-4,
+        ),
+        (
+            "EPP over Table 3 at 60 s",
+            Verdict::Missed(1.09 - 0.39697),
+            2.7e-4,
+        ),
+        ("elastic under Table 3 at 10 s", Verdict::Met, 0.0),
+        ("elastic under Table 3 at 60 s", Verdict::Met, 0.0),
+        ("plastic area gone around cycle 10", Verdict::Met, 0.0),
+        ("depth under 1 um at 300 cycles", Verdict::Met, 0.0),
+    ];
+    let found = statements(&study().numbers());
+    assert_eq!(found.len(), expected.len());
+    for (statement, (what, verdict, tolerance)) in found.iter().zip(expected) {
+        match (statement.verdict, verdict) {
+            (Verdict::Met, Verdict::Met) => {}
+            (Verdict::Missed(by), Verdict::Missed(expected)) => near(what, by, expected, tolerance),
+            (found, _) => panic!("{what}: {found:?}, where the groove gave {verdict:?}"),
+        }
+    }
+}
+
+fn readings() -> &'static [ReadingRun] {
+    static RUNS: OnceLock<Vec<ReadingRun>> = OnceLock::new();
+    RUNS.get_or_init(|| run_readings(COARSE_GRID).expect("the readings' runs"))
+}
+
+fn reading(which: Reading) -> &'static ReadingRun {
+    readings()
+        .iter()
+        .find(|r| r.reading == which)
+        .expect("every reading is run")
+}
+
+/// Each reading of eq. 13 cycled 10 times on 2 um cells (`docs/paper.md`'s readings table).
+/// The runs repeat bit for bit; each tolerance is the largest change over the 10 cycles of
+/// the same runs at `numerics.tolerance` 1e-10 against the default 1e-6 (um, mm^3), the
+/// solver's floor under the reading. (h) solves no contact: its tolerance is round-off.
+#[test]
+fn the_readings_of_eq_13() {
+    let depth = |r: Reading, cycle: usize| reading(r).depth_um[cycle - 1];
+    let volume = |r: Reading, cycle: usize| reading(r).volume_mm3[cycle - 1];
+    // (a), tribosim's rule: 0.19704 um at 10 on 2 um cells, as the library's own run.
+    near(
+        "(a) depth",
+        depth(Reading::WornSurface, 10),
+        0.197_036_71,
+        1.2e-8,
+    );
+    near(
+        "(a) volume",
+        volume(Reading::WornSurface, 10),
+        2.168_988_2e-4,
+        3.1e-11,
+    );
+    // (c) is (a) on a smooth disc, algebraically: they differ by round-off alone.
+    for (c, a) in reading(Reading::UnwornReplacing)
+        .depth_um
+        .iter()
+        .zip(&reading(Reading::WornSurface).depth_um)
+    {
+        near("(c) = (a)", *c, *a, 1e-12);
+    }
+    near(
+        "(b) depth",
+        depth(Reading::UnwornAccumulated, 10),
+        2.386_498_3,
+        1.9e-7,
+    );
+    near(
+        "(b) volume",
+        volume(Reading::UnwornAccumulated, 10),
+        4.411_756_7e-3,
+        5.3e-10,
+    );
+    near(
+        "(b2) depth",
+        depth(Reading::UnwornEveryRow, 10),
+        3.246_648_0,
+        2.0e-6,
+    );
+    near(
+        "(b2) volume",
+        volume(Reading::UnwornEveryRow, 10),
+        5.877_801_2e-3,
+        4.6e-9,
+    );
+    // (d) and (e3) run away until the contact leaves the 0.256 mm window.
+    near(
+        "(d) depth at 1",
+        depth(Reading::SummedAlongTrack, 1),
+        2.223_427_2,
+        1.9e-7,
+    );
+    near(
+        "(d) volume at 1",
+        volume(Reading::SummedAlongTrack, 1),
+        1.751_906_7e-3,
+        3.4e-10,
+    );
+    assert_eq!(reading(Reading::SummedAlongTrack).left_window_at, Some(6));
+    near(
+        "(e3) depth at 8",
+        depth(Reading::PrintedSign, 8),
+        5.580_520_3,
+        8.3e-8,
+    );
+    assert_eq!(reading(Reading::PrintedSign).left_window_at, Some(9));
+    near(
+        "(e1) depth",
+        depth(Reading::OutOfSolveAccumulated, 10),
+        0.793_559_84,
+        1e-8,
+    );
+    near(
+        "(e1) volume",
+        volume(Reading::OutOfSolveAccumulated, 10),
+        6.673_434_6e-4,
+        3.1e-11,
+    );
+    near(
+        "(e2) depth",
+        depth(Reading::OutOfSolveMaximum, 10),
+        0.125_490_21,
+        4.6e-9,
+    );
+    near(
+        "(e2) volume",
+        volume(Reading::OutOfSolveMaximum, 10),
+        1.212_332_0e-4,
+        1e-11,
+    );
+    near(
+        "(g) depth at 1",
+        depth(Reading::UncappedApproach, 1),
+        0.081_560_592,
+        4.3e-9,
+    );
+    near(
+        "(g) depth",
+        depth(Reading::UncappedApproach, 10),
+        0.189_429_50,
+        3.9e-8,
+    );
+    // (h), the rigid-plastic rule cycled in its own groove: over 0.5 um by cycle 5, so no
+    // bound under 0.5 on (a)'s mechanism.
+    for (cycle, expected) in [
+        (1, 0.304_416_805_7),
+        (2, 0.445_740_738_4),
+        (5, 0.716_199_718_1),
+        (10, 1.012_288_612_5),
+    ] {
+        near(
+            "(h) depth",
+            depth(Reading::RigidPlastic, cycle),
+            expected,
+            1e-9,
+        );
+    }
+    // Every reading but the runaways keeps a pressure at the cap through cycle 10 on 2 um
+    // cells; (a)'s cap goes at 11 here, 12 on the paper's mesh.
+    for run in readings().iter().filter(|r| r.left_window_at.is_none()) {
+        assert!(run.capped.iter().all(|&c| c), "{:?}", run.reading);
     }
 }
 

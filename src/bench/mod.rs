@@ -23,7 +23,8 @@ pub use kappa::{
     KappaRow, MeasuredMap, REDUCED_PRESSURES, generated_surface, kappa_rows, surface_rows,
 };
 pub use paper::{
-    COARSE_GRID, PAPER_GRID, PaperNumbers, PaperStudy, TABLE3, markdown as paper_markdown,
+    AROUND_10_CYCLES, COARSE_GRID, PAPER_GRID, PaperNumbers, PaperStudy, READING_CYCLES, Reading,
+    ReadingRun, Statement, TABLE3, Verdict, markdown as paper_markdown, run_readings, statements,
     write as write_paper,
 };
 

@@ -2,7 +2,8 @@
 //! displacement. A profilometer after the test sees the groove; a profile drawn with the
 //! ball in it (the paper's Fig. 12 plots "the non-deformed profile of the alumina ball"
 //! with the numerical profiles) sees the loaded surface, deeper by the disc's share of the
-//! elastic approach. `docs/paper.md` compares both with the paper's figures.
+//! elastic approach. `docs/paper.md` compares the groove with the paper's statements and
+//! reports the loaded surface beside it: that the paper's figures plot it is a conjecture.
 
 use std::borrow::Cow;
 

@@ -5,6 +5,8 @@
 
 mod figures;
 mod numbers;
+mod readings;
+mod statements;
 mod text;
 
 use std::path::Path;
@@ -18,6 +20,8 @@ use crate::simulation::{
 use super::BenchError;
 
 pub use numbers::{PaperNumbers, TABLE3};
+pub use readings::{CYCLES as READING_CYCLES, Reading, ReadingRun, run_all as run_readings};
+pub use statements::{AROUND_10_CYCLES, Statement, Verdict, statements};
 pub use text::markdown;
 
 /// The paper's own mesh for Figs. 10-12 (Section 4.5: 0.256 x 0.256 mm in 256 x 256 cells
@@ -46,6 +50,8 @@ pub struct PaperStudy {
     pub disc_share: f64,
     /// Hertz's contact area of the unworn ball, mm^2 (Fig. 14's comparison).
     pub hertz_area_mm2: f64,
+    /// Each reading of eq. 13 cycled on the paper's scene ([`Reading::ALL`]'s order).
+    pub readings: Vec<ReadingRun>,
 }
 
 impl PaperStudy {
@@ -66,12 +72,21 @@ impl PaperStudy {
             whole,
             disc_share: disc_share(&setup),
             hertz_area_mm2: plan.hertz().contact_area_m2() * 1e6,
+            readings: readings::run_all(COARSE_GRID)?,
         })
     }
 
     /// The numbers the tests hold.
     pub fn numbers(&self) -> PaperNumbers {
         PaperNumbers::of(self)
+    }
+
+    /// The run of `reading`.
+    pub fn reading(&self, reading: Reading) -> &ReadingRun {
+        self.readings
+            .iter()
+            .find(|r| r.reading == reading)
+            .expect("the study runs every reading")
     }
 }
 

@@ -33,6 +33,9 @@ pub struct PaperNumbers {
     pub groove_depth_um: [f64; 2],
     /// The loaded surface's deepest point at cycles 10 and 300, um.
     pub loaded_depth_um: [f64; 2],
+    /// The purely elastic disc's loaded surface at cycle 1, um: the elastic dent with no
+    /// yielding and no groove to speak of.
+    pub elastic_loaded_first_um: f64,
     /// The same by the single-number formula `D + s (delta - D)`, um.
     pub formula_depth_um: [f64; 2],
     /// The first cycle from which no pressure sits at the cap.
@@ -72,6 +75,7 @@ impl PaperNumbers {
         Self {
             groove_depth_um: [depth(10), depth(300)],
             loaded_depth_um: [loaded(10), loaded(300)],
+            elastic_loaded_first_um: record(&study.elastic, 1).loaded_max_depth_um,
             formula_depth_um: [formula(10), formula(300)],
             plastic_gone_cycle: plastic_gone(&study.epp),
             groove_volume_mm3: at_early(&study.epp, &groove),
