@@ -1,4 +1,4 @@
-//! A server without a token serves only its own origin (issue 44, item 3): a request under
+//! A server without a token serves only its own origin: a request under
 //! another host name (DNS rebinding) gets 421, a change sent by a page of another origin
 //! gets 403, a height map in a type a page may send cross-site unasked gets 415, and none of
 //! them stores or deletes anything; `--allowed-host` and `--cors-origin` widen what is

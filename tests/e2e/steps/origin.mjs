@@ -1,4 +1,4 @@
-// A page of another origin against the server without a token (issue 44, item 3): served
+// A page of another origin against the server without a token (docs/operations.md): served
 // from another loopback port, it tries a height map and a job sent as "simple" requests
 // (fetch in no-cors mode, form posts), a JSON job and a DELETE through CORS, and framing the
 // page; a page under another host name (DNS rebinding: Chromium maps rebind.test to
