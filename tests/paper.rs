@@ -181,6 +181,12 @@ fn readings() -> &'static [ReadingRun] {
     RUNS.get_or_init(|| run_readings(COARSE_GRID).expect("the readings' runs"))
 }
 
+/// What a row of the readings table gives: the deepest point (um) or the volume (mm^3).
+enum Quantity {
+    Depth,
+    Volume,
+}
+
 fn reading(which: Reading) -> &'static ReadingRun {
     readings()
         .iter()
@@ -217,87 +223,33 @@ fn the_readings_of_eq_13() {
     {
         near("(c) = (a)", *c, *a, 1e-12);
     }
-    near(
-        "(b) depth",
-        depth(Reading::UnwornAccumulated, 10),
-        2.386_498_3,
-        1.9e-7,
-    );
-    near(
-        "(b) volume",
-        volume(Reading::UnwornAccumulated, 10),
-        4.411_756_7e-3,
-        5.3e-10,
-    );
-    near(
-        "(b2) depth",
-        depth(Reading::UnwornEveryRow, 10),
-        3.246_648_0,
-        2.0e-6,
-    );
-    near(
-        "(b2) volume",
-        volume(Reading::UnwornEveryRow, 10),
-        5.877_801_2e-3,
-        4.6e-9,
-    );
+    // Each row: its label, the reading, the quantity at a cycle, the value and its tolerance.
     // (d) and (e3) run away until the contact leaves the 0.256 mm window.
-    near(
-        "(d) depth at 1",
-        depth(Reading::SummedAlongTrack, 1),
-        2.223_427_2,
-        1.9e-7,
-    );
-    near(
-        "(d) volume at 1",
-        volume(Reading::SummedAlongTrack, 1),
-        1.751_906_7e-3,
-        3.4e-10,
-    );
+    #[rustfmt::skip]
+    let expected = [
+        ("(b) depth", Reading::UnwornAccumulated, Quantity::Depth, 10, 2.386_498_3, 1.9e-7),
+        ("(b) volume", Reading::UnwornAccumulated, Quantity::Volume, 10, 4.411_756_7e-3, 5.3e-10),
+        ("(b2) depth", Reading::UnwornEveryRow, Quantity::Depth, 10, 3.246_648_0, 2.0e-6),
+        ("(b2) volume", Reading::UnwornEveryRow, Quantity::Volume, 10, 5.877_801_2e-3, 4.6e-9),
+        ("(d) depth at 1", Reading::SummedAlongTrack, Quantity::Depth, 1, 2.223_427_2, 1.9e-7),
+        ("(d) volume at 1", Reading::SummedAlongTrack, Quantity::Volume, 1, 1.751_906_7e-3, 3.4e-10),
+        ("(e3) depth at 8", Reading::PrintedSign, Quantity::Depth, 8, 5.580_520_3, 8.3e-8),
+        ("(e1) depth", Reading::OutOfSolveAccumulated, Quantity::Depth, 10, 0.793_559_84, 1e-8),
+        ("(e1) volume", Reading::OutOfSolveAccumulated, Quantity::Volume, 10, 6.673_434_6e-4, 3.1e-11),
+        ("(e2) depth", Reading::OutOfSolveMaximum, Quantity::Depth, 10, 0.125_490_21, 4.6e-9),
+        ("(e2) volume", Reading::OutOfSolveMaximum, Quantity::Volume, 10, 1.212_332_0e-4, 1e-11),
+        ("(g) depth at 1", Reading::UncappedApproach, Quantity::Depth, 1, 0.081_560_592, 4.3e-9),
+        ("(g) depth", Reading::UncappedApproach, Quantity::Depth, 10, 0.189_429_50, 3.9e-8),
+    ];
+    for (label, which, quantity, cycle, value, tolerance) in expected {
+        let got = match quantity {
+            Quantity::Depth => depth(which, cycle),
+            Quantity::Volume => volume(which, cycle),
+        };
+        near(label, got, value, tolerance);
+    }
     assert_eq!(reading(Reading::SummedAlongTrack).left_window_at, Some(6));
-    near(
-        "(e3) depth at 8",
-        depth(Reading::PrintedSign, 8),
-        5.580_520_3,
-        8.3e-8,
-    );
     assert_eq!(reading(Reading::PrintedSign).left_window_at, Some(9));
-    near(
-        "(e1) depth",
-        depth(Reading::OutOfSolveAccumulated, 10),
-        0.793_559_84,
-        1e-8,
-    );
-    near(
-        "(e1) volume",
-        volume(Reading::OutOfSolveAccumulated, 10),
-        6.673_434_6e-4,
-        3.1e-11,
-    );
-    near(
-        "(e2) depth",
-        depth(Reading::OutOfSolveMaximum, 10),
-        0.125_490_21,
-        4.6e-9,
-    );
-    near(
-        "(e2) volume",
-        volume(Reading::OutOfSolveMaximum, 10),
-        1.212_332_0e-4,
-        1e-11,
-    );
-    near(
-        "(g) depth at 1",
-        depth(Reading::UncappedApproach, 1),
-        0.081_560_592,
-        4.3e-9,
-    );
-    near(
-        "(g) depth",
-        depth(Reading::UncappedApproach, 10),
-        0.189_429_50,
-        3.9e-8,
-    );
     // (h), the rigid-plastic rule cycled in its own groove: over 0.5 um by cycle 5, so no
     // bound under 0.5 on (a)'s mechanism.
     for (cycle, expected) in [
