@@ -383,6 +383,18 @@ async fn a_cancelled_job_stays_cancelled_after_kill_9() {
     assert!(job["started_at"].is_string(), "{job}");
 }
 
+/// Submits a study of two small members; the answer's status.
+async fn submit_small_study(client: &reqwest::Client, server: &ServerProcess) -> u16 {
+    let study = json!({"base": small_scene(5), "axes": {"test.load_n": [2, 5]}});
+    let response = client
+        .post(server.url("/api/v1/studies"))
+        .json(&study)
+        .send()
+        .await
+        .expect("submit a study");
+    response.status().as_u16()
+}
+
 /// The server on a data directory `dir` that `script` mounts as a tmpfs in a user and mount
 /// namespace of the server's own, so no privilege is needed where unprivileged namespaces
 /// are allowed. `sh -c script` gets `dir` as `$0`, then `extra`, then the server's command
@@ -451,14 +463,7 @@ async fn a_full_disk_answers_507_and_leaves_nothing_behind() {
         .expect("the filler");
     let length = filler.metadata().expect("filler length").len();
     filler.set_len(length - 8192).expect("free two pages");
-    let study = json!({"base": small_scene(5), "axes": {"test.load_n": [2, 5]}});
-    let response = client
-        .post(server.url("/api/v1/studies"))
-        .json(&study)
-        .send()
-        .await
-        .expect("submit a study");
-    assert_eq!(response.status(), 507);
+    assert_eq!(submit_small_study(&client, &server).await, 507);
     let left: Vec<_> = fs::read_dir(inside.join("studies"))
         .expect("studies directory")
         .collect();
@@ -533,14 +538,7 @@ async fn a_read_only_store_answers_503_with_the_reason_and_keeps_what_it_holds()
         .await
         .expect("relabel");
     assert_eq!(response.status(), 503);
-    let study = json!({"base": small_scene(5), "axes": {"test.load_n": [2, 5]}});
-    let response = client
-        .post(server.url("/api/v1/studies"))
-        .json(&study)
-        .send()
-        .await
-        .expect("submit a study");
-    assert_eq!(response.status(), 503);
+    assert_eq!(submit_small_study(&client, &server).await, 503);
 
     // What was stored is served as it was, and nothing else was added.
     let (status, after) = result(&client, &result_url(&server.base, &id)).await;
