@@ -13,14 +13,15 @@
 
 use std::fmt::Write as _;
 
-use sha2::{Digest, Sha256};
+use hmac::{Hmac, Mac};
+use sha2::Sha256;
 use uuid::Uuid;
+
+/// HMAC-SHA-256, from RustCrypto's `hmac` beside its `sha2`.
+type HmacSha256 = Hmac<Sha256>;
 
 /// Bytes of the MAC a cursor carries: 128 bits, beyond guessing by any number of requests.
 const MAC_BYTES: usize = 16;
-
-/// SHA-256's block, the HMAC's pad length.
-const BLOCK_BYTES: usize = 64;
 
 /// The server's secret for signing cursors: 32 random bytes drawn at start.
 #[derive(Clone)]
@@ -42,38 +43,16 @@ impl CursorKey {
         Self([byte; 32])
     }
 
-    /// HMAC-SHA-256 of `parts` under this key, cut to [`MAC_BYTES`]; each part is preceded
-    /// by its length, so no two different lists of parts sign the same bytes.
-    fn mac(&self, parts: &[&str]) -> [u8; MAC_BYTES] {
-        let lengths: Vec<[u8; 8]> = parts
-            .iter()
-            .map(|p| (p.len() as u64).to_be_bytes())
-            .collect();
-        let framed: Vec<&[u8]> = lengths
-            .iter()
-            .zip(parts)
-            .flat_map(|(length, part)| [&length[..], part.as_bytes()])
-            .collect();
-        let mut mac = [0u8; MAC_BYTES];
-        mac.copy_from_slice(&hmac_sha256(&self.0, &framed)[..MAC_BYTES]);
+    /// The HMAC-SHA-256 of `parts` under this key, ready to finish or verify; each part is
+    /// preceded by its length, so no two different lists of parts sign the same bytes.
+    fn mac(&self, parts: &[&str]) -> HmacSha256 {
+        let mut mac = HmacSha256::new_from_slice(&self.0).expect("HMAC takes a key of any length");
+        for part in parts {
+            mac.update(&(part.len() as u64).to_be_bytes());
+            mac.update(part.as_bytes());
+        }
         mac
     }
-}
-
-/// HMAC-SHA-256 (RFC 2104) of the concatenated `chunks` under `key`, which is shorter than
-/// SHA-256's block and so is padded with zeros, not hashed.
-fn hmac_sha256(key: &[u8; 32], chunks: &[&[u8]]) -> [u8; 32] {
-    let mut padded = [0u8; BLOCK_BYTES];
-    padded[..key.len()].copy_from_slice(key);
-    let mut inner = Sha256::new();
-    inner.update(padded.map(|b| b ^ 0x36));
-    for chunk in chunks {
-        inner.update(chunk);
-    }
-    let mut outer = Sha256::new();
-    outer.update(padded.map(|b| b ^ 0x5c));
-    outer.update(inner.finalize());
-    outer.finalize().into()
 }
 
 /// Where a page starts: after the item created at `created_at_ns` with `id`.
@@ -96,7 +75,7 @@ pub(crate) struct ListScope<'a> {
 
 impl ListScope<'_> {
     /// The MAC of `position` in this list under `key`.
-    fn mac(&self, key: &CursorKey, position: &str) -> [u8; MAC_BYTES] {
+    fn mac(&self, key: &CursorKey, position: &str) -> HmacSha256 {
         let mut parts = vec![self.path];
         parts.extend(self.filters.iter().map(String::as_str));
         parts.push(position);
@@ -114,7 +93,8 @@ impl Cursor {
     pub(crate) fn encode(self, key: &CursorKey, scope: &ListScope<'_>) -> String {
         let position = self.position();
         let mut text = format!("{position}-");
-        for byte in scope.mac(key, &position) {
+        let tag = scope.mac(key, &position).finalize().into_bytes();
+        for byte in &tag[..MAC_BYTES] {
             // Writing to a String cannot fail.
             let _ = write!(text, "{byte:02x}");
         }
@@ -130,13 +110,11 @@ impl Cursor {
             created_at_ns: at.parse().ok()?,
             id: Uuid::try_parse(id).ok()?,
         };
-        let expected = scope.mac(key, &cursor.position());
         // Compared in constant time: how many leading bytes match tells a client nothing.
-        let differ = expected
-            .iter()
-            .zip(&given)
-            .fold(0u8, |acc, (a, b)| acc | (a ^ b));
-        (differ == 0).then_some(cursor)
+        let verified = scope
+            .mac(key, &cursor.position())
+            .verify_truncated_left(&given);
+        verified.is_ok().then_some(cursor)
     }
 }
 
@@ -190,13 +168,16 @@ mod tests {
         assert_eq!(Cursor::decode(&moved, &key, &jobs), None);
     }
 
-    /// RFC 4231's test case 2: the HMAC is the standard one.
+    /// RFC 4231's test case 2, under the key padded with zeros to 32 bytes as a
+    /// [`CursorKey`] holds it: the padding leaves HMAC's value as it is.
     #[test]
     fn the_mac_is_hmac_sha_256() {
         let mut key = [0u8; 32];
         key[..4].copy_from_slice(b"Jefe");
-        let mac = hmac_sha256(&key, &[b"what do ya want ", b"for nothing?"]);
-        let text: String = mac.iter().map(|b| format!("{b:02x}")).collect();
+        let mut mac = HmacSha256::new_from_slice(&key).expect("any length");
+        mac.update(b"what do ya want for nothing?");
+        let tag = mac.finalize().into_bytes();
+        let text: String = tag.iter().map(|b| format!("{b:02x}")).collect();
         assert_eq!(
             text,
             "5bdcc146bf60754e6a042426089575c75a003f089d2739839dec58b964ec3843"
