@@ -10,6 +10,17 @@ use serde::{Deserialize, Serialize};
 /// past the first screenful anyway.
 pub const MAX_LISTED_PROBLEMS: usize = 20;
 
+/// `errors` as a refusal lists them: the first [`MAX_LISTED_PROBLEMS`], and one more entry
+/// counting the rest when there are more.
+pub fn listed(mut errors: Vec<FieldError>) -> Vec<FieldError> {
+    if errors.len() > MAX_LISTED_PROBLEMS {
+        let more = errors.len() - MAX_LISTED_PROBLEMS;
+        errors.truncate(MAX_LISTED_PROBLEMS);
+        errors.push(FieldError::new("", format!("and {more} more problems")));
+    }
+    errors
+}
+
 /// One problem in a scene, located by a dotted path such as `test.load_n` or
 /// `disc.hardness_table[2][0]` (empty for the document as a whole).
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]

@@ -38,7 +38,7 @@ pub use auto_or::{CycleStep, DomainSize, FixedStrideError, GridSize, SolverThrea
 pub use corrosion::{
     AnodicArea, Corrosion, PAPER_CORROSION_POTENTIAL_V, PAPER_REPASSIVATION_TIME_S,
 };
-pub use error::{FieldError, FieldWarning, MAX_LISTED_PROBLEMS, SceneErrors};
+pub use error::{FieldError, FieldWarning, MAX_LISTED_PROBLEMS, SceneErrors, listed};
 pub use field::{Field, Range};
 pub use fields::{FIELDS, field};
 pub use parse::{parse_scene, parse_scene_str, parse_scene_str_with, parse_scene_with};

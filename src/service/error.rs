@@ -18,7 +18,7 @@ use serde::Serialize;
 use tokio::task::JoinError;
 
 use super::files::is_disk_full;
-use crate::scene::{FieldError, MAX_LISTED_PROBLEMS, SceneErrors};
+use crate::scene::{FieldError, SceneErrors, listed};
 
 /// An HTTP error answer: status, message, located fields and an optional Retry-After.
 #[derive(Debug)]
@@ -116,14 +116,9 @@ impl ApiError {
     /// 422: a well-formed request whose content is refused, with the fields at fault: the
     /// first [`MAX_LISTED_PROBLEMS`] and a last entry counting the others, so a body of a
     /// hundred thousand faults is not echoed back a hundred times larger.
-    pub fn unprocessable(message: impl Into<String>, mut fields: Vec<FieldError>) -> Self {
-        if fields.len() > MAX_LISTED_PROBLEMS {
-            let more = fields.len() - MAX_LISTED_PROBLEMS;
-            fields.truncate(MAX_LISTED_PROBLEMS);
-            fields.push(FieldError::new("", format!("and {more} more problems")));
-        }
+    pub fn unprocessable(message: impl Into<String>, fields: Vec<FieldError>) -> Self {
         Self {
-            fields,
+            fields: listed(fields),
             ..Self::new(StatusCode::UNPROCESSABLE_ENTITY, message)
         }
     }

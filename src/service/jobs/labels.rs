@@ -8,7 +8,7 @@ use std::collections::HashSet;
 use serde_json::Value;
 
 use super::job::JobRecord;
-use crate::scene::FieldError;
+use crate::scene::{FieldError, listed};
 use crate::service::error::ApiError;
 use crate::text::{Lines, check};
 
@@ -24,9 +24,6 @@ pub const TAG_MAX_CHARS: usize = 40;
 /// tag is read, so a request of 100,000 tags costs a count, not 100,000 checks. Five times
 /// [`TAGS_MAX`] leaves room for a client that repeats or leaves some empty.
 pub const TAG_ITEMS_MAX: usize = 5 * TAGS_MAX;
-/// The most problems a refusal names; the rest are counted in one more entry, so a refusal
-/// stays small however many fields are at fault.
-const NAMED_ERRORS_MAX: usize = 10;
 
 /// A change of a job's labels: `None` leaves a label as it is; `Some(None)` (or no tags)
 /// clears it.
@@ -112,18 +109,13 @@ impl From<LabelErrors> for ApiError {
     }
 }
 
-/// `change` unless there are `errors`; of those, the first [`NAMED_ERRORS_MAX`] and a count
-/// of the rest.
-fn checked(change: LabelChange, mut errors: Vec<FieldError>) -> Result<LabelChange, LabelErrors> {
+/// `change` unless there are `errors`; of those, the ones a refusal lists ([`listed`]), so
+/// its message, which names each, stays small however many fields are at fault.
+fn checked(change: LabelChange, errors: Vec<FieldError>) -> Result<LabelChange, LabelErrors> {
     if errors.is_empty() {
         return Ok(change);
     }
-    if errors.len() > NAMED_ERRORS_MAX {
-        let more = errors.len() - NAMED_ERRORS_MAX;
-        errors.truncate(NAMED_ERRORS_MAX);
-        errors.push(FieldError::new("", format!("and {more} more problems")));
-    }
-    Err(LabelErrors(errors))
+    Err(LabelErrors(listed(errors)))
 }
 
 impl LabelChange {
@@ -233,6 +225,7 @@ fn json_tags(value: &Value, errors: &mut Vec<FieldError>) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::MAX_LISTED_PROBLEMS;
     use serde_json::json;
 
     fn fields(LabelErrors(errors): LabelErrors) -> Vec<String> {
@@ -343,15 +336,18 @@ mod tests {
         let bad: Vec<Value> = (0..TAG_ITEMS_MAX).map(|_| Value::from(1)).collect();
         let error = LabelChange::from_json(&json!({"tags": bad})).expect_err("not strings");
         let LabelErrors(errors) = error;
-        assert_eq!(errors.len(), NAMED_ERRORS_MAX + 1);
-        assert_eq!(errors[NAMED_ERRORS_MAX].path, "");
-        assert_eq!(errors[NAMED_ERRORS_MAX].message, "and 90 more problems");
+        assert_eq!(errors.len(), MAX_LISTED_PROBLEMS + 1);
+        assert_eq!(errors[MAX_LISTED_PROBLEMS].path, "");
+        assert_eq!(errors[MAX_LISTED_PROBLEMS].message, "and 80 more problems");
         let keys: serde_json::Map<String, Value> = (0..100_000)
             .map(|i| (format!("k{i}"), Value::Null))
             .collect();
         let error = LabelChange::from_json(&Value::Object(keys)).expect_err("unknown keys");
         let LabelErrors(errors) = error;
-        assert_eq!(errors.len(), NAMED_ERRORS_MAX + 1);
-        assert_eq!(errors[NAMED_ERRORS_MAX].message, "and 99990 more problems");
+        assert_eq!(errors.len(), MAX_LISTED_PROBLEMS + 1);
+        assert_eq!(
+            errors[MAX_LISTED_PROBLEMS].message,
+            "and 99980 more problems"
+        );
     }
 }
