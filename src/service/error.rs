@@ -113,9 +113,10 @@ impl ApiError {
         Self::new(StatusCode::MISDIRECTED_REQUEST, message)
     }
 
-    /// 422: a well-formed request whose content is refused, with the fields at fault: the
-    /// first [`MAX_LISTED_PROBLEMS`] and a last entry counting the others, so a body of a
-    /// hundred thousand faults is not echoed back a hundred times larger.
+    /// 422: a well-formed request whose content is refused, with the fields at fault as
+    /// [`listed`] lists them (the first [`crate::scene::MAX_LISTED_PROBLEMS`] and a count of
+    /// the others), so a body of a hundred thousand faults is not echoed back a hundred
+    /// times larger.
     pub fn unprocessable(message: impl Into<String>, fields: Vec<FieldError>) -> Self {
         Self {
             fields: listed(fields),
