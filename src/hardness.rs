@@ -4,6 +4,12 @@
 use nalgebra::{DMatrix, DVector};
 use thiserror::Error;
 
+mod cap;
+
+pub use cap::{
+    TABOR_REPRESENTATIVE_STRAIN, TABOR_SPHERE_STRAIN_PER_A_OVER_R, YieldCap, pass_strain,
+};
+
 /// Why a hardness law could not be built from a table.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum HardnessError {

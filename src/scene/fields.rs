@@ -139,6 +139,34 @@ pub(super) const YIELD_FACTOR: Field = Field {
     feeds: "the pressure cap p <= Y (eq. 12)",
 };
 
+/// `disc.yield_cap`.
+pub(super) const YIELD_CAP: Field = Field {
+    path: "disc.yield_cap",
+    unit: "",
+    range: Range::OneOf(&["hardness", "strain_hardening"]),
+    why: "",
+    meaning: "How the cap Y follows the disc's hardening. `hardness`: Y = H(n) / \
+              yield_factor from the first pass (the paper's eq. 12). `strain_hardening`: Y \
+              starts at `initial_yield_strength_mpa` and rises, linearly in the surface's \
+              plastic strain (Tabor's 0.2 a / R for each pass that yields), to H(n) / \
+              yield_factor at Tabor's representative strain of 8%; the result's \
+              `plasticity` model and each record's `yield_pressure_mpa` give the cap.",
+    feeds: "the cap p <= Y (eq. 12) at each cycle",
+};
+
+/// `disc.initial_yield_strength_mpa`.
+pub(super) const INITIAL_YIELD: Field = Field {
+    path: "disc.initial_yield_strength_mpa",
+    unit: "MPa",
+    range: Range::Positive,
+    why: "",
+    meaning: "The unstrained disc's yield strength (0.2% proof stress); the default is \
+              annealed 316L's typical 290 MPa (AK Steel's 316/316L data sheet). Used by \
+              `yield_cap: \"strain_hardening\"`; a value above H / yield_factor leaves the \
+              paper's cap.",
+    feeds: "the first cycles' cap p <= Y (eq. 12)",
+};
+
 /// `test.load_n`.
 pub(super) const LOAD: Field = Field {
     path: "test.load_n",
@@ -461,6 +489,8 @@ pub const FIELDS: &[Field] = &[
     HARDNESS_TABLE,
     HARDNESS_FIT_INCLUDES_BULK,
     YIELD_FACTOR,
+    YIELD_CAP,
+    INITIAL_YIELD,
     SURFACE,
     SURFACE_KIND,
     SURFACE_RMS_HEIGHT,

@@ -46,9 +46,9 @@ pub use preset::{DALMAU2018_316L, Preset, dalmau2018_316l, presets};
 pub use record::{MAX_RECORD_CYCLES, RecordCycles, TABLE3_TIMES_S};
 pub use reference::{FIELDS_BEGIN, FIELDS_END, field_table};
 pub use sections::{
-    ArchardCalibration, Ball, DEFAULT_TOLERANCE, Disc, Numerics, PAPER_ARCHARD_CALIBRATION,
-    PAPER_CYCLES, PAPER_HARDNESS_TABLE, PAPER_TABLE3, STEP_CHANGE_BOUND, Switch, Table3Row,
-    TestConditions, Wear,
+    ANNEALED_316L_PROOF_STRESS_MPA, ArchardCalibration, Ball, DEFAULT_TOLERANCE, Disc, Numerics,
+    PAPER_ARCHARD_CALIBRATION, PAPER_CYCLES, PAPER_HARDNESS_TABLE, PAPER_TABLE3, STEP_CHANGE_BOUND,
+    Switch, Table3Row, TestConditions, Wear, YieldCapLaw,
 };
 pub use surface::{DEFAULT_HURST, MAX_RMS_HEIGHT_UM, MAX_RMS_SLOPE, SurfaceKind, SurfaceSpec};
 

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use super::auto_or::{CycleStep, DomainSize, GridSize, SolverThreads};
 use super::record::RecordCycles;
 use super::surface::SurfaceSpec;
-use crate::hardness::{HardnessError, HardnessLaw};
+use crate::hardness::{HardnessError, HardnessLaw, YieldCap};
 use crate::wear::{Archard, ArchardK, ArchardRegimeChange, MeasuredPoint, VolumeBasis, WearLaw};
 
 /// One row of the paper's Table 3, measured at 5 N and 60 rpm on the 2.992 mm track.
@@ -142,6 +142,11 @@ pub struct Disc {
     pub hardness_fit_includes_bulk: bool,
     /// Y = H / `yield_factor` (2.8 after Johnson).
     pub yield_factor: f64,
+    /// How the cap Y follows the disc's hardening.
+    pub yield_cap: YieldCapLaw,
+    /// The unstrained disc's yield strength (0.2% proof stress), MPa: where the
+    /// `strain_hardening` cap starts.
+    pub initial_yield_strength_mpa: f64,
     /// The initial roughness; `None` for a smooth disc.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub surface: Option<SurfaceSpec>,
@@ -156,6 +161,8 @@ impl Default for Disc {
             hardness_table: Some(PAPER_HARDNESS_TABLE.to_vec()),
             hardness_fit_includes_bulk: true,
             yield_factor: 2.8,
+            yield_cap: YieldCapLaw::Hardness,
+            initial_yield_strength_mpa: ANNEALED_316L_PROOF_STRESS_MPA,
             surface: None,
         }
     }
@@ -172,6 +179,19 @@ impl Disc {
         match self.hardness_fit_points() {
             None => Ok(HardnessLaw::constant(self.hardness_mpa * 1e6)),
             Some(points) => HardnessLaw::fit_points(&points),
+        }
+    }
+
+    /// The pressure cap of the hardness law `law` (eq. 12), as `yield_cap` asks.
+    pub fn yield_cap(&self, law: HardnessLaw) -> YieldCap {
+        let yield_factor = self.yield_factor;
+        match self.yield_cap {
+            YieldCapLaw::Hardness => YieldCap::Hardness { law, yield_factor },
+            YieldCapLaw::StrainHardening => YieldCap::StrainHardening {
+                law,
+                yield_factor,
+                initial_pa: self.initial_yield_strength_mpa * 1e6,
+            },
         }
     }
 
@@ -339,6 +359,22 @@ pub struct ArchardCalibration {
     /// Wear track radius of the measured test, mm; absent, the scene's.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub track_radius_mm: Option<f64>,
+}
+
+/// The typical 0.2% proof stress of annealed 316L, MPa: AK Steel's 316/316L product data
+/// sheet (316/316L-S-08-01-07), 42 ksi. The paper's manufacturer measured its disc's by ASTM
+/// A514 without printing the number (Section 2).
+pub const ANNEALED_316L_PROOF_STRESS_MPA: f64 = 290.0;
+
+/// How the pressure cap follows the disc's hardening ([`crate::hardness::YieldCap`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum YieldCapLaw {
+    /// `Y = H(n) / yield_factor` from the first pass: the paper's eq. 12.
+    Hardness,
+    /// From `initial_yield_strength_mpa`, rising with the surface's plastic strain to
+    /// `H(n) / yield_factor` at Tabor's representative strain.
+    StrainHardening,
 }
 
 /// A model switch: decided by the simulation, forced on, or forced off.

@@ -62,6 +62,13 @@ pub(super) fn resolution(scene: &Scene, derived: &Derived) -> Vec<FieldError> {
 
 /// How the lowest yield pressure came about, for a message.
 fn describe(lowest: &LowestYield, factor: f64) -> String {
+    if lowest.from_initial {
+        return format!(
+            "cycle 1, where the yield pressure is lowest, the disc's initial yield strength Y \
+             = {} MPa (disc.initial_yield_strength_mpa)",
+            sig(lowest.yield_pa * 1e-6)
+        );
+    }
     format!(
         "cycle {}, where the yield pressure is lowest, Y = H / yield_factor = {} MPa / {} \
          = {} MPa",

@@ -55,7 +55,7 @@ pub fn first_contact_with(
 ) -> Result<FirstContact, SimulationError> {
     let started = Instant::now();
     let mut setup = Setup::new(plan, options)?;
-    let cap = setup.yield_pressure_pa(1.0);
+    let cap = setup.yield_pressure_pa(1.0, 0.0);
     let (grid, solution) = solve_growing(&mut setup, cap)?;
     Ok(FirstContact {
         max_pressure_mpa: solution.max_pressure_pa() / 1e6,

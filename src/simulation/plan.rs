@@ -10,7 +10,7 @@ use super::feasibility::{Derived, limits, resolution};
 use super::plausibility::judge;
 use super::sizing::{LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m};
 use crate::contact::{ElasticPair, Hertz};
-use crate::hardness::HardnessLaw;
+use crate::hardness::{HardnessLaw, YieldCap};
 use crate::scene::{self, FieldError, FieldWarning, Scene, SceneErrors, Switch};
 use crate::wear::WearLaw;
 
@@ -21,6 +21,7 @@ pub struct Plan {
     scene: Scene,
     pair: ElasticPair,
     hardness: HardnessLaw,
+    yield_cap: YieldCap,
     lowest: LowestYield,
     hertz: Hertz,
     sizing_radius_m: f64,
@@ -56,6 +57,11 @@ impl Plan {
     /// The disc's hardness against cycles.
     pub fn hardness(&self) -> &HardnessLaw {
         &self.hardness
+    }
+
+    /// The pressure cap and how it hardens (eq. 12).
+    pub fn yield_cap(&self) -> &YieldCap {
+        &self.yield_cap
     }
 
     /// Hertz's contact of the unworn ball, the yardstick for sizing.
@@ -118,7 +124,8 @@ fn derive(scene: Scene) -> Result<Plan, Vec<FieldError>> {
     let hardness = scene
         .hardness_law()
         .map_err(|e| vec![FieldError::new("disc.hardness_table", e.to_string())])?;
-    let lowest = lowest_yield(&hardness, scene.test.cycles, scene.disc.yield_factor);
+    let yield_cap = scene.disc.yield_cap(hardness);
+    let lowest = lowest_yield(&yield_cap, scene.test.cycles);
     let hertz = hertz(&scene, &pair);
     // Judged and sized wherever the cap may act (plasticity not "off"): under "auto" the
     // setup decides later, from the unworn contact's peak pressure, and where it leaves the
@@ -156,6 +163,7 @@ fn derive(scene: Scene) -> Result<Plan, Vec<FieldError>> {
         scene,
         pair,
         hardness,
+        yield_cap,
         lowest,
         hertz,
         sizing_radius_m,

@@ -151,6 +151,10 @@ pub struct CycleRecord {
     pub plastic_area_mm2: f64,
     /// Disc hardness at this cycle, MPa.
     pub hardness_mpa: f64,
+    /// The pressure cap Y of this cycle (eq. 12, `disc.yield_cap`), MPa; absent without
+    /// plasticity (and in results written before it was recorded).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub yield_pressure_mpa: Option<f64>,
     /// Rigid-body approach, um.
     pub approach_um: f64,
     /// Solver iterations for this cycle.

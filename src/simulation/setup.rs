@@ -8,6 +8,7 @@ use crate::contact::{
     ContactSolver, CoupledSolver, DcFft, ElasticPair, Grid, Hertz, Kernel, NormalSolver,
     SolverOptions, split_threads,
 };
+use crate::hardness::TABOR_REPRESENTATIVE_STRAIN;
 use crate::scene::{FieldWarning, Scene, SolverThreads, Switch};
 use crate::surface::HeightMap;
 use crate::wear::Groove;
@@ -180,12 +181,11 @@ impl Setup {
         self.plan.scene()
     }
 
-    /// The pressure cap at `cycle`: `H(n) / yield_factor`, or infinite without plasticity.
-    pub fn yield_pressure_pa(&self, cycle: f64) -> f64 {
+    /// The pressure cap at `cycle` after the cumulative plastic strain `plastic_strain`
+    /// ([`crate::hardness::YieldCap`]), or infinite without plasticity.
+    pub fn yield_pressure_pa(&self, cycle: f64, plastic_strain: f64) -> f64 {
         if self.plasticity {
-            self.plan
-                .hardness()
-                .yield_pressure_pa(cycle, self.scene().disc.yield_factor)
+            self.plan.yield_cap().pressure_pa(cycle, plastic_strain)
         } else {
             f64::INFINITY
         }
@@ -251,10 +251,18 @@ fn decide_plasticity(
     hertz: &Hertz,
     lowest: &LowestYield,
 ) -> bool {
-    let factor = scene.disc.yield_factor;
     let p0 = hertz.peak_pressure_pa();
+    let how = if lowest.from_initial {
+        format!(
+            "the initial yield strength, rising with plastic strain to H / {} at Tabor's {}%",
+            scene.disc.yield_factor,
+            TABOR_REPRESENTATIVE_STRAIN * 100.0
+        )
+    } else {
+        format!("H / {}", scene.disc.yield_factor)
+    };
     let reach = format!(
-        "p0 {:.0} MPa {} lowest Y {:.0} MPa (H / {factor})",
+        "p0 {:.0} MPa {} lowest Y {:.0} MPa ({how})",
         p0 / 1e6,
         if p0 >= lowest.yield_pa { ">=" } else { "<" },
         lowest.yield_pa / 1e6
@@ -346,6 +354,6 @@ mod tests {
     fn light_load_on_hard_disc_is_elastic() {
         let light = setup(r#"{"test": {"load_n": 0.1}}"#);
         assert!(!light.plasticity);
-        assert!(light.yield_pressure_pa(1.0).is_infinite());
+        assert!(light.yield_pressure_pa(1.0, 0.0).is_infinite());
     }
 }

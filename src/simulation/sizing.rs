@@ -10,7 +10,7 @@
 use std::f64::consts::PI;
 
 use crate::contact::{ContactError, ElasticPair, Grid, Hertz, Material, fft_friendly};
-use crate::hardness::HardnessLaw;
+use crate::hardness::YieldCap;
 use crate::scene::{GridSize, Numerics, Scene};
 
 /// Auto domain side in contact radii. DC-FFT convolves without wrap-around, so the answer
@@ -45,27 +45,26 @@ pub fn hertz(scene: &Scene, pair: &ElasticPair) -> Hertz {
 /// Where and how low the yield pressure falls during a run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LowestYield {
-    /// The cycle of the lowest hardness: 1 or the last.
+    /// The cycle of the lowest cap: 1 or the last.
     pub cycle: u64,
     /// The hardness there, Pa.
     pub hardness_pa: f64,
-    /// The yield pressure there, `H / yield_factor`, Pa.
+    /// The yield pressure there, Pa: `H / yield_factor`, or the disc's initial yield
+    /// strength when the cap hardens from it (`from_initial`).
     pub yield_pa: f64,
+    /// Whether the lowest cap is the unstrained disc's initial yield strength.
+    pub from_initial: bool,
 }
 
-/// The lowest yield pressure over `cycles` cycles of `law`: `A + B ln n` is monotone, so it
-/// lies at the first or the last cycle.
-pub fn lowest_yield(law: &HardnessLaw, cycles: u64, yield_factor: f64) -> LowestYield {
-    let last = cycles as f64;
-    let (cycle, hardness_pa) = if law.hardness_pa(last) < law.hardness_pa(1.0) {
-        (cycles, law.hardness_pa(last))
-    } else {
-        (1, law.hardness_pa(1.0))
-    };
+/// The lowest yield pressure of `cap` over `cycles` cycles ([`YieldCap::lowest`]).
+pub fn lowest_yield(cap: &YieldCap, cycles: u64) -> LowestYield {
+    let (cycle, hardness_pa, yield_pa) = cap.lowest(cycles);
+    let (_, factor) = cap.hardness();
     LowestYield {
         cycle,
         hardness_pa,
-        yield_pa: hardness_pa / yield_factor,
+        yield_pa,
+        from_initial: yield_pa < hardness_pa / factor,
     }
 }
 
@@ -159,6 +158,7 @@ pub fn plan_grid(numerics: &Numerics, radius_m: f64, surface_cell_m: Option<f64>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::hardness::HardnessLaw;
 
     #[test]
     fn the_flat_punch_sizes_the_grid_only_where_it_is_wider_and_capped() {
@@ -184,19 +184,27 @@ mod tests {
 
     #[test]
     fn lowest_yield_is_at_the_end_the_law_falls_towards() {
-        let rising = HardnessLaw::Logarithmic {
-            a_pa: 2.0e9,
-            b_pa: 1e8,
+        let cap = |b_pa: f64| YieldCap::Hardness {
+            law: HardnessLaw::Logarithmic { a_pa: 2.0e9, b_pa },
+            yield_factor: 2.0,
         };
-        assert_eq!(lowest_yield(&rising, 300, 2.0).cycle, 1);
-        let falling = HardnessLaw::Logarithmic {
-            a_pa: 2.0e9,
-            b_pa: -1e8,
-        };
-        let lowest = lowest_yield(&falling, 300, 2.0);
+        assert_eq!(lowest_yield(&cap(1e8), 300).cycle, 1);
+        let lowest = lowest_yield(&cap(-1e8), 300);
         assert_eq!(lowest.cycle, 300);
+        assert!(!lowest.from_initial);
         // One division: exact to a rounding.
         assert!((lowest.yield_pa / (lowest.hardness_pa / 2.0) - 1.0).abs() < 1e-15);
+        let hardening = YieldCap::StrainHardening {
+            law: HardnessLaw::Logarithmic {
+                a_pa: 2.0e9,
+                b_pa: -1e8,
+            },
+            yield_factor: 2.0,
+            initial_pa: 290e6,
+        };
+        let lowest = lowest_yield(&hardening, 300);
+        assert_eq!((lowest.cycle, lowest.yield_pa), (1, 290e6));
+        assert!(lowest.from_initial);
     }
 
     #[test]

@@ -23,6 +23,7 @@ use crate::contact::{
     MIN_MARGIN, Window, WindowFractions, WindowedSolver, cold_start,
 };
 use crate::corrosion::ContactGeometry;
+use crate::hardness::pass_strain;
 use crate::scene::DomainSize;
 use crate::surface::count_islands;
 use crate::wear::Groove;
@@ -120,6 +121,8 @@ struct Run<'a, F> {
     /// How the solves stalled, and the preconditioner the next starts on.
     stalls: Stalls,
     max_step: u64,
+    /// The surface's cumulative plastic strain, for a cap that hardens with it.
+    plastic_strain: f64,
     /// Window fractions of the solvers of grids grown out of.
     window_fractions: WindowFractions,
 }
@@ -153,6 +156,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             iterations: 0,
             stalls: Stalls::default(),
             max_step: 1,
+            plastic_strain: 0.0,
             window_fractions: WindowFractions::default(),
         }
     }
@@ -165,8 +169,8 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
     ) -> Result<u64, SimulationError> {
         let setup = self.setup;
         let n = cycle as f64;
-        // The hardness of this cycle and the cap it gives (eq. 12).
-        let cap = setup.yield_pressure_pa(n);
+        // The hardness of this cycle and the cap it gives (eq. 12) after the passes so far.
+        let cap = setup.yield_pressure_pa(n, self.plastic_strain);
         let hardness_pa = setup.plan.hardness().hardness_pa(n);
         // The contact on the current surface (eqs. 2-12), on a rough disc worn by the passes
         // of its own step.
@@ -206,6 +210,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         }
         let step = self.stepper.next(cycle, stop, reshaped, &pass);
         self.max_step = self.max_step.max(step);
+        self.plastic_strain += step as f64 * self.pass_strain(&solution, cap);
         // The profile update (eq. 17): the pass at this cycle's hardness, after the yielding.
         self.groove.deepen(
             &pass,
@@ -219,6 +224,25 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let gap = solution.gap_m(&separation);
         self.grow_if_crowded(cycle, solution.pressure, gap);
         Ok(step)
+    }
+
+    /// The plastic strain a pass of `solution` gives the surface ([`pass_strain`]), from
+    /// the half-width across the track of the rows where it sits at the cap `cap`: Tabor's
+    /// `a` is the plastically indented zone's, so a pass where a few cells touch the cap
+    /// strains the surface by little.
+    fn pass_strain(&self, solution: &ContactSolution, cap: f64) -> f64 {
+        let mut rows = solution
+            .pressure
+            .chunks_exact(self.grid.nx)
+            .enumerate()
+            .filter(|(_, row)| row.iter().any(|&p| p >= cap))
+            .map(|(iy, _)| iy);
+        let Some(first) = rows.next() else {
+            return 0.0;
+        };
+        let last = rows.next_back().unwrap_or(first);
+        let half_width_m = (last - first + 1) as f64 * self.grid.dy / 2.0;
+        pass_strain(half_width_m, self.setup.scene().ball_radius_m())
     }
 
     /// The wear the solve at `cycle` includes, 1/Pa ([`crate::contact::worn_rows`]): on a
@@ -344,6 +368,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             contact_islands: count_islands(&contact, grid.nx),
             plastic_area_mm2: solution.plastic_area_m2(grid, cap) * 1e6,
             hardness_mpa: setup.plan.hardness().hardness_pa(n) / 1e6,
+            yield_pressure_mpa: cap.is_finite().then_some(cap / 1e6),
             approach_um: solution.approach_m * 1e6,
             iterations: solution.iterations,
             potential_v: reading.map(|r| r.potential_v),
