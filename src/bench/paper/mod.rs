@@ -3,6 +3,7 @@
 //! `docs/paper/`. The markdown holds only numbers the runs give, so `tests/paper.rs` can
 //! regenerate it and compare.
 
+mod caps;
 mod figures;
 mod numbers;
 mod readings;
@@ -19,9 +20,10 @@ use crate::simulation::{
 
 use super::BenchError;
 
-pub use numbers::{PaperNumbers, TABLE3};
+pub use caps::{CapRun, INITIAL_YIELDS_MPA};
+pub use numbers::{CapNumbers, PaperNumbers, TABLE3};
 pub use readings::{CYCLES as READING_CYCLES, Reading, ReadingRun, run_all as run_readings};
-pub use statements::{AROUND_10_CYCLES, Statement, Verdict, statements};
+pub use statements::{AROUND_10_CYCLES, HALF_MICRON_UM, Statement, Verdict, statements};
 pub use text::markdown;
 
 /// The paper's own mesh for Figs. 10-12 (Section 4.5: 0.256 x 0.256 mm in 256 x 256 cells
@@ -52,6 +54,9 @@ pub struct PaperStudy {
     pub hertz_area_mm2: f64,
     /// Each reading of eq. 13 cycled on the paper's scene ([`Reading::ALL`]'s order).
     pub readings: Vec<ReadingRun>,
+    /// The cap that hardens from each of [`INITIAL_YIELDS_MPA`], 300 cycles on the same
+    /// grid as `epp`.
+    pub caps: Vec<CapRun>,
 }
 
 impl PaperStudy {
@@ -73,6 +78,7 @@ impl PaperStudy {
             disc_share: disc_share(&setup),
             hertz_area_mm2: plan.hertz().contact_area_m2() * 1e6,
             readings: readings::run_all(COARSE_GRID)?,
+            caps: caps::run_all(grid)?,
         })
     }
 

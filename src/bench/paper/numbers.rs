@@ -26,11 +26,35 @@ pub const TABLE3: [(u64, f64, f64, f64); 5] = {
 /// The cycles of Figs. 11-12 where Table 3 has a point.
 pub const EARLY: [u64; 3] = [10, 60, 300];
 
+/// What one elastic-perfectly-plastic run gives the paper's statements about its first
+/// cycles: its groove.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CapNumbers {
+    /// The groove's deepest point at cycles 10 and 300, um.
+    pub groove_depth_um: [f64; 2],
+    /// The groove's volume at cycles 10, 60 and 300 ([`EARLY`]), mm^3.
+    pub groove_volume_mm3: [f64; 3],
+    /// The first cycle from which no pressure sits at the cap.
+    pub plastic_gone_cycle: u64,
+}
+
+impl CapNumbers {
+    /// The numbers of `result`, a run of at least 300 cycles solving each of [`EARLY`].
+    pub fn of(result: &SimulationResult) -> Self {
+        let depth = |c: u64| record(result, c).max_depth_um;
+        Self {
+            groove_depth_um: [depth(10), depth(300)],
+            groove_volume_mm3: EARLY.map(|c| record(result, c).wear_volume_mm3),
+            plastic_gone_cycle: plastic_gone(result),
+        }
+    }
+}
+
 /// The reproduced numbers.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PaperNumbers {
-    /// The EPP groove's deepest point at cycles 10 and 300, um.
-    pub groove_depth_um: [f64; 2],
+    /// The default (the paper's cap) EPP run's groove.
+    pub epp: CapNumbers,
     /// The loaded surface's deepest point at cycles 10 and 300, um.
     pub loaded_depth_um: [f64; 2],
     /// The purely elastic disc's loaded surface at cycle 1, um: the elastic dent with no
@@ -38,10 +62,6 @@ pub struct PaperNumbers {
     pub elastic_loaded_first_um: f64,
     /// The same by the single-number formula `D + s (delta - D)`, um.
     pub formula_depth_um: [f64; 2],
-    /// The first cycle from which no pressure sits at the cap.
-    pub plastic_gone_cycle: u64,
-    /// The EPP groove's volume at cycles 10, 60 and 300, mm^3.
-    pub groove_volume_mm3: [f64; 3],
     /// The EPP loaded profile's volume over the window at cycles 10, 60 and 300, mm^3.
     pub loaded_volume_mm3: [f64; 3],
     /// The elastic material's groove volume at cycles 10, 60 and 300, mm^3.
@@ -60,7 +80,6 @@ impl PaperNumbers {
     /// The numbers of `study`.
     pub fn of(study: &PaperStudy) -> Self {
         let s = study.disc_share;
-        let depth = |c: u64| record(&study.epp, c).max_depth_um;
         let loaded = |c: u64| record(&study.epp, c).loaded_max_depth_um;
         let formula = |c: u64| {
             let r = record(&study.epp, c);
@@ -73,12 +92,10 @@ impl PaperNumbers {
         let loaded_volume = |r: &SimulationResult, c: u64| loaded_volume_mm3(r, c);
         let whole = |f: fn(&CycleRecord) -> f64| TABLE3.map(|(t, ..)| f(record(&study.whole, t)));
         Self {
-            groove_depth_um: [depth(10), depth(300)],
+            epp: CapNumbers::of(&study.epp),
             loaded_depth_um: [loaded(10), loaded(300)],
             elastic_loaded_first_um: record(&study.elastic, 1).loaded_max_depth_um,
             formula_depth_um: [formula(10), formula(300)],
-            plastic_gone_cycle: plastic_gone(&study.epp),
-            groove_volume_mm3: at_early(&study.epp, &groove),
             loaded_volume_mm3: at_early(&study.epp, &loaded_volume),
             elastic_volume_mm3: at_early(&study.elastic, &groove),
             elastic_loaded_volume_mm3: at_early(&study.elastic, &loaded_volume),

@@ -132,7 +132,10 @@ struct Cycler {
 /// Runs every reading on the paper's scene with `numerics` (a scene's `"numerics"` member,
 /// [`COARSE_GRID`] for the page).
 pub fn run_all(numerics: &str) -> Result<Vec<ReadingRun>, BenchError> {
-    let json = format!(r#"{{"test": {{"cycles": {CYCLES}}}, {numerics}}}"#);
+    // The readings are of eq. 13 under the paper's own cap, whatever the default's.
+    let json = format!(
+        r#"{{"test": {{"cycles": {CYCLES}}}, "disc": {{"yield_cap": "hardness"}}, {numerics}}}"#
+    );
     let setup = Setup::new(&plan(&json)?, &RunOptions::default())?;
     Reading::ALL
         .iter()
@@ -190,7 +193,7 @@ impl Cycler {
     /// One cycle: the contact, the reading's yield update, one Archard pass. Returns
     /// whether a pressure sat at the cap.
     fn cycle(&mut self, reading: Reading, cycle: u64) -> Result<bool, ContactError> {
-        let cap = self.setup.yield_pressure_pa(cycle as f64);
+        let cap = self.setup.yield_pressure_pa(cycle as f64, 0.0);
         // Which groove the solve sees: the whole one, Archard's part alone (the yield
         // groove kept out), or the whole one with eq. 17's printed sign.
         let groove: Vec<f64> = match reading {
