@@ -45,12 +45,24 @@ pub(super) fn check(scene: &Scene) -> Vec<FieldError> {
     c.number(&OCP_BEFORE, test.ocp_before_s);
     c.number(&OCP_AFTER, test.ocp_after_s);
 
-    check_hardness_table(&mut c, scene);
+    check_hardness_units(&mut c, scene);
     check_surface(&mut c, scene);
     check_wear(&mut c, scene);
     check_numerics(&mut c, scene);
     check_corrosion(&mut c, scene);
     c.errors
+}
+
+/// A hardness typed in another unit is refused with the slip named, before the table's
+/// law is fitted: points in GPa would only be said to fit a law that falls below 0.
+fn check_hardness_units(c: &mut Checks, scene: &Scene) {
+    let before = c.errors.len();
+    for slip in super::hardness_slips(scene).into_iter().filter(|s| s.refused) {
+        c.fail(&slip.path, slip.message);
+    }
+    if c.errors.len() == before {
+        check_hardness_table(c, scene);
+    }
 }
 
 fn check_hardness_table(c: &mut Checks, scene: &Scene) {
