@@ -221,7 +221,10 @@ fn a_run_without_corrosion_names_its_total_and_its_mechanical_part_too() {
         assert_eq!(record.total_volume_mm3, Some(record.wear_volume_mm3));
         assert_eq!(record.mechanical_volume_mm3, Some(record.wear_volume_mm3));
     }
-    assert_eq!(result.summary.total_volume_mm3, Some(result.summary.wear_volume_mm3));
+    assert_eq!(
+        result.summary.total_volume_mm3,
+        Some(result.summary.wear_volume_mm3)
+    );
 }
 
 #[test]
