@@ -38,11 +38,13 @@ pub fn hardness_slips(scene: &Scene) -> Vec<HardnessSlip> {
     let table = scene.disc.hardness_table.iter().flatten().enumerate();
     std::iter::once(("disc.hardness_mpa".to_owned(), scene.disc.hardness_mpa))
         .chain(table.map(|(i, &(_, mpa))| (format!("disc.hardness_table[{i}][1]"), mpa)))
-        .filter_map(|(path, mpa)| judge(mpa).map(|(refused, message)| HardnessSlip {
-            path,
-            refused,
-            message,
-        }))
+        .filter_map(|(path, mpa)| {
+            judge(mpa).map(|(refused, message)| HardnessSlip {
+                path,
+                refused,
+                message,
+            })
+        })
         .collect()
 }
 
@@ -56,7 +58,9 @@ fn judge(mpa: f64) -> Option<(bool, String)> {
     Some(if mpa < REFUSE_HARDNESS_MPA {
         (
             true,
-            format!("{value} MPa is softer than any metal (indium, the softest, is about 9 MPa): {slip}"),
+            format!(
+                "{value} MPa is softer than any metal (indium, the softest, is about 9 MPa): {slip}"
+            ),
         )
     } else if mpa < WARN_HARDNESS_MPA {
         (
@@ -111,13 +115,19 @@ mod tests {
         assert_eq!(judge(2473.0), None);
         let (refused, message) = said(2.473e9);
         assert!(refused);
-        assert!(message.contains("was it in Pa? 2.473e9 Pa = 2473 MPa"), "{message}");
+        assert!(
+            message.contains("was it in Pa? 2.473e9 Pa = 2473 MPa"),
+            "{message}"
+        );
         let (refused, message) = said(2.473e6);
         assert!(refused);
         assert!(message.contains("was it in kPa?"), "{message}");
         let (refused, message) = said(2.473);
         assert!(refused);
-        assert!(message.contains("was it in GPa? 2.473 GPa = 2473 MPa"), "{message}");
+        assert!(
+            message.contains("was it in GPa? 2.473 GPa = 2473 MPa"),
+            "{message}"
+        );
         // A ceramic disc (alumina HV 1500-1650, about 15 GPa): warned, not a slip.
         let (refused, message) = said(15e3);
         assert!(!refused);

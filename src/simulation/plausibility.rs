@@ -218,7 +218,13 @@ fn modulus_slip(gpa: f64) -> String {
         .find(|(_, to_gpa)| (SOFTEST_MODULUS_GPA..=DIAMOND_MODULUS_GPA).contains(&(gpa * to_gpa)))
         .map_or_else(
             || "check that it is in GPa".to_owned(),
-            |(unit, to_gpa)| format!("was it in {unit}? {} {unit} = {} GPa", num(gpa), sig(gpa * to_gpa)),
+            |(unit, to_gpa)| {
+                format!(
+                    "was it in {unit}? {} {unit} = {} GPa",
+                    num(gpa),
+                    sig(gpa * to_gpa)
+                )
+            },
         )
 }
 
@@ -512,18 +518,34 @@ mod tests {
         let mut scene = Scene::default();
         scene.disc.hardness_mpa = 2.473e9;
         let message = refused_at(&scene, "disc.hardness_mpa");
-        assert!(message.contains("was it in Pa? 2.473e9 Pa = 2473 MPa"), "{message}");
+        assert!(
+            message.contains("was it in Pa? 2.473e9 Pa = 2473 MPa"),
+            "{message}"
+        );
         // The paper's table typed in GPa: the slip at each point, not the law's fit.
         let mut scene = Scene::default();
-        let table = scene.disc.hardness_table.as_mut().expect("the paper's table");
+        let table = scene
+            .disc
+            .hardness_table
+            .as_mut()
+            .expect("the paper's table");
         table.iter_mut().for_each(|(_, mpa)| *mpa *= 1e-3);
         let found = refusals(&scene);
-        assert!(!found.is_empty() && found.iter().all(|e| e.path.starts_with("disc.hardness_table[")), "{found:?}");
+        assert!(
+            !found.is_empty()
+                && found
+                    .iter()
+                    .all(|e| e.path.starts_with("disc.hardness_table[")),
+            "{found:?}"
+        );
         assert!(found[0].message.contains("was it in GPa?"), "{found:?}");
         let mut scene = Scene::default();
         scene.disc.youngs_modulus_gpa = 205e9;
         let message = refused_at(&scene, "disc.youngs_modulus_gpa");
-        assert!(message.contains("was it in Pa? 2.05e11 Pa = 205 GPa"), "{message}");
+        assert!(
+            message.contains("was it in Pa? 2.05e11 Pa = 205 GPa"),
+            "{message}"
+        );
     }
 
     #[test]
