@@ -57,7 +57,7 @@ fn a_lab_export_gives_the_fit_of_the_documented_table_and_says_how_it_was_read()
         if table.ends_with(".txt") {
             let stderr = String::from_utf8_lossy(&output.stderr);
             assert!(
-                stderr.contains("read the column `Hardness [GPa]` as `hardness_gpa`"),
+                stderr.contains("read the column `Hardness [GPa]` as `hardness_mpa`"),
                 "{stderr}"
             );
         }

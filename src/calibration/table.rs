@@ -217,18 +217,18 @@ impl Table {
     /// named twice (once its name is in the fits' unit); converts the columns in other units.
     fn checked(given: &[String], mut columns: Vec<Vec<f64>>) -> Result<Self, TableError> {
         let mut names: Vec<String> = given.iter().map(|n| column_name(n)).collect();
-        let renamed = given
-            .iter()
-            .zip(&names)
-            .filter(|(given, name)| given.trim().to_lowercase() != **name)
-            .map(|(given, name)| (given.trim().to_owned(), name.clone()))
-            .collect();
         for (name, column) in names.iter_mut().zip(&mut columns) {
             if let Some(&(_, fits, factor)) = UNITS.iter().find(|(other, ..)| other == name) {
                 *name = fits.to_owned();
                 column.iter_mut().for_each(|v| *v *= factor);
             }
         }
+        let renamed = given
+            .iter()
+            .zip(&names)
+            .filter(|(given, name)| given.trim().to_lowercase() != **name)
+            .map(|(given, name)| (given.trim().to_owned(), name.clone()))
+            .collect();
         let mut repeated: Vec<String> = Vec::new();
         for (i, name) in names.iter().enumerate() {
             if names[..i].contains(name) && !repeated.contains(name) {
@@ -257,8 +257,9 @@ impl Table {
         })
     }
 
-    /// The headers read under another name, as (the header, its name): `("Time (s)",
-    /// "time_s")`; empty when every header was a name already.
+    /// The headers read under another name, as (the header, the column it became, in the
+    /// fits' unit): `("Time (s)", "time_s")`, `("Time (min)", "time_s")`; empty when every
+    /// header was a name in the fits' unit already.
     pub fn renamed(&self) -> &[(String, String)] {
         &self.renamed
     }
@@ -489,7 +490,7 @@ mod tests {
         assert_eq!(
             table.renamed(),
             [
-                ("Time (min)".to_owned(), "time_min".to_owned()),
+                ("Time (min)".to_owned(), "time_s".to_owned()),
                 ("Volume (mm³)".to_owned(), "volume_mm3".to_owned())
             ]
         );

@@ -367,7 +367,10 @@ mod tests {
         let csv = include_str!("../../../tests/fixtures/lab/wear_tribometer.csv");
         let read = parse(MeasurementKind::WearVolume, Format::Csv, csv.as_bytes()).expect("read");
         assert_eq!(read.columns["time_s"], [60.0, 300.0, 1800.0, 3600.0]);
-        assert_eq!(read.columns["volume_mm3"][3], 0.01172);
+        assert_eq!(
+            read.columns["volume_mm3"],
+            [0.00109, 0.00118, 0.00533, 0.01172]
+        );
         let names: Vec<(&str, &str)> = read
             .renamed
             .iter()
@@ -376,7 +379,7 @@ mod tests {
         assert_eq!(
             names,
             [
-                ("Time (min)", "time_min"),
+                ("Time (min)", "time_s"),
                 ("Volume (mm³)", "volume_mm3"),
                 ("Spread (mm³)", "spread_mm3")
             ]
