@@ -56,6 +56,9 @@ struct SurfaceArgs {
     /// Subtract the surface's least-squares plane (its tilt) before use.
     #[arg(long, requires = "surface")]
     remove_tilt: bool,
+    /// The unit of a text map's heights (m when not given).
+    #[arg(long, value_enum, value_name = "UNIT", requires = "surface")]
+    height_unit: Option<tribosim::surface::HeightUnit>,
 }
 
 impl SurfaceArgs {
@@ -65,6 +68,7 @@ impl SurfaceArgs {
             path,
             pixel_um: self.pixel_um,
             remove_tilt: self.remove_tilt,
+            height_unit: self.height_unit,
         })
     }
 }

@@ -41,6 +41,37 @@ fn hardness_of_table_3_through_the_command_line() {
 }
 
 #[test]
+fn a_lab_export_gives_the_fit_of_the_documented_table_and_says_how_it_was_read() {
+    // Table 3's hardness as a tab-separated export with decimal commas, in GPa, the headers
+    // `Cycles` and `Hardness [GPa]`: the same points as docs/calibration/table3_hardness.csv.
+    let (documented, exported) = (
+        scratch("hardness_documented.json"),
+        scratch("hardness_tab.json"),
+    );
+    for (table, out) in [
+        ("docs/calibration/table3_hardness.csv", &documented),
+        ("tests/fixtures/lab/hardness_tab.txt", &exported),
+    ] {
+        let output = calibrate(&["hardness", table, "-o", out.to_str().expect("utf-8 path")]);
+        assert!(output.status.success(), "{output:?}");
+        if table.ends_with(".txt") {
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            assert!(
+                stderr.contains("read the column `Hardness [GPa]` as `hardness_mpa`"),
+                "{stderr}"
+            );
+        }
+    }
+    let a = |path: &PathBuf| -> f64 {
+        let fit: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(path).expect("written")).expect("JSON");
+        fit["a_mpa"]["value"].as_f64().expect("A")
+    };
+    // 2.551 GPa times 1e3 is 2551 MPa to the last bit or two: the fits agree to round-off.
+    assert!((a(&exported) / a(&documented) - 1.0).abs() < 1e-12);
+}
+
+#[test]
 fn a_bad_table_is_refused_naming_the_column() {
     let table = scratch("negative_volume.csv");
     std::fs::write(&table, "time_s,volume_mm3\n10,1e-3\n60,-2e-3\n").expect("written");

@@ -305,6 +305,34 @@ fn contact_takes_a_measured_map_as_run_does() {
     };
     let args = ["contact", "-", "--surface", "map.txt", "--pixel-um", "1"];
     let (rough, contact) = area(&run_in(dir.path(), &args, scene));
+    // The same heights written in um, as a profiler exports them, and said to be: the
+    // same contact (each height read as m agrees to the last bit or two, far below any
+    // change of the cells in contact).
+    let in_um: Vec<String> = rows
+        .iter()
+        .map(|row| {
+            row.split(' ')
+                .map(|h| format!("{:.4e}", h.parse::<f64>().expect("a height") * 1e6))
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect();
+    std::fs::write(dir.path().join("map_um.txt"), in_um.join("\n") + "\n").expect("map");
+    let args = [
+        "contact",
+        "-",
+        "--surface",
+        "map_um.txt",
+        "--pixel-um",
+        "1",
+        "--height-unit",
+        "um",
+    ];
+    let (from_um, _) = area(&run_in(dir.path(), &args, scene));
+    assert!(
+        (from_um / rough - 1.0).abs() < 1e-9,
+        "{from_um} against {rough}"
+    );
     let (smooth, _) = area(&run_in(dir.path(), &["contact", "-"], scene));
     let models = contact["models"].to_string();
     assert!(models.contains("measured `map.txt`"), "{models}");

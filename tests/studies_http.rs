@@ -66,8 +66,11 @@ async fn a_study_over_http_summarises_as_tribosim_study_does() {
     let (code, study) = post(&client, &server.url("/api/v1/studies"), &two_by_two()).await;
     assert_eq!(code, 201, "{study}");
     assert_eq!(study["members"].as_array().map(Vec::len), Some(4));
-    // Named after its base (the preset's name), not its first member.
-    assert_eq!(study["name"], "316L vs alumina, 5 N, 60 rpm", "{study}");
+    // Named after its preset and its axes: the preset's own name states 5 N and 60 rpm.
+    assert_eq!(
+        study["name"], "dalmau2018-316l varied in test.load_n, test.speed_rpm",
+        "{study}"
+    );
     let id = study["id"].as_str().expect("id");
     let study = wait_for(
         &client,

@@ -302,21 +302,37 @@ fn the_command_writes_the_summary_and_names_the_flag_over_the_limit() {
 }
 
 #[test]
-fn a_study_is_named_after_its_base_or_its_own_name() {
-    // The tiny base starts from the paper's preset and names nothing: the preset's name.
+fn a_study_and_its_members_are_named_after_the_study_and_their_own_values() {
+    // The tiny base starts from the paper's preset and names nothing. The preset's name
+    // states 5 N and 60 rpm, which a member at 2 N contradicts: the study is called after
+    // the preset's id and its axes instead.
     let from_preset = study(r#"{"test.load_n": [2, 5]}"#).expect("a valid study");
-    assert_eq!(from_preset.name(), "316L vs alumina, 5 N, 60 rpm");
+    assert_eq!(from_preset.name(), "dalmau2018-316l varied in test.load_n");
+    let members = from_preset.members(MAX_MEMBERS).expect("members");
+    assert_eq!(
+        members[0].scene.name,
+        "dalmau2018-316l varied in test.load_n [test.load_n = 2]"
+    );
     let named = Study::parse(
         r#"{"base": {"name": "a base", "test": {"cycles": 2}}, "axes": {"test.load_n": [2, 5]}}"#,
     )
     .expect("a valid study");
     assert_eq!(named.name(), "a base");
-    // Members keep the base's name with their values.
     let members = named.members(MAX_MEMBERS).expect("members");
     assert_eq!(members[1].scene.name, "a base [test.load_n = 5]");
+    // A study's own name wins over its base's, in its members' names too.
     let own = Study::parse(
-        r#"{"name": "loads", "base": {"name": "a base"}, "axes": {"test.load_n": [2, 5]}}"#,
+        r#"{"name": "loads", "base": {"preset": "dalmau2018-316l"},
+            "axes": {"test.load_n": [2, 5], "test.speed_rpm": [30]}}"#,
     )
     .expect("a valid study");
     assert_eq!(own.name(), "loads");
+    let members = own.members(MAX_MEMBERS).expect("members");
+    assert_eq!(
+        members[0].scene.name,
+        "loads [test.load_n = 2, test.speed_rpm = 30]"
+    );
+    for member in &members {
+        assert!(!member.scene.name.contains("5 N"), "{}", member.scene.name);
+    }
 }

@@ -613,10 +613,23 @@ async fn heights_in_um_or_nm_are_read_in_their_unit() {
         &base,
         query,
         "application/octet-stream",
-        in_nm.into(),
+        in_nm.clone().into(),
     )
     .await;
     assert_eq!(status, 201, "{from_nm}");
+    // The same heights in nm sent as m: refused at the upload, with the unit to pass.
+    let (status, answer) = upload(
+        &client,
+        &base,
+        "?pixel_um=4",
+        "application/octet-stream",
+        in_nm.into(),
+    )
+    .await;
+    assert_eq!(status, 422, "{answer}");
+    assert_eq!(answer["fields"][0]["path"], "height_unit", "{answer}");
+    let message = answer["fields"][0]["message"].as_str().unwrap_or_default();
+    assert!(message.contains("pass height_unit=um (or nm)"), "{answer}");
     // Two roundings of each height (times 1e9, then 1e-9) and the statistics' sums: far
     // within 1e-12 of the rms.
     assert!((rms_height(&from_nm) / rms_height(&in_m) - 1.0).abs() < 1e-12);

@@ -200,9 +200,31 @@ fn corrosion_follows_eq18_and_faraday_in_the_users_units() {
     );
     let added = simulate(&mechanical_basis);
     let last = added.cycles.last().expect("records");
-    let total = last.wear_volume_mm3 + last.wac_volume_mm3.expect("on");
+    let mechanical = last.mechanical_volume_mm3.expect("on");
+    let total = mechanical + last.wac_volume_mm3.expect("on");
     assert!(relative_error(last.total_volume_mm3.expect("on"), total) < 1e-15);
-    assert_eq!(last.mechanical_volume_mm3, Some(last.wear_volume_mm3));
+    // One meaning on either basis: `wear_volume_mm3` is the total a profilometer measures.
+    assert_eq!(last.total_volume_mm3, Some(last.wear_volume_mm3));
+    assert!(last.wear_volume_mm3 > mechanical);
+}
+
+#[test]
+fn a_run_without_corrosion_names_its_total_and_its_mechanical_part_too() {
+    // No corrosion, no WAC: the three volumes are the one groove, under their own names.
+    let s = scene(
+        r#"{"preset": "dalmau2018-316l", "overrides": {
+            "test": {"cycles": 20}, "numerics": {"grid": 32}, "corrosion": null}}"#,
+    );
+    let result = simulate(&s);
+    for record in &result.cycles {
+        assert_eq!(record.wac_volume_mm3, None);
+        assert_eq!(record.total_volume_mm3, Some(record.wear_volume_mm3));
+        assert_eq!(record.mechanical_volume_mm3, Some(record.wear_volume_mm3));
+    }
+    assert_eq!(
+        result.summary.total_volume_mm3,
+        Some(result.summary.wear_volume_mm3)
+    );
 }
 
 #[test]

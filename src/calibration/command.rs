@@ -106,6 +106,13 @@ pub fn calibrate_files(
         source,
     };
     let parsed = Table::parse(&text).map_err(|e| fit_error(e.into()))?;
+    // A lab's export read under other names is said, so the user sees what was fitted.
+    for (header, name) in parsed.renamed() {
+        eprintln!(
+            "note: {}: read the column `{header}` as `{name}`",
+            table.display()
+        );
+    }
     let scene = match scene {
         Some(path) => parse_scene_str(&read(path)?)
             .map_err(|errors| CommandError::Scene {

@@ -49,7 +49,7 @@ pub use regime::{
     RegimeFit, RegimeOptions, RegimePoint, Regimes, TwoRegimeFit, fit_archard_regimes,
     fit_archard_regimes_until,
 };
-pub use table::{Table, TableError, UNITS, spellings};
+pub use table::{Table, TableError, UNITS, accepted, column_name, spellings};
 pub use tafel::{
     CorrosionPotentialSource, MIN_DOMAIN_SPAN_V, MIN_TAFEL_POINTS, TafelDomain, TafelFit,
     TafelOptions, TafelResidual, fit_tafel,
@@ -264,7 +264,7 @@ fn cycles_of(table: &Table, scene: &Scene) -> Result<(Vec<f64>, &'static str), C
             "time_s",
         ));
     }
-    Err(table.missing("`cycles` or `time_s`".to_owned()).into())
+    Err(table.missing(&["cycles", "time_s"]).into())
 }
 
 /// Cells per side of the runs a calibration makes when the scene leaves the grid to the

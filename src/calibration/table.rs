@@ -8,10 +8,18 @@
 //! `potential_mv`, `volume_um3`, ...) is converted to the unit the fits use (`time_s`,
 //! `potential_v`, `volume_mm3`, ...).
 //!
-//! A CSV's delimiter is `;` when its header holds one, `,` otherwise: European spreadsheets
-//! save `;` because their decimal mark is the comma, so with `;` a decimal comma is read as
-//! a decimal point (`0,5` is 0.5). Cells may be quoted (`"time_s"`), a quote inside written
-//! twice.
+//! Lab software writes the unit beside the quantity (`Time (s)`, `Volume [mm³]`,
+//! `time/s`, `E (V vs SCE)`): such a header is read as the quantity and the unit joined by
+//! `_` (`time_s`, `volume_mm3`, `e_v`), `³` and `²` as `3` and `2`, `µ` as `u`, a potential's
+//! reference dropped (the scene's `corrosion.reference_electrode` says it), and the short
+//! names potentiostats use for the potential (`E`, `Ewe`, `Vf`) as `potential`
+//! ([`column_name`]); [`Table::renamed`] lists what was read so.
+//!
+//! A CSV's delimiter is a tab when its header holds one (potentiostat and tribometer
+//! software's text exports), else `;` when the header holds one, `,` otherwise: European
+//! spreadsheets save `;` because their decimal mark is the comma, so with `;` or a tab a
+//! decimal comma is read as a decimal point (`0,5` is 0.5). Cells may be quoted
+//! (`"time_s"`), a quote inside written twice.
 
 use serde_json::Value;
 use thiserror::Error;
@@ -78,10 +86,15 @@ pub enum TableError {
     #[error("the header names {} more than once; each column needs its own name", .0.iter().map(|c| format!("`{c}`")).collect::<Vec<_>>().join(", "))]
     DuplicateColumns(Vec<String>),
     /// A column the fit needs is absent.
-    #[error("no column `{wanted}`; the table has {}", found.iter().map(|c| format!("`{c}`")).collect::<Vec<_>>().join(", "))]
+    #[error(
+        "no column {}; {}; the table has {}",
+        quoted(wanted, " or "),
+        accepted(wanted),
+        quoted(found, ", ")
+    )]
     MissingColumn {
-        /// The column (or alternatives) wanted.
-        wanted: String,
+        /// The column (or alternatives) wanted, as the fits name them.
+        wanted: Vec<String>,
         /// The columns present.
         found: Vec<String>,
     },
@@ -98,6 +111,7 @@ pub enum TableError {
 pub struct Table {
     names: Vec<String>,
     columns: Vec<Vec<f64>>,
+    renamed: Vec<(String, String)>,
 }
 
 impl Table {
@@ -128,7 +142,10 @@ impl Table {
             .map(str::trim)
             .filter(|l| !l.is_empty() && !l.starts_with('#'));
         let header = lines.next().ok_or(TableError::Empty)?;
-        let delimiter = if header.contains(';') { ';' } else { ',' };
+        let delimiter = ['\t', ';']
+            .into_iter()
+            .find(|d| header.contains(*d))
+            .unwrap_or(',');
         let names = fields(header, delimiter).ok_or(TableError::Unclosed { row: 0 })?;
         check_header(&names)?;
         let mut columns = vec![Vec::new(); names.len()];
@@ -144,7 +161,7 @@ impl Table {
                 });
             }
             for ((column, name), text) in columns.iter_mut().zip(&names).zip(fields) {
-                let decimal = if delimiter == ';' {
+                let decimal = if delimiter != ',' {
                     text.replace(',', ".")
                 } else {
                     text.clone()
@@ -198,14 +215,20 @@ impl Table {
 
     /// Refuses a table without rows, with columns of different lengths or with a column
     /// named twice (once its name is in the fits' unit); converts the columns in other units.
-    fn checked(names: &[String], mut columns: Vec<Vec<f64>>) -> Result<Self, TableError> {
-        let mut names: Vec<String> = names.iter().map(|n| n.trim().to_lowercase()).collect();
+    fn checked(given: &[String], mut columns: Vec<Vec<f64>>) -> Result<Self, TableError> {
+        let mut names: Vec<String> = given.iter().map(|n| column_name(n)).collect();
         for (name, column) in names.iter_mut().zip(&mut columns) {
             if let Some(&(_, fits, factor)) = UNITS.iter().find(|(other, ..)| other == name) {
                 *name = fits.to_owned();
                 column.iter_mut().for_each(|v| *v *= factor);
             }
         }
+        let renamed = given
+            .iter()
+            .zip(&names)
+            .filter(|(given, name)| given.trim().to_lowercase() != **name)
+            .map(|(given, name)| (given.trim().to_owned(), name.clone()))
+            .collect();
         let mut repeated: Vec<String> = Vec::new();
         for (i, name) in names.iter().enumerate() {
             if names[..i].contains(name) && !repeated.contains(name) {
@@ -227,7 +250,18 @@ impl Table {
                 names[0]
             )));
         }
-        Ok(Self { names, columns })
+        Ok(Self {
+            names,
+            columns,
+            renamed,
+        })
+    }
+
+    /// The headers read under another name, as (the header, the column it became, in the
+    /// fits' unit): `("Time (s)", "time_s")`, `("Time (min)", "time_s")`; empty when every
+    /// header was a name in the fits' unit already.
+    pub fn renamed(&self) -> &[(String, String)] {
+        &self.renamed
     }
 
     /// The column names, in the table's order.
@@ -245,14 +279,13 @@ impl Table {
 
     /// The column called `name`.
     pub fn column(&self, name: &str) -> Result<&[f64], TableError> {
-        self.optional(name)
-            .ok_or_else(|| self.missing(format!("`{name}`")))
+        self.optional(name).ok_or_else(|| self.missing(&[name]))
     }
 
-    /// The error for a missing column, `wanted` describing what was looked for.
-    pub fn missing(&self, wanted: String) -> TableError {
+    /// The error for a missing column, `wanted` the alternatives looked for.
+    pub fn missing(&self, wanted: &[&str]) -> TableError {
         TableError::MissingColumn {
-            wanted,
+            wanted: wanted.iter().map(|w| (*w).to_owned()).collect(),
             found: self.names.clone(),
         }
     }
@@ -286,11 +319,71 @@ pub fn spellings(name: &str) -> Vec<String> {
         .collect()
 }
 
+/// Every accepted spelling of the columns `wanted`, and the forms with the unit apart, in
+/// words that follow "no column ...;" in an error.
+pub fn accepted(wanted: &[String]) -> String {
+    let all: Vec<String> = wanted.iter().flat_map(|w| spellings(w)).collect();
+    format!(
+        "accepted: {}, also with the unit in brackets, parentheses or after `/` (`Time (s)`, \
+         `Volume [mm3]`, `time/s`)",
+        quoted(&all, ", ")
+    )
+}
+
+/// Each name in backticks, joined by `separator`.
+fn quoted(names: &[String], separator: &str) -> String {
+    names
+        .iter()
+        .map(|name| format!("`{name}`"))
+        .collect::<Vec<_>>()
+        .join(separator)
+}
+
+/// The short names potentiostats give the potential: Gamry's `Vf`, EC-Lab's `Ewe`, and `E`.
+const POTENTIAL_NAMES: [&str; 3] = ["e", "ewe", "vf"];
+
+/// The name a header stands for: lower case, trimmed; `Quantity (unit)`, `Quantity [unit]`
+/// and `Quantity/unit` as `quantity_unit` (spaces in the quantity as `_`, a potential's
+/// `vs ...` dropped from its unit); `³`, `²` and `µ` as `3`, `2` and `u`.
+pub fn column_name(header: &str) -> String {
+    let plain: String = header
+        .trim()
+        .to_lowercase()
+        .chars()
+        .map(|c| match c {
+            '³' => '3',
+            '²' => '2',
+            'µ' | 'μ' => 'u',
+            c => c,
+        })
+        .collect();
+    let split = plain
+        .strip_suffix([')', ']'])
+        .and_then(|inner| inner.rsplit_once(['(', '[']))
+        .or_else(|| plain.rsplit_once('/'));
+    let Some((quantity, unit)) = split else {
+        return plain;
+    };
+    let quantity = quantity.split_whitespace().collect::<Vec<_>>().join("_");
+    let quantity = if POTENTIAL_NAMES.contains(&quantity.as_str()) {
+        "potential".to_owned()
+    } else {
+        quantity
+    };
+    let unit = unit.split(" vs").next().unwrap_or_default();
+    let unit: String = unit.chars().filter(|c| !c.is_whitespace()).collect();
+    if quantity.is_empty() || unit.is_empty() {
+        return plain;
+    }
+    format!("{quantity}_{unit}")
+}
+
 /// A delimiter in words, for an error.
 fn delimiter_name(delimiter: char) -> &'static str {
     match delimiter {
+        '\t' => "tabs, as the header has one",
         ';' => "`;`, as the header has one",
-        _ => "`,`, as the header has no `;`",
+        _ => "`,`, as the header has no tab nor `;`",
     }
 }
 
@@ -372,6 +465,49 @@ mod tests {
                 &[2551.0, 2727.0]
             );
         }
+    }
+
+    #[test]
+    fn lab_headers_are_read_as_the_documented_names_and_the_mapping_reported() {
+        for (header, name) in [
+            ("Time (s)", "time_s"),
+            ("Time [s]", "time_s"),
+            ("time/s", "time_s"),
+            ("Volume (mm³)", "volume_mm3"),
+            ("Volume [mm3]", "volume_mm3"),
+            ("Wear volume (µm³)", "wear_volume_um3"),
+            ("Potential (V)", "potential_v"),
+            ("E (V vs SCE)", "potential_v"),
+            ("Ewe/V", "potential_v"),
+            ("Vf (mV vs. Ref.)", "potential_mv"),
+            ("time_s", "time_s"),
+        ] {
+            assert_eq!(column_name(header), name, "{header}");
+        }
+        // A tribometer's CSV: the headers mapped, the time converted, the mapping kept.
+        let table = Table::parse("Time (min),Volume (mm³)\n5,0.00118\n60,0.01172\n").expect("read");
+        assert_eq!(table.column("time_s").expect("mapped"), &[300.0, 3600.0]);
+        assert_eq!(
+            table.renamed(),
+            [
+                ("Time (min)".to_owned(), "time_s".to_owned()),
+                ("Volume (mm³)".to_owned(), "volume_mm3".to_owned())
+            ]
+        );
+        // A potentiostat's tab-separated export, decimal commas included.
+        let table = Table::parse("time/s\tEwe/V\n0\t-0,35\n1,5\t-0,41\n").expect("read");
+        assert_eq!(table.column("time_s").expect("mapped"), &[0.0, 1.5]);
+        assert_eq!(
+            table.column("potential_v").expect("mapped"),
+            &[-0.35, -0.41]
+        );
+        // A missing column lists every accepted spelling, each in one pair of backticks.
+        let err = table.column("volume_mm3").expect_err("absent").to_string();
+        assert!(
+            err.starts_with("no column `volume_mm3`; accepted: `volume_mm3`, `volume_um3`"),
+            "{err}"
+        );
+        assert!(!err.contains("``"), "{err}");
     }
 
     #[test]

@@ -300,7 +300,7 @@ fn curve(table: &Table) -> Result<(Vec<f64>, Vec<f64>), CalibrationError> {
         (None, Some(a_m2)) => a_m2.iter().map(|i| i * A_CM2_PER_A_M2).collect(),
         (None, None) => {
             return Err(table
-                .missing("`current_density_a_cm2` or `current_density_a_m2`".to_owned())
+                .missing(&["current_density_a_cm2", "current_density_a_m2"])
                 .into());
         }
     };

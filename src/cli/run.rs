@@ -11,7 +11,7 @@ use tribosim::scene::SurfaceSpec;
 use tribosim::simulation::{
     CycleRecord, Plan, RunOptions, first_contact_with, parse_scene_str, run_with,
 };
-use tribosim::surface::{HeightMap, read_file as read_surface};
+use tribosim::surface::{HeightMap, HeightUnit, read_file as read_surface};
 
 use super::error::CliError;
 use super::output::{Destination, FileName, destination, today, write_json};
@@ -52,17 +52,21 @@ pub struct SurfaceFile<'a> {
     pub pixel_um: Option<f64>,
     /// Whether to subtract the map's tilt.
     pub remove_tilt: bool,
+    /// A text map's height unit; `None` for heights in m.
+    pub height_unit: Option<HeightUnit>,
 }
 
 /// The map of `file`, and `plan`'s scene with `disc.surface` naming it, checked again.
 fn with_surface(plan: Plan, file: &SurfaceFile) -> Result<(Plan, HeightMap), CliError> {
-    let (map, _) =
-        read_surface(file.path, file.pixel_um.map(|um| um * 1e-6)).map_err(|source| {
-            CliError::Surface {
-                path: file.path.to_owned(),
-                source,
-            }
-        })?;
+    let surface_error = |source| CliError::Surface {
+        path: file.path.to_owned(),
+        source,
+    };
+    let (mut map, format) =
+        read_surface(file.path, file.pixel_um.map(|um| um * 1e-6)).map_err(surface_error)?;
+    if let Some(unit) = file.height_unit {
+        unit.apply(&mut map, format).map_err(surface_error)?;
+    }
     let id = file.path.file_name().map_or_else(
         || file.path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),

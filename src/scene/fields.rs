@@ -185,7 +185,7 @@ pub(super) const TRACK_RADIUS: Field = Field {
     why: "",
     meaning: "Radius R_c of the wear track on the disc.",
     feeds: "sliding distance 2 pi R_c per cycle (s in eqs. 1, 14, 15); the track length in \
-            `wear_volume_mm3` and in the `wear_track` anodic area (eq. 18)",
+            the result's volumes and in the `wear_track` anodic area (eq. 18)",
 };
 
 /// `test.speed_rpm`.
@@ -242,7 +242,8 @@ pub(super) const ARCHARD_K_BASIS: Field = Field {
               mechanical part is the track less the WAC. `mechanical`: the loss without \
               corrosion (a cathodically protected test, or `tribosim calibrate archard`): the \
               total is the track plus the WAC. Without `corrosion` the two read the same.",
-    feeds: "`total_volume_mm3` and `mechanical_volume_mm3` (ASTM G119's balance)",
+    feeds: "how the groove and the WAC make `total_volume_mm3` and `mechanical_volume_mm3` \
+            (ASTM G119's balance); `wear_volume_mm3` is the total on either basis",
 };
 
 /// `wear.archard_calibration`.

@@ -22,6 +22,7 @@ mod preset;
 mod record;
 mod reference;
 mod sections;
+mod slips;
 mod suggest;
 mod surface;
 mod validate;
@@ -49,6 +50,10 @@ pub use sections::{
     ANNEALED_316L_PROOF_STRESS_MPA, ArchardCalibration, Ball, DEFAULT_TOLERANCE, Disc, Numerics,
     PAPER_ARCHARD_CALIBRATION, PAPER_CYCLES, PAPER_HARDNESS_TABLE, PAPER_TABLE3, STEP_CHANGE_BOUND,
     Switch, Table3Row, TestConditions, Wear, YieldCapLaw,
+};
+pub use slips::{
+    HardnessSlip, REFUSE_HARD_MPA, REFUSE_HARDNESS_MPA, WARN_HARD_MPA, WARN_HARDNESS_MPA,
+    hardness_slips,
 };
 pub use surface::{DEFAULT_HURST, MAX_RMS_HEIGHT_UM, MAX_RMS_SLOPE, SurfaceKind, SurfaceSpec};
 

@@ -55,8 +55,20 @@ pub(super) fn check(scene: &Scene) -> Vec<FieldError> {
     c.errors
 }
 
+/// Each hardness typed in another unit (one whose own range held) refused with the slip
+/// named.
+fn refuse_hardness_slips(c: &mut Checks, scene: &Scene) {
+    let slips = super::hardness_slips(scene);
+    for slip in slips.into_iter().filter(|s| s.refused) {
+        if !c.errors.iter().any(|e| e.path == slip.path) {
+            c.fail(&slip.path, slip.message);
+        }
+    }
+}
+
 fn check_hardness_table(c: &mut Checks, scene: &Scene) {
     let Some(table) = &scene.disc.hardness_table else {
+        refuse_hardness_slips(c, scene);
         return;
     };
     let before = c.errors.len();
@@ -91,7 +103,9 @@ fn check_hardness_table(c: &mut Checks, scene: &Scene) {
         let cell = format!("disc.hardness_table[{i}][1]");
         c.number_at(&cell, &DISC_HARDNESS, hardness);
     }
-    // Fit only well-formed data (the SVD of non-finite numbers need not terminate).
+    // Fit only well-formed data (the SVD of non-finite numbers need not terminate), in MPa:
+    // points in GPa would only be said to fit a law that falls below 0.
+    refuse_hardness_slips(c, scene);
     if c.errors.len() > before || !(scene.disc.hardness_mpa.is_finite()) {
         return;
     }

@@ -10,7 +10,10 @@ use super::feasibility::Derived;
 use super::sizing::sizing_radius_m;
 use crate::contact::Hertz;
 use crate::scene::format::{num, sig};
-use crate::scene::{FieldError, FieldWarning, MAX_RMS_HEIGHT_UM, Scene};
+use crate::scene::{
+    FieldError, FieldWarning, MAX_RMS_HEIGHT_UM, REFUSE_HARD_MPA, REFUSE_HARDNESS_MPA, Scene,
+    WARN_HARD_MPA, WARN_HARDNESS_MPA, hardness_slips,
+};
 use crate::surface::{HeightMap, rms_height};
 
 /// Hertz's theory and the half-space of eqs. 5-10 assume a contact small against the ball,
@@ -35,18 +38,13 @@ const REFUSE_PEAK_PRESSURE_PA: f64 = 100e9;
 /// Diamond's Young's modulus, 1050-1210 GPa, the stiffest solid's: a modulus above it was
 /// typed in MPa (205 GPa as 205000), and is refused.
 const DIAMOND_MODULUS_GPA: f64 = 1210.0;
+/// Engineering polymers (PTFE about 0.5 GPa, PEEK 3.6 GPa) are the softest balls and
+/// discs a tribometer runs; a modulus below this after a unit's conversion is no slip's.
+const SOFTEST_MODULUS_GPA: f64 = 0.1;
 /// The smallest ball a tribometer holds: micro-tribometers use 0.5-1 mm balls, colloidal
 /// probes reach 10 um. A smaller radius was typed in m (3 mm as 0.003), and a contact it
 /// cannot hold names it rather than the load.
 const SMALLEST_BALL_MM: f64 = 0.01;
-/// Annealed pure aluminium, about the softest structural metal, has HV 20-25 (200-250 MPa)
-/// and annealed copper HV 40-50; only lead and tin (HV about 5, 50 MPa) and indium (HB
-/// about 1, 9 MPa) are softer. Below this a disc is of lead or tin, or its hardness in GPa
-/// was typed as MPa (316L's 2.473 GPa as 2.473).
-const WARN_HARDNESS_MPA: f64 = 100.0;
-/// Softer than indium (about 9 MPa), the softest metal solid at room temperature: no metal
-/// disc, so a unit slip.
-const REFUSE_HARDNESS_MPA: f64 = 5.0;
 /// A run longer than this is worth a word before it starts: a hundred times the paper's
 /// test (5.9 s).
 const WARN_WALL_S: f64 = 600.0;
@@ -82,12 +80,8 @@ pub(super) fn judge(scene: &Scene, derived: &Derived, estimate: &RunEstimate) ->
     if verdict.refusals.is_empty() {
         peak_pressure(&mut verdict, scene, derived.hertz);
     }
-    let before = verdict.refusals.len();
     hardness(&mut verdict, scene);
-    // A hardness slip sets the contact too (the flat punch F / (pi Y)): named once, there.
-    if verdict.refusals.len() == before {
-        contact_size(&mut verdict, scene, derived);
-    }
+    contact_size(&mut verdict, scene, derived);
     cost(&mut verdict, scene, estimate);
     verdict
 }
@@ -206,51 +200,39 @@ fn moduli(verdict: &mut Verdict, scene: &Scene) {
                 path,
                 format!(
                     "{} GPa is stiffer than diamond ({DIAMOND_MODULUS_GPA} GPa), the stiffest \
-                     solid: was it in MPa? {} MPa = {} GPa",
+                     solid: {}",
                     num(gpa),
-                    num(gpa),
-                    sig(gpa * 1e-3)
+                    modulus_slip(gpa)
                 ),
             );
         }
     }
 }
 
-/// Each hardness the scene gives against the softest metals; see [`WARN_HARDNESS_MPA`],
-/// [`REFUSE_HARDNESS_MPA`].
+/// The unit a modulus above diamond's was likely typed in: the one (MPa, kPa or Pa) that
+/// puts it between [`SOFTEST_MODULUS_GPA`] and diamond's, or a plea to check the unit.
+fn modulus_slip(gpa: f64) -> String {
+    let units = [("MPa", 1e-3), ("kPa", 1e-6), ("Pa", 1e-9)];
+    units
+        .iter()
+        .find(|(_, to_gpa)| (SOFTEST_MODULUS_GPA..=DIAMOND_MODULUS_GPA).contains(&(gpa * to_gpa)))
+        .map_or_else(
+            || "check that it is in GPa".to_owned(),
+            |(unit, to_gpa)| {
+                format!(
+                    "was it in {unit}? {} {unit} = {} GPa",
+                    num(gpa),
+                    sig(gpa * to_gpa)
+                )
+            },
+        )
+}
+
+/// Each hardness the scene gives against the metals' ([`hardness_slips`]): the scene's
+/// checks refuse the slips, so what reaches a plan is warned.
 fn hardness(verdict: &mut Verdict, scene: &Scene) {
-    let table = scene.disc.hardness_table.iter().flatten().enumerate();
-    let points = std::iter::once(("disc.hardness_mpa".to_owned(), scene.disc.hardness_mpa))
-        .chain(table.map(|(i, &(_, mpa))| (format!("disc.hardness_table[{i}][1]"), mpa)));
-    for (path, mpa) in points {
-        if mpa >= WARN_HARDNESS_MPA {
-            continue;
-        }
-        // Typed in GPa only if a thousand times it is a metal's hardness.
-        let slip = if mpa * 1e3 <= WARN_PEAK_PRESSURE_PA * 1e-6 {
-            format!("was it in GPa? {} GPa = {} MPa", num(mpa), sig(mpa * 1e3))
-        } else {
-            "check that it is in MPa".to_owned()
-        };
-        if mpa < REFUSE_HARDNESS_MPA {
-            verdict.refuse(
-                &path,
-                format!(
-                    "{} MPa is softer than any metal (indium, the softest, is about 9 MPa): \
-                     {slip}",
-                    num(mpa)
-                ),
-            );
-        } else {
-            verdict.warn(
-                &path,
-                format!(
-                    "{} MPa is softer than annealed pure aluminium (about 200 MPa); only lead, \
-                     tin and indium are softer: {slip}",
-                    num(mpa)
-                ),
-            );
-        }
+    for slip in hardness_slips(scene) {
+        verdict.warn(&slip.path, slip.message);
     }
 }
 
@@ -325,15 +307,17 @@ pub fn rules_table() -> String {
             "`ball.youngs_modulus_gpa`, `disc.youngs_modulus_gpa`".to_owned(),
             String::new(),
             format!("> {DIAMOND_MODULUS_GPA} GPa"),
-            "stiffer than diamond (a modulus in MPa typed as GPa)".to_owned(),
+            "stiffer than diamond (a modulus in MPa or Pa typed as GPa)".to_owned(),
         ],
         [
             "each hardness given".to_owned(),
             "`disc.hardness_mpa`, `disc.hardness_table[i][1]`".to_owned(),
-            format!("< {WARN_HARDNESS_MPA} MPa"),
-            format!("< {REFUSE_HARDNESS_MPA} MPa"),
+            format!("< {WARN_HARDNESS_MPA} MPa or > {WARN_HARD_MPA} MPa"),
+            format!("< {REFUSE_HARDNESS_MPA} MPa or > {REFUSE_HARD_MPA} MPa"),
             "softer than annealed pure aluminium (200 MPa); than indium (9 MPa), the softest \
-             metal (a hardness in GPa typed as MPa)"
+             metal (a hardness in GPa typed as MPa); harder than hardened steels (about 10 GPa); \
+             than diamond (70-100 GPa), the hardest solid (a hardness in Pa typed as MPa). \
+             Refused by the scene's checks, before the hardness table's law is fitted"
                 .to_owned(),
         ],
         [
@@ -527,6 +511,41 @@ mod tests {
             "{message}"
         );
         assert_eq!(refused_at(&scene, "disc.hardness_mpa"), "");
+    }
+
+    #[test]
+    fn a_hardness_in_pa_a_table_in_gpa_and_a_modulus_in_pa_are_refused_with_their_slip() {
+        let mut scene = Scene::default();
+        scene.disc.hardness_mpa = 2.473e9;
+        let message = refused_at(&scene, "disc.hardness_mpa");
+        assert!(
+            message.contains("was it in Pa? 2.473e9 Pa = 2473 MPa"),
+            "{message}"
+        );
+        // The paper's table typed in GPa: the slip at each point, not the law's fit.
+        let mut scene = Scene::default();
+        let table = scene
+            .disc
+            .hardness_table
+            .as_mut()
+            .expect("the paper's table");
+        table.iter_mut().for_each(|(_, mpa)| *mpa *= 1e-3);
+        let found = refusals(&scene);
+        assert!(
+            !found.is_empty()
+                && found
+                    .iter()
+                    .all(|e| e.path.starts_with("disc.hardness_table[")),
+            "{found:?}"
+        );
+        assert!(found[0].message.contains("was it in GPa?"), "{found:?}");
+        let mut scene = Scene::default();
+        scene.disc.youngs_modulus_gpa = 205e9;
+        let message = refused_at(&scene, "disc.youngs_modulus_gpa");
+        assert!(
+            message.contains("was it in Pa? 2.05e11 Pa = 205 GPa"),
+            "{message}"
+        );
     }
 
     #[test]

@@ -129,7 +129,8 @@ pub struct CycleRecord {
     pub cycle: u64,
     /// Time at the end of the cycle, s.
     pub time_s: f64,
-    /// Wear track volume so far, mm^3.
+    /// The volume lost so far, what a profilometer measures, mm^3: always the same as
+    /// `total_volume_mm3`, whatever loss k was fitted on (`wear.archard_k_basis`).
     pub wear_volume_mm3: f64,
     /// Deepest point of the groove, um.
     pub max_depth_um: f64,
@@ -181,13 +182,13 @@ pub struct CycleRecord {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wac_volume_mm3: Option<f64>,
     /// The mechanical and the corrosion volume together, what a profilometer measures,
-    /// mm^3: `wear_volume_mm3` when k was fitted on total losses (`wear.archard_k_basis`
-    /// `total_loss`), `wear_volume_mm3 + wac_volume_mm3` when on the mechanical loss; absent
-    /// without `corrosion`.
+    /// mm^3: the groove when k was fitted on total losses (`wear.archard_k_basis`
+    /// `total_loss`), the groove plus `wac_volume_mm3` when on the mechanical loss; the
+    /// groove without `corrosion`. Absent only in results written before every run had it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub total_volume_mm3: Option<f64>,
-    /// The mechanical loss, `total_volume_mm3 - wac_volume_mm3` (never below 0), mm^3;
-    /// absent without `corrosion`.
+    /// The mechanical loss, `total_volume_mm3 - wac_volume_mm3` (never below 0), mm^3; the
+    /// groove without `corrosion`. Absent only in results written before every run had it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mechanical_volume_mm3: Option<f64>,
 }
@@ -277,19 +278,18 @@ impl PressureMap {
 pub struct Summary {
     /// Cycles simulated.
     pub cycles: u64,
-    /// Final wear track volume, mm^3.
+    /// Final volume lost, what a profilometer measures, mm^3: the same as
+    /// `total_volume_mm3`.
     pub wear_volume_mm3: f64,
     /// Final deepest point, um.
     pub max_depth_um: f64,
     /// Final wear-accelerated corrosion volume, mm^3; absent without `corrosion`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wac_volume_mm3: Option<f64>,
-    /// Final total volume, mechanical plus corrosion, mm^3 (as the cycle record's); absent
-    /// without `corrosion`.
+    /// Final total volume, mechanical plus corrosion, mm^3 (as the cycle record's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub total_volume_mm3: Option<f64>,
-    /// Final mechanical volume, the total less the corrosion, mm^3; absent without
-    /// `corrosion`.
+    /// Final mechanical volume, the total less the corrosion, mm^3.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mechanical_volume_mm3: Option<f64>,
     /// The anodic charge passed during the rubbing, C; absent without `corrosion`.
@@ -322,7 +322,11 @@ impl std::fmt::Display for Summary {
             "{} cycles in {:.1} s ({} solves, {} solver iterations)",
             self.cycles, self.wall_s, self.solves, self.iterations
         )?;
-        writeln!(f, "  wear volume      {:.4e} mm^3", self.wear_volume_mm3)?;
+        writeln!(
+            f,
+            "  wear volume      {:.4e} mm^3 (the total a profilometer measures)",
+            self.wear_volume_mm3
+        )?;
         writeln!(f, "  maximum depth    {:.3} um", self.max_depth_um)?;
         if let Some(wac) = self.wac_volume_mm3 {
             writeln!(f, "  WAC volume       {wac:.4e} mm^3")?;

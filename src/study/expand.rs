@@ -30,11 +30,13 @@ impl Study {
                 limit: max_members,
             });
         }
-        (0..count).map(|index| self.member(index)).collect()
+        let name = self.name();
+        (0..count).map(|index| self.member(index, &name)).collect()
     }
 
-    /// The member at `index` of the expansion order (mixed-radix digits, last axis fastest).
-    fn member(&self, index: usize) -> Result<Member, StudyError> {
+    /// The member at `index` of the expansion order (mixed-radix digits, last axis fastest),
+    /// named after the study's `name` and its own values.
+    fn member(&self, index: usize, name: &str) -> Result<Member, StudyError> {
         let mut rest = index;
         let mut values = vec![(String::new(), Value::Null); self.axes.len()];
         for (slot, axis) in values.iter_mut().zip(&self.axes).rev() {
@@ -54,9 +56,9 @@ impl Study {
                 source,
             })?
             .into_scene();
-        // Every member would otherwise carry the base's name, which for a member at another
-        // load names the wrong test in a job list or a result file.
-        scene.name = member_name(&scene.name, &described);
+        // The base's name (a preset's "316L vs alumina, 5 N, 60 rpm") would name the wrong
+        // test in a job list or a result file for a member at another load.
+        scene.name = member_name(name, &described);
         Ok(Member {
             index,
             values,
@@ -65,22 +67,22 @@ impl Study {
     }
 }
 
-/// A member's name: its base's name and its values, `base [a = 1, b = 2]`, within the
+/// A member's name: its study's name and its values, `study [a = 1, b = 2]`, within the
 /// scene's bound on names ([`NAME_MAX_CHARS`]), which the member's scene is held to when it
-/// runs as every scene is. Past the bound the base's name is cut first, being the same in
+/// runs as every scene is. Past the bound the study's name is cut first, being the same in
 /// every member, where the values tell the members apart; values longer than the whole
 /// bound are cut at their end. A cut is marked `…`.
-fn member_name(base: &str, described: &str) -> String {
+fn member_name(study: &str, described: &str) -> String {
     let values = format!("[{described}]");
-    let whole = format!("{base} {values}");
+    let whole = format!("{study} {values}");
     if whole.chars().count() <= NAME_MAX_CHARS {
         return whole;
     }
     let value_chars = values.chars().count();
-    // The base keeps what the values and "… " leave.
+    // The study's name keeps what the values and "… " leave.
     match NAME_MAX_CHARS.checked_sub(value_chars + 2) {
         Some(keep) => {
-            let head: String = base.chars().take(keep).collect();
+            let head: String = study.chars().take(keep).collect();
             format!("{head}… {values}")
         }
         None => {

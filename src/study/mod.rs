@@ -37,7 +37,7 @@ pub const MAX_AXES: usize = 16;
 /// A base scene and the axes along which it varies.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Study {
-    /// The study's own name, if the file gives one (else [`Study::name`] is the base's).
+    /// The study's own name, if the file gives one (else [`Study::name`] makes one).
     pub name: Option<String>,
     /// Any scene document, including the `{"preset": ..., "overrides": ...}` form.
     pub base: Value,
@@ -163,20 +163,32 @@ impl Study {
         })
     }
 
-    /// What the study is called: the file's `name`, or else its base scene's (a preset's
-    /// own name, or the one its overrides give), or the scene's default.
+    /// What the study is called: the file's `name`, or else the name its base scene writes
+    /// (`name`, or `overrides.name` under a preset). A preset's own name describes that
+    /// one test ("316L vs alumina, 5 N, 60 rpm"), which the axes contradict, so a study
+    /// that writes neither is called after the preset and its axes (`dalmau2018-316l varied
+    /// in test.load_n, test.speed_rpm`); a base of neither a preset nor a name is the
+    /// default scene's `untitled`.
     pub fn name(&self) -> String {
         if let Some(name) = &self.name {
             return name.clone();
         }
-        match crate::scene::parse_scene(&self.base) {
-            Ok(scene) => scene.name,
-            // A base that only its axes complete: its name as written, if any.
-            Err(_) => ["/name", "/overrides/name"]
-                .iter()
-                .find_map(|at| self.base.pointer(at).and_then(Value::as_str))
-                .map_or_else(|| Scene::default().name, str::to_owned),
-        }
+        let written = ["/name", "/overrides/name"]
+            .iter()
+            .find_map(|at| self.base.pointer(at).and_then(Value::as_str));
+        let name = match written {
+            Some(written) => written.to_owned(),
+            None => match self.base.get("preset").and_then(Value::as_str) {
+                Some(preset) => {
+                    let paths: Vec<&str> = self.axes.iter().map(|a| a.path.as_str()).collect();
+                    format!("{preset} varied in {}", paths.join(", "))
+                }
+                None => Scene::default().name,
+            },
+        };
+        // A name the scene's check would refuse stops its members at parsing, which says
+        // why; here it only has to be a name a member can carry.
+        crate::text::tidy(&name, NAME_MAX_CHARS)
     }
 
     /// How many members the axes give, from their counts alone (no value is built),

@@ -67,8 +67,10 @@ impl Pending {
     }
 }
 
-/// The table's columns after the member number and the axes.
-const COLUMNS: [&str; 9] = [
+/// The table's columns after the member number and the axes: `wear_volume_mm3` is the
+/// total a profilometer measures, and `mechanical_volume_mm3` its mechanical part (after
+/// the older columns, which keep their places).
+const COLUMNS: [&str; 10] = [
     "cycles",
     "wear_volume_mm3",
     "max_depth_um",
@@ -77,6 +79,7 @@ const COLUMNS: [&str; 9] = [
     "archard_k",
     "wall_s",
     "solves",
+    "mechanical_volume_mm3",
     "error",
 ];
 
@@ -171,6 +174,7 @@ impl StudySummary {
                 format!("{:.6e}", s.wear.archard_k),
                 format!("{:.2}", s.wall_s),
                 s.solves.to_string(),
+                optional(s.mechanical_volume_mm3),
                 String::new(),
             ]),
             None => {
@@ -240,9 +244,14 @@ mod tests {
     #[test]
     fn an_error_with_commas_and_quotes_stays_one_csv_cell() {
         let csv = failed_row(r#"cycle 3: "x", then y"#).to_csv();
+        let header = csv.lines().next().expect("a header");
+        assert!(
+            header.ends_with(",solves,mechanical_volume_mm3,error"),
+            "{header}"
+        );
         let row = csv.lines().nth(1).expect("a data row");
-        // member, the axis, eight empty summary cells, then the quoted error.
-        assert_eq!(row, r#"0,a|b,,,,,,,,,"cycle 3: ""x"", then y""#);
+        // member, the axis, nine empty summary cells, then the quoted error.
+        assert_eq!(row, r#"0,a|b,,,,,,,,,,"cycle 3: ""x"", then y""#);
     }
 
     #[test]
@@ -256,7 +265,7 @@ mod tests {
         let row = csv.lines().nth(1).expect("a data row");
         assert_eq!(
             row,
-            r#"0,"'=HYPERLINK(""http://example.com"")",,,,,,,,,'=1+1"#
+            r#"0,"'=HYPERLINK(""http://example.com"")",,,,,,,,,,'=1+1"#
         );
     }
 

@@ -13,6 +13,7 @@ mod spectrum;
 mod spikes;
 mod statistics;
 mod synthetic;
+mod unit;
 
 use thiserror::Error;
 
@@ -23,6 +24,7 @@ pub use statistics::{
     PsdFit, Statistics, measured_fit_range, psd_fit, psd_slope, rms_height, rms_slope,
 };
 pub use synthetic::{Roughness, SelfAffine};
+pub use unit::HeightUnit;
 
 /// The most pixels per side of a map: twice the contact grid's largest side (2048), so a
 /// map finer than the finest grid can still be read; 4096^2 heights are 128 MiB in f64.

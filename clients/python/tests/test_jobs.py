@@ -40,6 +40,9 @@ def test_submit_wait_and_result(small_job: tribosim.Job) -> None:
     assert len(cycles) == len(result.raw["cycles"])
     assert cycles["cycle"].iloc[-1] == 20
     assert cycles["wear_volume_mm3"].iloc[-1] == result.summary["wear_volume_mm3"]
+    # One meaning in every run: the wear volume is the total, mechanical part plus WAC.
+    assert (cycles["wear_volume_mm3"] == cycles["total_volume_mm3"]).all()
+    assert "mechanical_volume_mm3" in cycles.columns
     assert cycles["cycle"].is_monotonic_increasing
     for column in set(cycles.columns) - COUNTS:
         assert UNIT.search(column), f"{column} has no unit in its name"

@@ -86,3 +86,11 @@ def test_scores_against_the_finished_run(small_job: tribosim.Job) -> None:
     csv = small_job.measurements.scores_csv().splitlines()
     assert csv[0].startswith("kind,x_column,x,column,measured,model,residual,z_score")
     assert csv[1].startswith("wear_volume,cycles,1,volume_mm3,")
+
+
+def test_a_lab_export_is_read_and_its_headers_reported(small_job: tribosim.Job) -> None:
+    # Shaped like a tribometer's CSV export: units in parentheses, a superscript three.
+    csv = "Time (s),Volume (mm³)\n1,0.0001\n2,0.0002\n"
+    tables = small_job.measurements.put("wear_volume", csv)
+    assert tables["wear_volume"]["volume_mm3"].tolist() == [0.0001, 0.0002]
+    assert small_job.measurements.renamed == {"Time (s)": "time_s", "Volume (mm³)": "volume_mm3"}

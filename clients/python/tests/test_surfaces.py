@@ -56,6 +56,21 @@ def test_a_file_in_nm(client: tribosim.Client, tmp_path: Path) -> None:
     )
 
 
+def test_an_array_in_um_is_named_at_upload(client: tribosim.Client) -> None:
+    # The test's heights scaled to 0.2 um rms, then passed as m: 0.2 m rms, refused at the
+    # upload with the unit named; with height_unit="um" the same array is stored.
+    h = heights(32, 40)
+    in_um = h * (0.2 / np.sqrt(np.mean((h - h.mean()) ** 2)))
+    with pytest.raises(tribosim.ValidationError) as refused:
+        client.surfaces.upload(in_um, pixel_um=2)
+    assert [f.path for f in refused.value.fields] == ["height_unit"]
+    assert "height_unit=um" in str(refused.value)
+    surface = client.surfaces.upload(in_um, pixel_um=2, height_unit="um")
+    # The client sends 9 significant digits, each height rounded by at most 5e-9 of itself.
+    assert surface.statistics["rms_height_um"] == pytest.approx(0.2, rel=1e-8)
+    client.surfaces.delete(surface.id)
+
+
 def test_a_map_that_cannot_be_read(client: tribosim.Client, tmp_path: Path) -> None:
     path = tmp_path / "disc.txt"
     np.savetxt(path, heights(32, 40))

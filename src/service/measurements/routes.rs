@@ -13,7 +13,7 @@ use uuid::Uuid;
 
 use super::score::{Scores, scores, scores_csv};
 use super::store::{self, MeasuredError};
-use super::table::{self, Format, InvalidTable, MeasurementKind, Measurements};
+use super::table::{self, Format, InvalidTable, MeasurementKind, Measurements, Renamed};
 use crate::scene::FieldError;
 use crate::service::blocking::blocking;
 use crate::service::error::ApiError;
@@ -96,18 +96,30 @@ fn table_format(headers: &HeaderMap) -> Option<Format> {
     (essence(headers)? == "text/csv").then_some(Format::Csv)
 }
 
+/// What a PUT answers: every table of the job, and the headers of the table sent that were
+/// read under another name, so that a lab sees how its export was read.
+#[derive(Debug, serde::Serialize)]
+struct Stored {
+    #[serde(flatten)]
+    tables: Measurements,
+    renamed: Vec<Renamed>,
+}
+
 /// `PUT /api/v1/jobs/{id}/measurements/{kind}`: reads, checks and stores a table; answers
-/// every table of the job.
+/// every table of the job and the headers read under another name.
 async fn put_measurement(
     State(jobs): State<Arc<Jobs>>,
     JobMeasurement(id, kind): JobMeasurement,
     TableBody(format, body): TableBody,
-) -> Result<Json<Measurements>, ApiError> {
-    let columns = table::parse(kind, format, &body)?;
+) -> Result<Json<Stored>, ApiError> {
+    let read = table::parse(kind, format, &body)?;
+    let columns = read.columns;
     let change = move |dir: &std::path::Path| store::write(dir, kind, columns);
-    Ok(Json(
-        blocking(move || store::measured(&jobs, id, change)).await?,
-    ))
+    let tables = blocking(move || store::measured(&jobs, id, change)).await?;
+    Ok(Json(Stored {
+        tables,
+        renamed: read.renamed,
+    }))
 }
 
 /// `GET /api/v1/jobs/{id}/measurements`: every table of the job, null where none.

@@ -10,7 +10,7 @@ use serde::Serialize;
 use thiserror::Error;
 
 use crate::calibration::{
-    CalibrationError, Table, TableError, require_at_least, require_increasing, spellings,
+    CalibrationError, Table, TableError, accepted, require_at_least, require_increasing, spellings,
 };
 use crate::json::{self, JsonError};
 
@@ -169,8 +169,9 @@ pub enum MeasurementError {
     Table(#[from] TableError),
     /// A column this kind needs is absent.
     #[error(
-        "no column {}; the table has {}",
+        "no column {}; {}; the table has {}",
         quoted(wanted, " or "),
+        accepted(wanted),
         quoted(found, ", ")
     )]
     MissingColumn {
@@ -181,12 +182,16 @@ pub enum MeasurementError {
     },
     /// A column this kind does not know (a misspelt unit, say).
     #[error(
-        "unknown column `{column}`; a {kind} table takes {} (units in the name)",
+        "unknown column `{column}`{}; a {kind} table takes {} (units in the name, or in \
+         brackets, parentheses or after `/`: `Time (s)`, `Volume [mm3]`, `time/s`)",
+        header.as_ref().map(|h| format!(" (read from the header `{h}`)")).unwrap_or_default(),
         quoted(allowed, ", ")
     )]
     UnknownColumn {
         /// The column.
         column: String,
+        /// The header it was read from, when that was written otherwise (`Wear (µm³)`).
+        header: Option<String>,
         /// The kind.
         kind: &'static str,
         /// The columns it may have, in every unit accepted.
@@ -231,19 +236,46 @@ pub struct InvalidTable {
     pub error: MeasurementError,
 }
 
+/// A header read under another name: `Time (s)` as `time_s`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Renamed {
+    /// The header as the table wrote it.
+    pub header: String,
+    /// The column it was read as.
+    pub column: String,
+}
+
+/// A table read and checked: its columns, and the headers read under another name.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Read {
+    /// The columns, under the names the fits use.
+    pub columns: Columns,
+    /// The headers written otherwise (`Time (s)`), with the column each was read as.
+    pub renamed: Vec<Renamed>,
+}
+
 /// Reads and checks a table of `kind` from a request body.
-pub fn parse(kind: MeasurementKind, format: Format, body: &[u8]) -> Result<Columns, InvalidTable> {
+pub fn parse(kind: MeasurementKind, format: Format, body: &[u8]) -> Result<Read, InvalidTable> {
     read(kind, format, body).map_err(|error| InvalidTable { kind, error })
 }
 
-fn read(kind: MeasurementKind, format: Format, body: &[u8]) -> Result<Columns, MeasurementError> {
+fn read(kind: MeasurementKind, format: Format, body: &[u8]) -> Result<Read, MeasurementError> {
     let table = match format {
         Format::Csv => {
             Table::from_csv(std::str::from_utf8(body).map_err(|_| MeasurementError::NotText)?)?
         }
         Format::Json => Table::from_json(&json::from_slice(body)?)?,
     };
-    check(kind, &table)
+    let columns = check(kind, &table)?;
+    let renamed = table
+        .renamed()
+        .iter()
+        .map(|(header, column)| Renamed {
+            header: header.clone(),
+            column: column.clone(),
+        })
+        .collect();
+    Ok(Read { columns, renamed })
 }
 
 /// The table's columns of `kind`, each checked.
@@ -254,8 +286,14 @@ fn check(kind: MeasurementKind, table: &Table) -> Result<Columns, MeasurementErr
         .iter()
         .find(|name| !spec.iter().any(|c| c.name == name.as_str()))
     {
+        let header = table
+            .renamed()
+            .iter()
+            .find(|(_, column)| column == unknown)
+            .map(|(header, _)| header.clone());
         return Err(MeasurementError::UnknownColumn {
             column: unknown.clone(),
+            header,
             kind: kind.name(),
             allowed: spec.iter().flat_map(|c| spellings(c.name)).collect(),
         });
@@ -307,13 +345,57 @@ mod tests {
         let json = r#"[{"time_s": 600, "volume_mm3": 0.004, "spread_mm3": 0.001},
                        {"time_s": 3600, "volume_mm3": 0.0118, "spread_mm3": 0.002}]"#;
         let kind = MeasurementKind::WearVolume;
-        let from_csv = parse(kind, Format::Csv, csv.as_bytes()).expect("valid CSV");
-        let from_json = parse(kind, Format::Json, json.as_bytes()).expect("valid JSON");
+        let from_csv = parse(kind, Format::Csv, csv.as_bytes())
+            .expect("valid CSV")
+            .columns;
+        let from_json = parse(kind, Format::Json, json.as_bytes())
+            .expect("valid JSON")
+            .columns;
         assert_eq!(from_csv, from_json);
         assert_eq!(from_csv["time_s"], [600.0, 3600.0]);
         // The stored shape reads back as a table of its own kind.
         let again = serde_json::to_vec(&from_csv).expect("serialises");
-        assert_eq!(parse(kind, Format::Json, &again).expect("valid"), from_csv);
+        assert_eq!(
+            parse(kind, Format::Json, &again).expect("valid").columns,
+            from_csv
+        );
+    }
+
+    #[test]
+    fn a_lab_export_is_read_and_its_headers_reported() {
+        // Shaped like a tribometer's export: units in parentheses, a superscript three.
+        let csv = include_str!("../../../tests/fixtures/lab/wear_tribometer.csv");
+        let read = parse(MeasurementKind::WearVolume, Format::Csv, csv.as_bytes()).expect("read");
+        assert_eq!(read.columns["time_s"], [60.0, 300.0, 1800.0, 3600.0]);
+        assert_eq!(
+            read.columns["volume_mm3"],
+            [0.00109, 0.00118, 0.00533, 0.01172]
+        );
+        let names: Vec<(&str, &str)> = read
+            .renamed
+            .iter()
+            .map(|r| (r.header.as_str(), r.column.as_str()))
+            .collect();
+        assert_eq!(
+            names,
+            [
+                ("Time (min)", "time_s"),
+                ("Volume (mm³)", "volume_mm3"),
+                ("Spread (mm³)", "spread_mm3")
+            ]
+        );
+        // Shaped like a potentiostat's tab-separated text export (EC-Lab's column names).
+        let tsv = "time/s\tEwe/V\n0\t-0.35\n1.5\t-0.41\n";
+        let read = parse(MeasurementKind::Ocp, Format::Csv, tsv.as_bytes()).expect("read");
+        assert_eq!(read.columns["potential_v"], [-0.35, -0.41]);
+        // A header read as no known column says what it was read from and what is taken.
+        let refused = refused(MeasurementKind::WearVolume, "Time (s),Wear (µm³)\n1,2\n");
+        let message = refused.to_string();
+        assert!(
+            message.contains("`wear_um3` (read from the header `Wear (µm³)`)"),
+            "{message}"
+        );
+        assert!(message.contains("`volume_mm3`, `volume_um3`"), "{message}");
     }
 
     #[test]

@@ -8,9 +8,10 @@ use serde::Deserialize;
 
 use super::store::{CreateError, SurfaceRecord, Surfaces};
 use crate::service::extract::cut;
+use crate::simulation::check_map;
 use crate::surface::{
-    Format, HeightMap, MAX_PIXEL_M, MIN_PIXEL_M, Statistics, SurfaceError, declared_pixels, read,
-    read_as,
+    Format, HeightMap, HeightUnit, MAX_PIXEL_M, MIN_PIXEL_M, Statistics, SurfaceError,
+    declared_pixels, read, read_as,
 };
 use crate::text::{Lines, NAME_MAX_CHARS, check};
 
@@ -23,16 +24,12 @@ pub(super) struct UploadQuery {
     name: Option<String>,
 }
 
-/// The units a text map's heights may be written in, and each one's size in m: a profiler's
-/// export is often in um or nm, which read as m would be a million times too rough.
-const HEIGHT_UNITS: [(&str, f64); 3] = [("m", 1.0), ("um", 1e-6), ("nm", 1e-9)];
-
 /// The format, pixel size, height unit and name an upload's query gives, checked.
 pub(super) struct UploadOptions {
     format: Option<Format>,
     pixel_m: Option<f64>,
-    /// The size of the heights' unit, m; `None` for heights in m as the file has them.
-    height_unit_m: Option<f64>,
+    /// The heights' unit; `None` for heights in m as the file has them.
+    height_unit: Option<HeightUnit>,
     name: String,
 }
 
@@ -89,20 +86,14 @@ impl UploadQuery {
                 }
             },
         };
-        let height_unit_m = match self.height_unit.as_deref() {
+        let height_unit = match self.height_unit.as_deref() {
             None => None,
-            Some(text) => Some(
-                HEIGHT_UNITS
-                    .iter()
-                    .find(|(unit, _)| *unit == text.trim())
-                    .map(|&(_, size)| size)
-                    .ok_or_else(|| {
-                        invalid(
-                            "height_unit",
-                            format!("{:?} is not a unit of height (m, um, nm)", cut(text)),
-                        )
-                    })?,
-            ),
+            Some(text) => Some(HeightUnit::named(text.trim()).ok_or_else(|| {
+                invalid(
+                    "height_unit",
+                    format!("{:?} is not a unit of height (m, um, nm)", cut(text)),
+                )
+            })?),
         };
         // A name as a scene's: the same bound and the same rule on characters.
         let name = self.name.unwrap_or_default();
@@ -110,7 +101,7 @@ impl UploadQuery {
         Ok(UploadOptions {
             format,
             pixel_m,
-            height_unit_m,
+            height_unit,
             name,
         })
     }
@@ -149,15 +140,24 @@ fn parse(
     options: &UploadOptions,
 ) -> Result<(HeightMap, Format, Statistics), UploadError> {
     let (mut map, format) = read_map(bytes, options.format, options.pixel_m)?;
-    if let Some(unit_m) = options.height_unit_m {
-        if format == Format::Gsf {
-            return Err(invalid(
-                "height_unit",
-                "a .gsf file states its own units (in m); height_unit is for text maps".into(),
-            ));
-        }
-        map.heights_m.iter_mut().for_each(|h| *h *= unit_m);
+    if let Some(unit) = options.height_unit {
+        unit.apply(&mut map, format)
+            .map_err(|e| invalid("height_unit", e.to_string()))?;
     }
+    // The run would refuse such a map at its start; refused here, the slip is named where
+    // it was made, before any job names the map.
+    let label = if options.name.is_empty() {
+        "upload"
+    } else {
+        options.name.as_str()
+    };
+    check_map(label, &map).map_err(|e| {
+        let hint = match options.height_unit {
+            None | Some(HeightUnit::M) => "; pass height_unit=um (or nm) with the upload",
+            Some(_) => "; check the upload's height_unit",
+        };
+        invalid("height_unit", format!("{}{hint}", e.message))
+    })?;
     let statistics = Statistics::of_measured(&map);
     let numbers = [
         ("rms_height_um", statistics.rms_height_um),

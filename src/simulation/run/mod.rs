@@ -349,13 +349,13 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let track_length = setup.scene().track_length_m();
         let contact: Vec<bool> = solution.pressure.iter().map(|&p| p > 0.0).collect();
         let groove_m3 = self.groove.area_m2() * track_length;
-        let wear_volume_mm3 = groove_m3 * 1e9;
         let basis = setup.scene().wear.archard_k_basis;
-        let loss = reading.map(|r| basis.split(groove_m3, r.wac_m3));
+        // Without corrosion the WAC is nil and either basis splits the groove into itself.
+        let loss = basis.split(groove_m3, reading.map_or(0.0, |r| r.wac_m3));
         let record = CycleRecord {
             cycle,
             time_s: n * setup.scene().cycle_period_s(),
-            wear_volume_mm3,
+            wear_volume_mm3: loss.total_m3 * 1e9,
             max_depth_um: self.groove.max_depth_m() * 1e6,
             loaded_max_depth_um: loaded_max_depth_m(
                 &self.groove,
@@ -377,8 +377,8 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             anodic_current_ma: reading.map(|r| r.anodic_current_a * 1e3),
             charge_c: reading.map(|r| r.charge_c),
             wac_volume_mm3: reading.map(|r| r.wac_m3 * 1e9),
-            total_volume_mm3: loss.map(|l| l.total_m3 * 1e9),
-            mechanical_volume_mm3: loss.map(|l| l.mechanical_m3 * 1e9),
+            total_volume_mm3: Some(loss.total_m3 * 1e9),
+            mechanical_volume_mm3: Some(loss.mechanical_m3 * 1e9),
         };
         on_cycle(&record);
         self.records.push(record);

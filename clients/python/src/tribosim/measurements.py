@@ -38,15 +38,20 @@ class Measurements:
     def __init__(self, http: Http, job_id: str) -> None:
         self._http = http
         self._job_id = job_id
+        #: The headers the last `put` read under another name, each with its column.
+        self.renamed: dict[str, str] = {}
 
     @_PUT.implements
     def put(self, kind: str, table: TableInput) -> Tables:
         """Attaches `table` (a DataFrame, columns, rows, CSV text or a CSV file's
-        `pathlib.Path`) as the job's `kind`, replacing any; returns every table of the job."""
+        `pathlib.Path`) as the job's `kind`, replacing any; returns every table of the job.
+        Headers as lab software writes them (``Time (s)``, ``Volume [mm3]``) are read as the
+        documented names; `renamed` then holds how (``{"Time (s)": "time_s"}``)."""
         body, content_type = table_body(table)
         answer = self._http.json(
             _PUT, content=body, content_type=content_type, id=self._job_id, kind=kind
         )
+        self.renamed = {r["header"]: r["column"] for r in answer.pop("renamed", [])}
         return _tables(answer)
 
     @_GET.implements

@@ -33,7 +33,9 @@ class PressureMap:
 
 class Result:
     """The result JSON of a job. Columns keep the server's names, units in the names
-    (``wear_volume_mm3``, ``time_s``); `raw` is the whole document as it came."""
+    (``total_volume_mm3``, ``time_s``); `raw` is the whole document as it came. The volume a
+    profilometer measures, Table 3's, is ``total_volume_mm3`` in every run;
+    ``mechanical_volume_mm3`` and ``wac_volume_mm3`` are its parts."""
 
     def __init__(self, raw: dict[str, Any]) -> None:
         self.raw = raw
@@ -42,7 +44,7 @@ class Result:
         s = self.summary
         return (
             f"<Result complete={self.complete} cycles={s.get('cycles')} "
-            f"wear_volume_mm3={s.get('wear_volume_mm3')}>"
+            f"total_volume_mm3={s.get('total_volume_mm3')}>"
         )
 
     @property
@@ -58,7 +60,7 @@ class Result:
 
     @property
     def summary(self) -> dict[str, Any]:
-        """The totals: ``cycles``, ``wear_volume_mm3``, ``max_depth_um``, ``archard_k``, ..."""
+        """The totals: ``cycles``, ``total_volume_mm3``, ``max_depth_um``, ``archard_k``, ..."""
         summary: dict[str, Any] = self.raw["summary"]
         return summary
 
@@ -78,8 +80,9 @@ class Result:
 
     @property
     def cycles(self) -> pandas.DataFrame:
-        """One row per solved cycle (``cycle``, ``time_s``, ``wear_volume_mm3``,
-        ``max_depth_um``, ...; the corrosion columns only with corrosion)."""
+        """One row per solved cycle (``cycle``, ``time_s``, ``total_volume_mm3``,
+        ``mechanical_volume_mm3``, ``max_depth_um``, ...; the corrosion columns only with
+        corrosion)."""
         return frame(self.raw["cycles"])
 
     @property

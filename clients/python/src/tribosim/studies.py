@@ -132,7 +132,7 @@ class Study:
     @_SUMMARY.implements
     def summary(self) -> pandas.DataFrame:
         """One row per member: ``member``, a column per axis (its dotted path), the run's
-        summary (``wear_volume_mm3``, ``max_depth_um``, ``wac_volume_mm3``, ...), and
+        summary (``total_volume_mm3``, ``max_depth_um``, ``wac_volume_mm3``, ...), and
         ``error`` and ``pending`` (None for a member with a result)."""
         rows = [
             {

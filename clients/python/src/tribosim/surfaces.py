@@ -36,17 +36,25 @@ class Surfaces:
         self._http = http
 
     @_UPLOAD.implements
-    def upload(self, heights_m: np.ndarray, pixel_um: float, name: str | None = None) -> Surface:
-        """Stores `heights_m` (a 2-D array of heights in m, indexed ``[iy, ix]``: one row
-        per line across the track) with its square `pixel_um`; the answer has its id,
-        size and statistics. A map the server cannot use raises `ValidationError` naming
-        ``body`` or ``pixel_um``."""
+    def upload(
+        self,
+        heights_m: np.ndarray,
+        pixel_um: float,
+        name: str | None = None,
+        height_unit: str | None = None,
+    ) -> Surface:
+        """Stores `heights_m` (a 2-D array of heights indexed ``[iy, ix]``: one row per line
+        across the track; in m, or in `height_unit`, ``m``, ``um`` or ``nm``, for an array
+        as a profiler exports it) with its square `pixel_um`; the answer has its id, size
+        and statistics. A map the server cannot use raises `ValidationError` naming
+        ``body``, ``pixel_um`` or ``height_unit``: heights in um passed as m give an rms
+        height no ball-on-disc surface has, refused here and not at the run."""
         heights = require_numpy().asarray(heights_m, dtype=float)
         if heights.ndim != 2:
             raise ValueError(f"a height map is a 2-D array, not {heights.ndim}-D")
         text = io.StringIO()
         require_numpy().savetxt(text, heights, fmt=f"%.{HEIGHT_DIGITS}g")
-        return self._upload(text.getvalue().encode(), pixel_um, name, "matrix")
+        return self._upload(text.getvalue().encode(), pixel_um, name, "matrix", height_unit)
 
     @_UPLOAD.implements
     def upload_file(
