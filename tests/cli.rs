@@ -362,7 +362,9 @@ fn the_help_lists_the_verbs_first_and_each_verb_has_an_example() {
     ];
     for verb in verbs {
         let help = help_of(&[verb, "--help"]);
-        let example = help.find("Example").unwrap_or_else(|| panic!("{verb}: {help}"));
+        let example = help
+            .find("Example")
+            .unwrap_or_else(|| panic!("{verb}: {help}"));
         assert!(
             help[example..].contains(&format!("tribosim {verb}")),
             "{verb}: {help}"

@@ -90,7 +90,14 @@ fn a_run_report_holds_every_figure_its_tables_the_methods_and_the_provenance() {
     // report, up to the time it was made (the last table, after "This report").
     let csv = "cycles,volume_mm3,spread_mm3\n5,1e-4,1e-5\n10,2e-4,1e-5\n";
     std::fs::write(dir.path().join("wear.csv"), csv).expect("CSV");
-    let args = ["report", "result.json", "--wear-volume", "wear.csv", "-o", "csv.html"];
+    let args = [
+        "report",
+        "result.json",
+        "--wear-volume",
+        "wear.csv",
+        "-o",
+        "csv.html",
+    ];
     tribosim(dir.path(), &args);
     let from_csv = read(dir.path(), "csv.html");
     let before_its_time = |html: &str| html.split("This report").next().map(str::to_owned);
@@ -114,7 +121,10 @@ fn a_run_report_holds_every_figure_its_tables_the_methods_and_the_provenance() {
             .output()
             .expect("start tribosim");
         let stderr = String::from_utf8_lossy(&output.stderr);
-        assert!(!output.status.success() && stderr.contains(expected), "{stderr}");
+        assert!(
+            !output.status.success() && stderr.contains(expected),
+            "{stderr}"
+        );
     }
 }
 
