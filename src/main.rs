@@ -13,11 +13,13 @@ use clap::{Args, Parser, Subcommand};
 use tribosim::bench::{self, BenchTarget};
 use tribosim::calibration::{ChangeCycle, CommandOptions, FitKind, calibrate_files};
 use tribosim::scene::presets;
+use tribosim::service::MeasurementKind;
 use tribosim::study::command::StudyArgs;
 use tribosim::study::slurm::{CollectArgs, SlurmOptions, collect, write_dir};
 
 use cli::error::CliError;
 use cli::output::{Destination, FileName, destination, today, write_json};
+use cli::report::MeasuredFiles;
 use cli::run::{SurfaceFile, contact_scene, run_scene};
 
 /// jemalloc instead of glibc's malloc, so that a server that ran a large job gives the
@@ -35,6 +37,21 @@ static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
     about = "Ball-on-disc tribocorrosion wear simulation (Dalmau et al., Wear 2018)"
 )]
 #[command(args_conflicts_with_subcommands = true)]
+// The verbs first, and the server's options (twenty of them) behind `tribosim serve --help`.
+#[command(
+    help_template = "{about}\n\n{usage-heading} {usage}\n\nCommands:\n{subcommands}\n{after-help}",
+    after_help = "`tribosim` alone serves, as `tribosim serve` does: `tribosim serve --help` lists the \
+server's options.
+
+Examples:
+  tribosim serve --data-dir data          # the page at http://127.0.0.1:8080
+  tribosim run scenes/quick.json -o quick.json
+  tribosim report quick.json --wear-volume docs/calibration/table3_wear.csv -o report.html
+  tribosim study scenes/study-load-speed.json -o study.json
+
+Each verb's --help has an example. The guides are the docs/ folder of tribosim's source \
+(README.md lists them); the HTTP API is described at /api/v1/openapi.yaml of a running server."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -76,8 +93,17 @@ impl SurfaceArgs {
 #[derive(Subcommand)]
 enum Command {
     /// Serve the HTTP API and the web page (the default).
+    #[command(
+        after_help = "Example:\n  tribosim serve --data-dir data --workers 2\n  \
+        (then open http://127.0.0.1:8080; docs/operations.md of the source explains the limits)"
+    )]
     Serve(tribosim::service::ServeArgs),
     /// Run one scene offline and write the result JSON.
+    #[command(
+        after_help = "Examples:\n  tribosim run scenes/quick.json -o quick.json\n  \
+        echo '{\"preset\": \"dalmau2018-316l\", \"overrides\": {\"test\": {\"cycles\": 60}}}' \
+        | tribosim run - -o sixty.json"
+    )]
     Run {
         /// The scene (JSON; may be {"preset": ..., "overrides": ...}); `-` reads standard
         /// input.
@@ -90,6 +116,7 @@ enum Command {
         surface: SurfaceArgs,
     },
     /// Solve the first cycle's contact alone and print it as JSON.
+    #[command(after_help = "Example:\n  tribosim contact scenes/quick.json > contact.json")]
     Contact {
         /// The scene (JSON); `-` reads standard input.
         scene: PathBuf,
@@ -97,9 +124,14 @@ enum Command {
         surface: SurfaceArgs,
     },
     /// Print the built-in scenes as JSON.
+    #[command(after_help = "Example:\n  tribosim presets > presets.json")]
     Presets,
     /// Write a printable HTML report (`docs/report.md`): of one result, of several results
     /// compared, or of a study's summary.
+    #[command(after_help = "Examples:\n  \
+        tribosim report quick.json --wear-volume docs/calibration/table3_wear.csv -o report.html\n  \
+        tribosim report a.json b.json -o comparison.html\n  \
+        tribosim report study.json -o study.html")]
     Report {
         /// Result JSON files (one: a run's report; several: a comparison), or one study
         /// summary JSON.
@@ -109,12 +141,25 @@ enum Command {
         /// (`GET /api/v1/jobs/{id}/measurements`), drawn and compared with the model.
         #[arg(long, value_name = "FILE")]
         measurements: Option<PathBuf>,
+        /// A single run's measured wear volumes: a lab's table, CSV (or JSON by its
+        /// extension), `time_s` or `cycles`, `volume_mm3`, optionally `spread_mm3`.
+        #[arg(long, value_name = "FILE")]
+        wear_volume: Option<PathBuf>,
+        /// A single run's measured groove profile: a table of `y_mm`, `depth_um`.
+        #[arg(long, value_name = "FILE")]
+        profile: Option<PathBuf>,
+        /// A single run's measured open-circuit potential: a table of `time_s`, `potential_v`.
+        #[arg(long, value_name = "FILE")]
+        ocp: Option<PathBuf>,
         /// Where to write the report; standard output if absent.
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
     /// Fit the model's parameters to a measurement table (CSV or JSON, units in the column
     /// names) and write the fit, with the scene filled in, as JSON.
+    #[command(after_help = "Examples:\n  \
+        tribosim calibrate hardness docs/calibration/table3_hardness.csv -o hardness.json\n  \
+        tribosim calibrate archard docs/calibration/table3_wear.csv --regime-change auto")]
     Calibrate {
         /// Which fit.
         #[arg(value_enum)]
@@ -152,6 +197,9 @@ enum Command {
     /// Run a study (a base scene and axes, `docs/study.md`) and write its summary JSON; or
     /// write it as a Slurm job array (`--slurm DIR`) and `collect` it (`docs/cluster.md`).
     #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+    #[command(after_help = "Examples:\n  \
+        tribosim study scenes/study-load-speed.json -o study.json --csv study.csv\n  \
+        tribosim study scenes/study-12.json --slurm runs/ && tribosim study collect runs/")]
     Study {
         #[command(subcommand)]
         action: Option<StudyAction>,
@@ -175,6 +223,7 @@ enum Command {
         slurm: SlurmCli,
     },
     /// Print the speed-against-error tables.
+    #[command(after_help = "Example:\n  tribosim bench contact --json > contact.jsonl")]
     Bench {
         /// Which tables.
         #[arg(value_enum, default_value = "contact")]
@@ -228,6 +277,7 @@ struct SlurmCli {
 #[derive(Subcommand)]
 enum StudyAction {
     /// Gather the results in a `--slurm` study directory into the study's summary JSON.
+    #[command(after_help = "Example:\n  tribosim study collect runs/ -o study.json")]
     Collect {
         /// The study directory.
         dir: PathBuf,
@@ -330,8 +380,25 @@ fn main() -> ExitCode {
         Command::Report {
             inputs,
             measurements,
+            wear_volume,
+            profile,
+            ocp,
             output,
-        } => cli::report::report(&inputs, measurements.as_deref(), output.as_deref()),
+        } => {
+            let tables = [
+                (MeasurementKind::WearVolume, wear_volume.as_deref()),
+                (MeasurementKind::Profile, profile.as_deref()),
+                (MeasurementKind::Ocp, ocp.as_deref()),
+            ];
+            let measured = MeasuredFiles {
+                all: measurements.as_deref(),
+                tables: tables
+                    .into_iter()
+                    .filter_map(|(kind, path)| Some((kind, path?)))
+                    .collect(),
+            };
+            cli::report::report(&inputs, &measured, output.as_deref())
+        }
         Command::Calibrate {
             fit,
             table,

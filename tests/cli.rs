@@ -362,3 +362,41 @@ fn an_output_that_is_not_a_regular_file_is_written_into_not_replaced() {
     let kind = std::fs::metadata(&fifo).expect("still there").file_type();
     assert!(kind.is_fifo(), "the pipe was replaced: {kind:?}");
 }
+
+/// The standard output of `tribosim ARGS`, which must succeed.
+fn help_of(args: &[&str]) -> String {
+    let output = tribosim().args(args).output().expect("start tribosim");
+    assert!(output.status.success(), "tribosim {args:?}");
+    String::from_utf8(output.stdout).expect("UTF-8")
+}
+
+#[test]
+fn the_help_lists_the_verbs_first_and_each_verb_has_an_example() {
+    let top = help_of(&["--help"]);
+    let commands = top.find("Commands:").expect("the verbs are listed");
+    // The server's options are behind `tribosim serve --help`, not before the verbs.
+    assert!(!top.contains("--addr"), "{top}");
+    assert!(top[commands..].contains("tribosim serve --help"), "{top}");
+    assert!(help_of(&["serve", "--help"]).contains("--addr"));
+    let verbs = [
+        "serve",
+        "run",
+        "contact",
+        "presets",
+        "report",
+        "calibrate",
+        "study",
+        "bench",
+    ];
+    for verb in verbs {
+        let help = help_of(&[verb, "--help"]);
+        let example = help
+            .find("Example")
+            .unwrap_or_else(|| panic!("{verb}: {help}"));
+        assert!(
+            help[example..].contains(&format!("tribosim {verb}")),
+            "{verb}: {help}"
+        );
+    }
+    assert!(help_of(&["study", "collect", "--help"]).contains("tribosim study collect"));
+}

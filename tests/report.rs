@@ -85,6 +85,47 @@ fn a_run_report_holds_every_figure_its_tables_the_methods_and_the_provenance() {
     assert!(html.contains(hash), "the scene's SHA-256 is in the report");
     assert!(html.contains("attached measurement"));
     assert!(html.contains("residual"));
+
+    // The same points as a lab's CSV, read as the service reads a PUT of it: the same
+    // report, up to the time it was made (the last table, after "This report").
+    let csv = "cycles,volume_mm3,spread_mm3\n5,1e-4,1e-5\n10,2e-4,1e-5\n";
+    std::fs::write(dir.path().join("wear.csv"), csv).expect("CSV");
+    let args = [
+        "report",
+        "result.json",
+        "--wear-volume",
+        "wear.csv",
+        "-o",
+        "csv.html",
+    ];
+    tribosim(dir.path(), &args);
+    let from_csv = read(dir.path(), "csv.html");
+    let before_its_time = |html: &str| html.split("This report").next().map(str::to_owned);
+    assert_eq!(before_its_time(&from_csv), before_its_time(&html));
+
+    // A CSV where the JSON belongs is sent to the option that reads it; a refused table
+    // names its option, its file and its column.
+    for (args, expected) in [
+        (
+            ["report", "result.json", "--measurements", "wear.csv"],
+            "a lab's table (CSV or JSON, units in the column names) goes in with --wear-volume",
+        ),
+        (
+            ["report", "result.json", "--ocp", "wear.csv"],
+            "--ocp wear.csv: unknown column `cycles`",
+        ),
+    ] {
+        let output = Command::new(env!("CARGO_BIN_EXE_tribosim"))
+            .args(args)
+            .current_dir(dir.path())
+            .output()
+            .expect("start tribosim");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            !output.status.success() && stderr.contains(expected),
+            "{stderr}"
+        );
+    }
 }
 
 #[test]
@@ -125,14 +166,19 @@ fn a_comparison_and_a_study_have_their_own_reports() {
     assert!(html.contains("<th>test.load_n</th><th>test.speed_rpm</th>"));
 }
 
-/// GET `path` and expect 200 with an HTML download; the body.
-async fn get_report(client: &reqwest::Client, server: &Server, path: &str) -> String {
+/// GET `path` and expect 200 with an HTML download saved as `filename`; the body.
+async fn get_report(
+    client: &reqwest::Client,
+    server: &Server,
+    path: &str,
+    filename: &str,
+) -> String {
     let response = client.get(server.url(path)).send().await.expect("GET");
     assert_eq!(response.status(), 200, "GET {path}");
     let headers = response.headers();
     assert_eq!(headers["content-type"], "text/html; charset=utf-8");
     let disposition = headers["content-disposition"].to_str().expect("ascii");
-    assert!(disposition.contains("report.html"), "{disposition}");
+    assert_eq!(disposition, format!("attachment; filename=\"{filename}\""));
     response.text().await.expect("the report's text")
 }
 
@@ -158,13 +204,19 @@ async fn the_service_serves_a_job_report_with_its_measurements_a_comparison_and_
         .expect("PUT");
     assert_eq!(put.status(), 200);
 
-    let html = get_report(&client, &server, &format!("/api/v1/jobs/{}/report", ids[0])).await;
+    let html = get_report(
+        &client,
+        &server,
+        &format!("/api/v1/jobs/{}/report", ids[0]),
+        "small-6-cycles.report.html",
+    )
+    .await;
     assert_self_contained(&html);
     assert_eq!(html.matches("<svg").count(), 6);
     assert!(html.contains("Potential against the model&#39;s, on the record&#39;s clock"));
 
     let both = format!("/api/v1/report?jobs={},{}", ids[0], ids[1]);
-    let html = get_report(&client, &server, &both).await;
+    let html = get_report(&client, &server, &both, "comparison.report.html").await;
     assert_self_contained(&html);
     assert!(html.contains("small, 6 cycles") && html.contains("small, 9 cycles"));
     for refused in [
@@ -194,7 +246,13 @@ async fn the_service_serves_a_job_report_with_its_measurements_a_comparison_and_
         let job = member["job_id"].as_str().expect("job id");
         wait_for_job(&client, &server.base, job, is_final).await;
     }
-    let html = get_report(&client, &server, &format!("/api/v1/studies/{id}/report")).await;
+    let html = get_report(
+        &client,
+        &server,
+        &format!("/api/v1/studies/{id}/report"),
+        "small-2-cycles.report.html",
+    )
+    .await;
     assert_self_contained(&html);
     assert!(html.contains("wear volume against test.load_n"));
     server.stop().await;

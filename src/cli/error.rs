@@ -93,9 +93,30 @@ pub enum CliError {
         /// Why it is not.
         source: serde_json::Error,
     },
-    /// `--measurements` given with more than one run's result.
-    #[error("--measurements goes with a single run's result, not {0}")]
+    /// Measurements given with more than one run's result.
+    #[error(
+        "--measurements, --wear-volume, --profile and --ocp go with a single run's result, \
+         not {0}"
+    )]
     MeasurementsAlone(&'static str),
+    /// A measured table given on the command line was refused.
+    #[error("--{kind} {}: {source}", path.display())]
+    Table {
+        /// The option, as the kind is spelt there (`wear-volume`).
+        kind: String,
+        /// The table's file.
+        path: PathBuf,
+        /// Why it was refused.
+        source: tribosim::service::MeasurementError,
+    },
+    /// `--measurements` given a lab's CSV, which the per-kind options read.
+    #[error(
+        "--measurements {} reads the JSON the service answers \
+         (`GET /api/v1/jobs/{{id}}/measurements`); a lab's table (CSV or JSON, units in the \
+         column names) goes in with --wear-volume, --profile or --ocp",
+        .0.display()
+    )]
+    MeasurementsCsv(PathBuf),
     /// A report's figure could not be drawn.
     #[error(transparent)]
     Figure(#[from] FigureError),

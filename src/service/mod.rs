@@ -61,6 +61,9 @@ use tower_http::cors::CorsLayer;
 
 pub use budget::Budgets;
 pub use listen::Limits;
+pub use measurements::{
+    Format as TableFormat, MeasurementError, MeasurementKind, parse as parse_measurements,
+};
 pub use meta::OPENAPI_YAML;
 pub use route::{Route, Verb};
 pub use router::{BODY_LIMIT_BYTES, MAX_URI_BYTES, routes};

@@ -11,7 +11,8 @@ pub(crate) fn created(status: StatusCode, location: String, record: impl Seriali
     (status, [(header::LOCATION, location)], Json(record)).into_response()
 }
 
-/// The name a download of job `id` is saved under: its `name` made safe for a file name
+/// The name a download of job or study `id` is saved under, the one rule for every
+/// download (`<name>.<what>.<extension>`): its `name` made safe for a file name
 /// on any system (lower case; letters, digits, `-`, `_` and `.` kept, every other run of
 /// characters one `-`; at most 80 characters), then `.suffix`; `tribosim-<id>.suffix` for a
 /// name with nothing left. `paper test, 3600 cycles` gives `paper-test-3600-cycles.suffix`.
@@ -31,6 +32,12 @@ pub(crate) fn download_name(name: &str, id: uuid::Uuid, suffix: &str) -> String 
     } else {
         format!("{safe}.{suffix}")
     }
+}
+
+/// JSON shown in a browser, saved as `filename` (not `scores`, the route's last segment).
+pub(crate) fn inline_json(filename: &str, body: impl IntoResponse) -> Response {
+    let disposition = format!("inline; filename=\"{filename}\"");
+    ([(header::CONTENT_DISPOSITION, disposition)], body).into_response()
 }
 
 /// A file to download as `filename`.

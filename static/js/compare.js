@@ -183,7 +183,7 @@ export function init() {
   $(JOBS.compare).addEventListener("click", open);
   $(COMPARE.close).addEventListener("click", () => { $(COMPARE.panel).hidden = true; });
   $(COMPARE.report).addEventListener("click", () =>
-    download(`/api/v1/report?jobs=${compared.map((r) => r.job.id).join(",")}`, "tribosim-comparison-report.html"));
+    download(`/api/v1/report?jobs=${compared.map((r) => r.job.id).join(",")}`, "comparison.report.html"));
   for (const radio of document.querySelectorAll(`input[name="${COMPARE_X}"]`)) radio.addEventListener("change", draw);
   $(COMPARE.cycle).addEventListener("change", drawProfiles);
 }

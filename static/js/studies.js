@@ -245,6 +245,6 @@ export function init() {
   $(STUDY.axis).addEventListener("change", drawPlots);
   $(STUDY.compare).addEventListener("click", compareMembers);
   $(STUDY.report).addEventListener("click", () => {
-    if (study) download(`/api/v1/studies/${study.id}/report`, `tribosim-study-${study.id}-report.html`);
+    if (study) download(`/api/v1/studies/${study.id}/report`, `tribosim-study-${study.id}.report.html`);
   });
 }

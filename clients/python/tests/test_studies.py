@@ -89,6 +89,25 @@ def test_submit_a_file(client: tribosim.Client, tmp_path: Path) -> None:
     study.delete()
 
 
+def test_submit_takes_a_name_as_jobs_submit_does(client: tribosim.Client, tmp_path: Path) -> None:
+    path = tmp_path / "study.json"
+    path.write_text(json.dumps({"base": SMALL, "axes": {"test.load_n": [3]}}))
+    submitted = {
+        "from a file": client.studies.submit(path, name="from a file"),
+        "from a mapping": client.studies.submit(
+            {"base": SMALL, "axes": {"test.load_n": [3]}}, name="from a mapping"
+        ),
+    }
+    for name, study in submitted.items():
+        assert study.info.name == name
+        study.wait(progress=False)
+        # A member is named after the base's name and its values.
+        assert all(job.info.name.startswith(name) for job in study.jobs())
+        study.delete()
+    # The name goes into a copy: the mapping given is left as it was.
+    assert "name" not in SMALL["overrides"]
+
+
 def test_cancel_and_delete(client: tribosim.Client) -> None:
     study = client.studies.submit({"base": ENDLESS, "axes": {"test.load_n": [2, 5, 10]}})
     study.cancel()

@@ -10,3 +10,4 @@ mod table;
 
 pub(crate) use routes::endpoints;
 pub(crate) use store::read_of as read;
+pub use table::{Format, MeasurementError, MeasurementKind, parse};

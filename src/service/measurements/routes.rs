@@ -19,7 +19,7 @@ use crate::service::blocking::blocking;
 use crate::service::error::ApiError;
 use crate::service::extract::{Body, BodyTimeout, JobId, cut, essence, is_json, parse_id};
 use crate::service::jobs::{JobError, Jobs};
-use crate::service::reply::{attachment, download_name};
+use crate::service::reply::{attachment, download_name, inline_json};
 use crate::service::route::{Endpoint, Verb};
 use crate::simulation::SimulationResult;
 
@@ -141,12 +141,18 @@ fn scored(jobs: &Jobs, id: Uuid) -> Result<Scores, ApiError> {
     Ok(scores(&result, &measurements))
 }
 
-/// `GET /api/v1/jobs/{id}/scores`: each attached table against the job's result.
+/// `GET /api/v1/jobs/{id}/scores`: each attached table against the job's result, shown
+/// inline, and saved as `<name>.scores.json` as every download is named.
 async fn get_scores(
     State(jobs): State<Arc<Jobs>>,
     JobId(id): JobId,
-) -> Result<Json<Scores>, ApiError> {
-    Ok(Json(blocking(move || scored(&jobs, id)).await?))
+) -> Result<axum::response::Response, ApiError> {
+    let name = jobs.find(id)?.record().name;
+    let scores = blocking(move || scored(&jobs, id)).await?;
+    Ok(inline_json(
+        &download_name(&name, id, "scores.json"),
+        Json(scores),
+    ))
 }
 
 /// `GET /api/v1/jobs/{id}/scores.csv`: the scores as CSV, one row per measured point.

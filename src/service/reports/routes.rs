@@ -18,7 +18,7 @@ use crate::service::extract::{JobId, StudyId, parse_id};
 use crate::service::jobs::Jobs;
 use crate::service::measurements;
 use crate::service::origin::REPORT_POLICY;
-use crate::service::reply::attachment;
+use crate::service::reply::{attachment, download_name};
 use crate::service::route::{Endpoint, Verb};
 use crate::service::studies::Studies;
 use crate::simulation::SimulationResult;
@@ -74,13 +74,14 @@ fn measured_of(jobs: &Jobs, id: Uuid) -> Result<Measured, ApiError> {
 
 /// `GET /api/v1/jobs/{id}/report`: the run's report with its measurements.
 async fn job_report(State(jobs): State<Arc<Jobs>>, JobId(id): JobId) -> Result<Response, ApiError> {
+    let name = jobs.find(id)?.record().name;
     let html = blocking(move || {
         let result = result_of(&jobs, id)?;
         let measured = measured_of(&jobs, id)?;
         Ok::<_, ApiError>(run_report(&result, &measured)?)
     })
     .await?;
-    Ok(report_file(&format!("tribosim-{id}-report.html"), html))
+    Ok(report_file(&download_name(&name, id, "report.html"), html))
 }
 
 /// The job ids of `?jobs=ID,ID,...`: two to [`MAX_COMPARED`], each once.
@@ -130,7 +131,8 @@ async fn jobs_report(
         Ok::<_, ApiError>(comparison_report(&runs)?)
     })
     .await?;
-    Ok(report_file("tribosim-comparison-report.html", html))
+    // Several runs have no one name: the download is named for what it is, by the same rule.
+    Ok(report_file("comparison.report.html", html))
 }
 
 /// `GET /api/v1/studies/{id}/report`: the study's table and figures, taken now.
@@ -139,16 +141,14 @@ async fn study_report_route(
     State(jobs): State<Arc<Jobs>>,
     StudyId(id): StudyId,
 ) -> Result<Response, ApiError> {
-    let html = blocking(move || {
+    let (name, html) = blocking(move || {
         let name = studies.record(&jobs, id)?.name;
         let summary = studies.summary(&jobs, id)?;
-        Ok::<_, ApiError>(study_report(&name, &summary)?)
+        let html = study_report(&name, &summary)?;
+        Ok::<_, ApiError>((name, html))
     })
     .await?;
-    Ok(report_file(
-        &format!("tribosim-study-{id}-report.html"),
-        html,
-    ))
+    Ok(report_file(&download_name(&name, id, "report.html"), html))
 }
 
 /// A figure that plotters could not draw is the server's fault.

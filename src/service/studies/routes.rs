@@ -19,7 +19,7 @@ use crate::service::error::ApiError;
 use crate::service::extract::{BodyTimeout, JsonBody, JsonRequest, StudyId};
 use crate::service::jobs::{Jobs, SubmitError};
 use crate::service::listing::{ListQuery, Page};
-use crate::service::reply::{attachment, created};
+use crate::service::reply::{attachment, created, download_name};
 use crate::service::route::{Endpoint, Verb};
 use crate::study::{Study, StudyError};
 
@@ -117,8 +117,12 @@ async fn study_summary_csv(
     State(jobs): State<Arc<Jobs>>,
     StudyId(id): StudyId,
 ) -> Result<Response, ApiError> {
-    let summary = blocking(move || studies.summary(&jobs, id)).await?;
-    let filename = format!("tribosim-study-{id}.csv");
+    let (name, summary) = blocking(move || {
+        let name = studies.record(&jobs, id)?.name;
+        Ok::<_, ApiError>((name, studies.summary(&jobs, id)?))
+    })
+    .await?;
+    let filename = download_name(&name, id, "summary.csv");
     Ok(attachment(
         "text/csv; charset=utf-8",
         &filename,

@@ -289,12 +289,14 @@ def _saved(html: str, path: str | os.PathLike[str] | None) -> str:
 def _scene_body(scene: SceneInput, name: str | None) -> bytes:
     if isinstance(scene, (str, os.PathLike)):
         text = Path(scene).read_bytes()
-        return text if name is None else _named(json.loads(text), name)
-    return dumps(scene) if name is None else _named(scene, name)
+        return text if name is None else dumps(named(json.loads(text), name))
+    return dumps(scene) if name is None else dumps(named(scene, name))
 
 
-def _named(scene: Mapping[str, Any], name: str) -> bytes:
-    named: dict[str, Any] = copy.deepcopy(dict(scene))
-    target = named.setdefault("overrides", {}) if "preset" in named else named
+def named(scene: Mapping[str, Any], name: str) -> dict[str, Any]:
+    """A copy of `scene` called `name` (in its overrides when it starts from a preset): how
+    `jobs.submit` and `studies.submit` both name what they send."""
+    copied: dict[str, Any] = copy.deepcopy(dict(scene))
+    target = copied.setdefault("overrides", {}) if "preset" in copied else copied
     target["name"] = name
-    return dumps(named)
+    return copied

@@ -4,6 +4,7 @@ each member an ordinary job."""
 from __future__ import annotations
 
 import builtins
+import json
 import os
 import time
 from collections.abc import Mapping
@@ -15,7 +16,7 @@ from ._progress import Progress
 from ._routes import route
 from ._tables import frame
 from .errors import RunFailedError, WaitTimeoutError
-from .jobs import Job, Jobs
+from .jobs import Job, Jobs, named
 from .records import StudyInfo
 
 if TYPE_CHECKING:
@@ -42,11 +43,12 @@ class Studies:
         self._http = http
 
     @_SUBMIT.implements
-    def submit(self, study: StudyInput) -> Study:
-        """Queues every member of `study` (a mapping or a JSON file's path), or none: a bad
+    def submit(self, study: StudyInput, name: str | None = None) -> Study:
+        """Queues every member of `study` (a mapping or a JSON file's path), or none, under
+        `name` (the base scene's own name otherwise, as `jobs.submit` takes it): a bad
         axis or member scene raises `ValidationError` naming it (``axes.<path>``,
         ``base.<path>``), no room in the queue `RateLimitedError`."""
-        body = Path(study).read_bytes() if isinstance(study, (str, os.PathLike)) else dumps(study)
+        body = _study_body(study, name)
         raw = self._http.json(_SUBMIT, content=body, content_type="application/json")
         return Study(self._http, StudyInfo.from_json(raw))
 
@@ -65,6 +67,21 @@ class Studies:
     def get(self, study_id: str) -> Study:
         """The study of `study_id` (`NotFoundError` if there is none)."""
         return Study(self._http, _fetch(self._http, study_id))
+
+
+def _study_body(study: StudyInput, name: str | None) -> bytes:
+    """The study as sent: a file as it is without `name`, else its base named `name` (a study
+    without a base is sent as it is, for the server to refuse naming ``base``)."""
+    if isinstance(study, (str, os.PathLike)):
+        text = Path(study).read_bytes()
+        if name is None:
+            return text
+        loaded: Mapping[str, Any] = json.loads(text)
+    else:
+        loaded = study
+    if name is None or "base" not in loaded:
+        return dumps(loaded)
+    return dumps({**loaded, "base": named(loaded["base"], name)})
 
 
 def _fetch(http: Http, study_id: str) -> StudyInfo:
