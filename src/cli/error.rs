@@ -106,8 +106,9 @@ pub enum CliError {
         kind: String,
         /// The table's file.
         path: PathBuf,
-        /// Why it was refused.
-        source: tribosim::service::MeasurementError,
+        /// Why it was refused (boxed: a refusal carries the accepted names, and every
+        /// `CliError` would otherwise be as large).
+        source: Box<tribosim::service::MeasurementError>,
     },
     /// `--measurements` given a lab's CSV, which the per-kind options read.
     #[error(

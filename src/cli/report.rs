@@ -79,18 +79,26 @@ impl MeasuredFiles<'_> {
             } else {
                 TableFormat::Csv
             };
-            let columns =
+            let read =
                 parse_measurements(kind, format, &bytes).map_err(|refused| CliError::Table {
                     kind: option,
                     path: path.to_owned(),
-                    source: refused.error,
+                    source: Box::new(refused.error),
                 })?;
+            for renamed in &read.renamed {
+                eprintln!(
+                    "note: {}: read the column `{}` as `{}`",
+                    path.display(),
+                    renamed.header,
+                    renamed.column
+                );
+            }
             let slot = match kind {
                 MeasurementKind::WearVolume => &mut measured.wear_volume,
                 MeasurementKind::Profile => &mut measured.profile,
                 MeasurementKind::Ocp => &mut measured.ocp,
             };
-            *slot = Some(columns);
+            *slot = Some(read.columns);
         }
         Ok(measured)
     }
