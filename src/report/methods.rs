@@ -16,16 +16,18 @@ pub const PAPER: &str = "A. Dalmau, A. Roda Buch, A. Rovira, J. Navarro-Laboulai
 
 /// The methods paragraph: what was computed and how, with the models `models` names.
 pub fn methods(models: &[ModelChoice]) -> String {
-    let active: Vec<String> = models
-        .iter()
-        .filter(|m| m.active)
-        .map(|m| {
-            serde_json::to_value(m.name)
-                .ok()
-                .and_then(|v| v.as_str().map(str::to_owned))
-                .unwrap_or_default()
-        })
-        .collect();
+    // A model with several entries (a domain growth per growth) is named once.
+    let mut active: Vec<String> = Vec::new();
+    for name in models.iter().filter(|m| m.active).map(|m| {
+        serde_json::to_value(m.name)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_owned))
+            .unwrap_or_default()
+    }) {
+        if !active.contains(&name) {
+            active.push(name);
+        }
+    }
     let mut html = heading(2, "Methods");
     html.push_str(&format!(
         "<p>The wear track of the ball-on-disc test was computed with tribosim after {}. \

@@ -26,7 +26,7 @@ pub fn summary_rows(summary: &Summary) -> Vec<Vec<Cell>> {
         ("mechanical volume", summary.mechanical_volume_mm3, "mm^3"),
         ("anodic charge", summary.charge_c, "C"),
         ("final potential", summary.potential_v, "V"),
-        ("Archard k", Some(summary.wear.archard_k), "1"),
+        ("Archard k", Some(summary.wear.archard_k), "dimensionless"),
         ("wall-clock time", Some(summary.wall_s), "s"),
         ("contact solves", Some(summary.solves as f64), ""),
         ("solver iterations", Some(summary.iterations as f64), ""),

@@ -91,31 +91,25 @@ pub fn model_volume(result: &SimulationResult) -> Vec<(f64, f64)> {
 fn volume(result: &SimulationResult, measured: &Measured) -> LineFigure {
     let c = &result.cycles;
     let milli = |points: Vec<(f64, f64)>| points.into_iter().map(|(x, y)| (x, y * 1e3)).collect();
+    // The total is what a profilometer measures, the measurements' quantity; the
+    // mechanical part is drawn beside it only where a corrosion volume tells them apart.
     let mut series = vec![Series::new(
-        "model: wear track",
-        milli(
-            c.iter()
-                .map(|r| (r.cycle as f64, r.wear_volume_mm3))
-                .collect(),
-        ),
+        "model: total",
+        milli(model_volume(result)),
         Style::Line,
     )];
-    // Which of the two the track is depends on the loss k was fitted on
-    // (`wear.archard_k_basis`): drawn both, the other is never hidden.
-    let total: Vec<(f64, f64)> = c
-        .iter()
-        .filter_map(|r| Some((r.cycle as f64, r.total_volume_mm3?)))
-        .collect();
-    series.push(Series::new("model: total", milli(total), Style::Line));
     let mechanical: Vec<(f64, f64)> = c
         .iter()
+        .filter(|r| r.wac_volume_mm3.is_some())
         .filter_map(|r| Some((r.cycle as f64, r.mechanical_volume_mm3?)))
         .collect();
-    series.push(Series::new(
-        "model: mechanical",
-        milli(mechanical),
-        Style::Line,
-    ));
+    if !mechanical.is_empty() {
+        series.push(Series::new(
+            "model: mechanical",
+            milli(mechanical),
+            Style::Line,
+        ));
+    }
     if table3_applies(result) {
         let last = result.scene.test.cycles as f64;
         let points = PAPER_TABLE3
