@@ -25,7 +25,7 @@ pub use kappa::{
 pub use paper::{
     AROUND_10_CYCLES, COARSE_GRID, PAPER_GRID, PaperNumbers, PaperStudy, READING_CYCLES, Reading,
     ReadingRun, Statement, TABLE3, Verdict, markdown as paper_markdown, run_readings, statements,
-    write as write_paper,
+    write as write_paper, write_figures as write_paper_figures,
 };
 
 use contact::{CAPPED_REFERENCE_N, GRID_STUDY_SIZES, Reference, TOLERANCE_STUDY};
