@@ -23,7 +23,8 @@ use tribosim::bench::{
 };
 
 use common::figure::{Sample, colour_bar, legend, plot_area};
-use common::svg::{Element, parse};
+use common::svg::{Bounds, Element, parse};
+use tribosim::scene::{PAPER_BULK_HARDNESS_SPREAD_MPA, PAPER_TABLE3};
 
 const REGENERATE: &str = "cargo run --release -- bench paper --markdown docs/paper.md \
                           (or TRIBOSIM_WRITE_DOCS=1 cargo test --release --test paper)";
@@ -342,7 +343,7 @@ const LEGENDS: [(&str, &[(&str, Sample)]); 6] = [
         &[
             ("fitted law H = A + B ln n", Sample::Line),
             ("Table 3, in the track", Sample::Marker),
-            ("bulk, at n = 1 (in the fit)", Sample::Marker),
+            (FIG9_BULK, Sample::Marker),
         ],
     ),
     (
@@ -372,6 +373,7 @@ const FIG12: &[(&str, Sample)] = &[
     ("loaded surface", Sample::Dashed),
     ("ball, undeformed", Sample::Line),
 ];
+const FIG9_BULK: &str = "bulk, at n = 1 (in the fit)";
 const FIG11_TABLE3: &str = "Table 3, measured (+- spread)";
 const FIG14_REAL: &str = "A_r = F / H (right axis)";
 
@@ -403,27 +405,23 @@ fn each_legend_entry_is_drawn_as_its_series_and_covers_nothing() {
     }
 }
 
-#[test]
-fn fig_11_draws_table_3_with_its_spreads() {
-    let elements = figure("fig11_volume.svg");
-    let labels: Vec<&str> = LEGENDS[1].1.iter().map(|e| e.0).collect();
-    let drawn = legend(&elements, &labels).data_of(&elements, FIG11_TABLE3);
-    let markers: Vec<&Element> = drawn
+/// The length (px) of the error bar through each marker of the series `label` of the line
+/// figure `name`, its markers taken left to right.
+fn error_bars(name: &str, label: &str) -> Vec<f64> {
+    let elements = figure(name);
+    let (_, entries) = LEGENDS.iter().find(|l| l.0 == name).expect("a line figure");
+    let labels: Vec<&str> = entries.iter().map(|e| e.0).collect();
+    let drawn = legend(&elements, &labels).data_of(&elements, label);
+    let mut markers: Vec<Bounds> = drawn
         .iter()
-        .copied()
-        .filter(|e| e.tag == "polygon")
+        .filter(|e| e.is_filled() && matches!(e.tag.as_str(), "polygon" | "circle"))
+        .map(|e| e.bounds())
         .collect();
-    let shown: Vec<f64> = TABLE3.iter().filter(|r| r.0 <= 300).map(|r| r.3).collect();
-    assert_eq!(
-        markers.len(),
-        shown.len(),
-        "a marker per point of Table 3 to 300 s"
-    );
-    // Each marker's bar: the vertical stroke through it, as long as twice its spread.
-    let bars: Vec<f64> = markers
+    markers.sort_by(|a, b| a.x0.total_cmp(&b.x0));
+    // Each marker's bar: the vertical stroke whose middle lies in the marker.
+    markers
         .iter()
-        .map(|marker| {
-            let m = marker.bounds();
+        .map(|m| {
             let bar = drawn
                 .iter()
                 .filter(|e| e.is_vertical_stroke())
@@ -432,23 +430,43 @@ fn fig_11_draws_table_3_with_its_spreads() {
                     let middle = b.centre().1;
                     (b.x0 - m.centre().0).abs() <= 1.0 && m.y0 <= middle && middle <= m.y1
                 })
-                .unwrap_or_else(|| panic!("no error bar through the marker at {m:?}"));
+                .unwrap_or_else(|| panic!("{name}: no error bar through the marker at {m:?}"));
             bar.y1 - bar.y0
         })
-        .collect();
-    let widest = shown.iter().copied().fold(0.0, f64::max);
+        .collect()
+}
+
+/// Each bar as long as twice its spread, on one scale (px per unit) taken from the longest.
+#[track_caller]
+fn bars_match(what: &str, bars: &[f64], spreads: &[f64]) {
+    assert_eq!(bars.len(), spreads.len(), "{what}: a marker per point");
+    let widest = spreads.iter().copied().fold(0.0, f64::max);
     let px_per_unit = bars.iter().copied().fold(0.0, f64::max) / (2.0 * widest);
     // plotters rounds each end to the pixel: 1 px on a bar, and the scale taken from the
     // longest bar is off by 1 px over its length, which is spread / widest px on another.
-    for (length, spread) in bars.iter().zip(&shown) {
-        let expected = 2.0 * spread * px_per_unit;
+    for (length, spread) in bars.iter().zip(spreads) {
         near(
-            "an error bar (px)",
+            what,
             *length,
-            expected,
+            2.0 * spread * px_per_unit,
             1.0 + spread / widest,
         );
     }
+}
+
+#[test]
+fn figs_9_and_11_draw_table_3_with_its_spreads() {
+    let volumes: Vec<f64> = TABLE3.iter().filter(|r| r.0 <= 300).map(|r| r.3).collect();
+    bars_match(
+        "Fig. 11's volume bars (px)",
+        &error_bars("fig11_volume.svg", FIG11_TABLE3),
+        &volumes,
+    );
+    let mut bars = error_bars("fig9_hardness.svg", "Table 3, in the track");
+    bars.extend(error_bars("fig9_hardness.svg", FIG9_BULK));
+    let mut hardness: Vec<f64> = PAPER_TABLE3.iter().map(|r| r.hardness_spread_mpa).collect();
+    hardness.push(PAPER_BULK_HARDNESS_SPREAD_MPA);
+    bars_match("Fig. 9's hardness bars (px)", &bars, &hardness);
 }
 
 #[test]

@@ -47,8 +47,8 @@ pub use record::{MAX_RECORD_CYCLES, RecordCycles, TABLE3_TIMES_S};
 pub use reference::{FIELDS_BEGIN, FIELDS_END, field_table};
 pub use sections::{
     ArchardCalibration, Ball, DEFAULT_TOLERANCE, Disc, Numerics, PAPER_ARCHARD_CALIBRATION,
-    PAPER_CYCLES, PAPER_HARDNESS_TABLE, PAPER_TABLE3, STEP_CHANGE_BOUND, Switch, Table3Row,
-    TestConditions, Wear,
+    PAPER_BULK_HARDNESS_SPREAD_MPA, PAPER_CYCLES, PAPER_HARDNESS_TABLE, PAPER_TABLE3,
+    STEP_CHANGE_BOUND, Switch, Table3Row, TestConditions, Wear,
 };
 pub use surface::{DEFAULT_HURST, MAX_RMS_HEIGHT_UM, MAX_RMS_SLOPE, SurfaceKind, SurfaceSpec};
 

@@ -9,6 +9,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
+use crate::scene::{PAPER_BULK_HARDNESS_SPREAD_MPA, PAPER_TABLE3};
 use crate::simulation::{PressureMap, SimulationResult};
 
 use super::numbers::{TABLE3, profile, record};
@@ -85,10 +86,12 @@ impl Series {
     }
 }
 
-/// A figure on linear axes: the left one, and a right one when `right_label` names it.
+/// A figure on linear axes (x logarithmic when `log_x`): the left one, and a right one when
+/// `right_label` names it.
 struct Figure {
     title: String,
     x_label: &'static str,
+    log_x: bool,
     y_label: &'static str,
     right_label: Option<&'static str>,
     series: Vec<Series>,
@@ -127,9 +130,9 @@ pub(super) fn last_map(result: &SimulationResult) -> (&PressureMap, f64) {
     (map, hardness / result.scene.disc.yield_factor)
 }
 
-/// The law as the run applied it, and the points its fit went through: the table, and the
-/// bulk value at n = 1 when the scene's `hardness_fit_includes_bulk` puts it in (the
-/// legend says which).
+/// The law as the run applied it, Table 3's hardness with its spreads, and the bulk value
+/// at n = 1, where the scene's `hardness_fit_includes_bulk` puts it in the fit (the legend
+/// says whether it does).
 fn hardness(study: &PaperStudy) -> Figure {
     let disc = &study.whole.scene.disc;
     let law = study
@@ -138,7 +141,11 @@ fn hardness(study: &PaperStudy) -> Figure {
         .iter()
         .map(|r| (r.cycle as f64, r.hardness_mpa))
         .collect();
-    let table = disc.hardness_table.clone().unwrap_or_default();
+    let table = PAPER_TABLE3
+        .iter()
+        .map(|r| (r.time_s as f64, r.hardness_mpa))
+        .collect();
+    let spreads = PAPER_TABLE3.iter().map(|r| r.hardness_spread_mpa).collect();
     let bulk = if disc.hardness_fit_includes_bulk {
         "bulk, at n = 1 (in the fit)"
     } else {
@@ -146,7 +153,8 @@ fn hardness(study: &PaperStudy) -> Figure {
     };
     Figure {
         title: "Fig. 9: hardness of the disc in the track".to_owned(),
-        x_label: "cycles n (= rubbing time in s at 60 rpm)",
+        x_label: "cycles n (= rubbing time in s at 60 rpm), log scale: the law is a line",
+        log_x: true,
         y_label: "H (MPa)",
         right_label: None,
         series: vec![
@@ -156,13 +164,15 @@ fn hardness(study: &PaperStudy) -> Figure {
                 table,
                 BLUE,
                 Style::Markers(Marker::Triangle),
-            ),
+            )
+            .with_spreads(spreads),
             Series::new(
                 bulk,
                 vec![(1.0, disc.hardness_mpa)],
                 GREEN,
                 Style::Markers(Marker::Circle),
-            ),
+            )
+            .with_spreads(vec![PAPER_BULK_HARDNESS_SPREAD_MPA]),
         ],
     }
 }
@@ -189,6 +199,7 @@ fn volume(study: &PaperStudy) -> Figure {
     Figure {
         title: "Fig. 11: wear volume over the first 300 cycles".to_owned(),
         x_label: "rubbing time (s) = cycles",
+        log_x: false,
         y_label: "volume (1e-3 mm^3)",
         right_label: None,
         series: vec![
@@ -228,6 +239,7 @@ fn profiles(study: &PaperStudy, cycle: u64) -> Figure {
     Figure {
         title: format!("Fig. 12: profile across the track at cycle {cycle} (EPP)"),
         x_label: "y across the track (um)",
+        log_x: false,
         y_label: "height (um)",
         right_label: None,
         series: vec![
@@ -253,6 +265,7 @@ fn wac(study: &PaperStudy) -> Figure {
     Figure {
         title: "Fig. 13: wear-accelerated corrosion volume".to_owned(),
         x_label: "rubbing time (s)",
+        log_x: false,
         y_label: "V_WAC (1e-3 mm^3)",
         right_label: None,
         series: vec![Series::new("depassivated wake", points, RED, Style::Line)],
@@ -278,6 +291,7 @@ fn areas(study: &PaperStudy) -> Figure {
     Figure {
         title: "Fig. 14: real (F/H, right axis) and depassivated areas".to_owned(),
         x_label: "rubbing time (s)",
+        log_x: false,
         y_label: "A_a and Hertz's area (1e-3 mm^2)",
         right_label: Some("A_r = F / H (1e-3 mm^2)"),
         series: vec![

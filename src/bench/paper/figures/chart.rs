@@ -4,6 +4,8 @@
 use std::ops::Range;
 use std::path::Path;
 
+use plotters::coord::Shift;
+use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::element::{DashedPathElement, DynElement};
 use plotters::prelude::*;
 
@@ -13,7 +15,7 @@ use super::{Axis, Figure, Marker, Series, Style, dashes_px, legend};
 /// The figure's width and the chart's height above the legend, px.
 const SIZE_PX: (u32, u32) = (760, 440);
 /// Half the width of an error bar's caps, as a share of the x range (4 px of the chart's
-/// ~650).
+/// ~650; of its decades on a log axis).
 const CAP_SHARE: f64 = 0.006;
 
 /// The range of `values` padded by 5% (a single value: +-1).
@@ -39,9 +41,12 @@ fn heights(series: &[Series], axis: Axis) -> Vec<f64> {
         .collect()
 }
 
-/// What draws `s`: its line or markers, and its error bars with caps `cap` wide each side
-/// (in x's unit).
-fn elements<DB: DrawingBackend>(s: &Series, cap: f64) -> Vec<DynElement<'static, DB, (f64, f64)>> {
+/// What draws `s`: its line or markers, and its error bars with caps from `cap(x)`'s first
+/// x to its second.
+fn elements<DB: DrawingBackend>(
+    s: &Series,
+    cap: &dyn Fn(f64) -> (f64, f64),
+) -> Vec<DynElement<'static, DB, (f64, f64)>> {
     let stroke = s.colour.stroke_width(2);
     let mut out = match s.style {
         Style::Line => vec![PathElement::new(s.points.clone(), stroke).into_dyn()],
@@ -65,7 +70,8 @@ fn elements<DB: DrawingBackend>(s: &Series, cap: f64) -> Vec<DynElement<'static,
     for (&(x, y), &spread) in s.points.iter().zip(&s.spreads) {
         out.push(PathElement::new(vec![(x, y - spread), (x, y + spread)], thin).into_dyn());
         for end in [y - spread, y + spread] {
-            out.push(PathElement::new(vec![(x - cap, end), (x + cap, end)], thin).into_dyn());
+            let (left, right) = cap(x);
+            out.push(PathElement::new(vec![(left, end), (right, end)], thin).into_dyn());
         }
     }
     out
@@ -89,13 +95,38 @@ impl Figure {
 
     fn draw_chart(
         &self,
-        area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
+        area: &DrawingArea<SVGBackend<'_>, Shift>,
     ) -> Result<(), DrawingAreaErrorKind<std::io::Error>> {
-        let x_range = range(
+        let xs = || {
             self.series
                 .iter()
-                .flat_map(|s| s.points.iter().map(|p| p.0)),
-        );
+                .flat_map(|s| s.points.iter().map(|p| p.0))
+        };
+        if !self.log_x {
+            let x = range(xs());
+            let cap = CAP_SHARE * (x.end - x.start);
+            return self.draw_on(area, x, &|v| (v - cap, v + cap));
+        }
+        // A decade's worth of padding, as the linear axis pads by 5%.
+        let (lo, hi) = xs().fold((f64::INFINITY, 0.0_f64), |(l, h), v| (l.min(v), h.max(v)));
+        let pad = (hi / lo).powf(0.05);
+        let cap = (hi / lo).powf(CAP_SHARE);
+        self.draw_on(area, (lo / pad..hi * pad).log_scale(), &|v| {
+            (v / cap, v * cap)
+        })
+    }
+
+    /// The chart on the x axis `x`; `cap` gives the ends of an error bar's cap at an x.
+    fn draw_on<X>(
+        &self,
+        area: &DrawingArea<SVGBackend<'_>, Shift>,
+        x: X,
+        cap: &dyn Fn(f64) -> (f64, f64),
+    ) -> Result<(), DrawingAreaErrorKind<std::io::Error>>
+    where
+        X: AsRangedCoord<Value = f64> + Clone,
+        X::CoordDescType: ValueFormatter<f64>,
+    {
         let left = range(heights(&self.series, Axis::Left).into_iter());
         let right_heights = heights(&self.series, Axis::Right);
         let right = if right_heights.is_empty() {
@@ -103,15 +134,14 @@ impl Figure {
         } else {
             range(right_heights.into_iter())
         };
-        let cap = CAP_SHARE * (x_range.end - x_range.start);
         let mut chart = ChartBuilder::on(area)
             .caption(&self.title, ("sans-serif", 17))
             .margin(12)
             .x_label_area_size(42)
             .y_label_area_size(64)
             .right_y_label_area_size(if self.right_label.is_some() { 64 } else { 0 })
-            .build_cartesian_2d(x_range.clone(), left)?
-            .set_secondary_coord(x_range, right);
+            .build_cartesian_2d(x.clone(), left)?
+            .set_secondary_coord(x, right);
         chart
             .configure_mesh()
             .x_desc(self.x_label)
