@@ -8,6 +8,10 @@
 //! auto grid's 144 (`tribosim run`; the numbers are in each assertion's comment). The
 //! readings of eq. 13 are held on 2 um cells, the page's own, and their tolerances are the
 //! solver's tolerance floor instead (`the_readings_of_eq_13`).
+//!
+//! The figures are read as their SVG ([`common::figure`]): each legend entry's sample, what
+//! lies under the legend, the error bars, Fig. 14's A_r axis and the colour bars; their
+//! tolerances are plotters' rounding to whole pixels.
 
 mod common {
     pub mod figure;

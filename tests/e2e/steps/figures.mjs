@@ -2,6 +2,7 @@
 // drawn as its series is (a solid line, a dashed line, a dot), Table 3's error bars on the
 // chart's pixels, and the pressure maps' colour bar in MPa.
 import assert from "node:assert/strict";
+import fs from "node:fs";
 import path from "node:path";
 
 import { RUN, RUN_PLOT } from "../../../static/js/ids.js";
@@ -74,6 +75,17 @@ async function errorBars(page) {
     assert.ok(red(b.above) && red(b.below), `no bar drawn at cycle ${b.x}: ${b.above} ${b.below}`);
     assert.ok(!red(b.off), `red beside the bar at cycle ${b.x}: ${b.off}`);
   }
+
+  step("the volume figure's SVG export draws the same error bars");
+  const [download] = await Promise.all([page.waitForEvent("download"), page.click(`${sel(RUN_PLOT.volume)} .export-svg`)]);
+  const exported = await page.evaluate(([text, label]) => {
+    const doc = new DOMParser().parseFromString(text, "image/svg+xml");
+    const d = doc.querySelector(`g[data-series="${label}"] path.error-bars`)?.getAttribute("d") || "";
+    // Each bar is "M x top V bottom" and two caps "M x y h8".
+    return d.match(/V/g)?.length || 0;
+  }, [fs.readFileSync(await download.path(), "utf8"), TABLE3]);
+  const spread = bars.filter((b) => b.e > 0).length;
+  assert.equal(exported, spread, `the export draws ${exported} bars for ${spread} spreads`);
 }
 
 async function colourBar(page) {
