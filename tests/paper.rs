@@ -8,15 +8,29 @@
 //! auto grid's 144 (`tribosim run`; the numbers are in each assertion's comment). The
 //! readings of eq. 13 are held on 2 um cells, the page's own, and their tolerances are the
 //! solver's tolerance floor instead (`the_readings_of_eq_13`).
+//!
+//! The figures are read as their SVG ([`common::figure`]): each legend entry's sample, what
+//! lies under the legend, the error bars, Fig. 14's A_r axis and the colour bars; their
+//! tolerances are plotters' rounding to whole pixels.
 
-use std::path::PathBuf;
+mod common {
+    pub mod figure;
+    pub mod svg;
+}
+
+use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use tribosim::bench::{
     COARSE_GRID, CapNumbers, HALF_MICRON_UM, INITIAL_YIELDS_MPA, PAPER_GRID, PaperStudy, Reading,
-    ReadingRun, Verdict, paper_markdown, run_readings, statements, write_paper,
+    ReadingRun, TABLE3, Verdict, paper_markdown, run_readings, statements, write_paper,
+    write_paper_figures,
 };
-use tribosim::scene::ANNEALED_316L_PROOF_STRESS_MPA;
+use common::figure::{Sample, colour_bar, legend, plot_area};
+use common::svg::{Bounds, Element, parse};
+use tribosim::scene::{
+    ANNEALED_316L_PROOF_STRESS_MPA, PAPER_BULK_HARDNESS_SPREAD_MPA, PAPER_TABLE3,
+};
 
 const REGENERATE: &str = "cargo run --release -- bench paper --markdown docs/paper.md \
                           (or TRIBOSIM_WRITE_DOCS=1 cargo test --release --test paper)";
@@ -353,4 +367,258 @@ fn docs_paper_md_is_what_the_generator_writes() {
     panic!(
         "docs/paper.md differs from what `tribosim bench paper` writes; regenerate it with\n  {REGENERATE}"
     );
+}
+
+/// The study's figures, drawn once into a folder of the test's own.
+fn figures() -> &'static Path {
+    static FOLDER: OnceLock<PathBuf> = OnceLock::new();
+    FOLDER.get_or_init(|| {
+        let folder = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("paper-figures");
+        std::fs::create_dir_all(&folder).expect("the test's folder is writable");
+        write_paper_figures(study(), &folder).expect("the figures are drawn");
+        folder
+    })
+}
+
+fn figure(name: &str) -> Vec<Element> {
+    parse(&std::fs::read_to_string(figures().join(name)).expect("a drawn figure"))
+}
+
+#[test]
+fn docs_paper_figures_are_what_the_generator_draws() {
+    let committed = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs/paper");
+    let mut stale = Vec::new();
+    for entry in std::fs::read_dir(figures()).expect("the drawn figures") {
+        let drawn = entry.expect("a drawn figure").path();
+        let name = drawn.file_name().expect("a file name").to_owned();
+        let target = committed.join(&name);
+        if std::fs::read(&drawn).ok() == std::fs::read(&target).ok() {
+            continue;
+        }
+        if std::env::var_os("TRIBOSIM_WRITE_DOCS").is_some() {
+            std::fs::copy(&drawn, &target).expect("docs/paper/ is writable");
+        } else {
+            stale.push(name);
+        }
+    }
+    assert!(
+        stale.is_empty(),
+        "docs/paper/{stale:?} differ from what `tribosim bench paper` draws; regenerate with\n  {REGENERATE}"
+    );
+}
+
+/// Each line figure's legend, entry by entry, as its series are drawn.
+const LEGENDS: [(&str, &[(&str, Sample)]); 6] = [
+    (
+        "fig9_hardness.svg",
+        &[
+            ("fitted law H = A + B ln n", Sample::Line),
+            ("Table 3, in the track", Sample::Marker),
+            (FIG9_BULK, Sample::Marker),
+        ],
+    ),
+    (
+        "fig11_volume.svg",
+        &[
+            ("elastic, groove", Sample::Line),
+            ("EPP, groove", Sample::Line),
+            ("elastic, loaded", Sample::Dashed),
+            ("EPP, loaded", Sample::Dashed),
+            (FIG11_TABLE3, Sample::Marker),
+        ],
+    ),
+    ("fig12a_profile_10.svg", FIG12),
+    ("fig12b_profile_300.svg", FIG12),
+    ("fig13_wac.svg", &[("depassivated wake", Sample::Line)]),
+    (
+        "fig14_areas.svg",
+        &[
+            (FIG14_REAL, Sample::Line),
+            ("A_a, depassivated wake", Sample::Line),
+            ("Hertz contact", Sample::Dashed),
+        ],
+    ),
+];
+const FIG12: &[(&str, Sample)] = &[
+    ("groove", Sample::Line),
+    ("loaded surface", Sample::Dashed),
+    ("ball, undeformed", Sample::Line),
+];
+const FIG9_BULK: &str = "bulk, at n = 1 (in the fit)";
+const FIG11_TABLE3: &str = "Table 3, measured (+- spread)";
+const FIG14_REAL: &str = "A_r = F / H (right axis)";
+
+#[test]
+fn each_legend_entry_is_drawn_as_its_series_and_covers_nothing() {
+    // The paper's scene fits the hardness law through the bulk value, as Fig. 9 says.
+    assert!(study().whole.scene.disc.hardness_fit_includes_bulk);
+    for (name, expected) in LEGENDS {
+        let elements = figure(name);
+        let labels: Vec<&str> = expected.iter().map(|e| e.0).collect();
+        let legend = legend(&elements, &labels);
+        let mut looks = Vec::new();
+        for (entry, &(label, sample)) in legend.entries.iter().zip(expected) {
+            assert_eq!(entry.sample, sample, "{name}: the sample of {label:?}");
+            assert!(
+                !legend.data_of(&elements, label).is_empty(),
+                "{name}: nothing is drawn in the colour of {label:?}"
+            );
+            looks.push((entry.sample, entry.colour.clone()));
+        }
+        for (i, look) in looks.iter().enumerate() {
+            assert!(
+                !looks[..i].contains(look),
+                "{name}: two entries look alike: {look:?}"
+            );
+        }
+        let hidden = legend.hidden(&elements);
+        assert!(hidden.is_empty(), "{name}: the legend covers {hidden:?}");
+    }
+}
+
+/// The length (px) of the error bar through each marker of the series `label` of the line
+/// figure `name`, its markers taken left to right.
+fn error_bars(name: &str, label: &str) -> Vec<f64> {
+    let elements = figure(name);
+    let (_, entries) = LEGENDS.iter().find(|l| l.0 == name).expect("a line figure");
+    let labels: Vec<&str> = entries.iter().map(|e| e.0).collect();
+    let drawn = legend(&elements, &labels).data_of(&elements, label);
+    let mut markers: Vec<Bounds> = drawn
+        .iter()
+        .filter(|e| e.is_filled() && matches!(e.tag.as_str(), "polygon" | "circle"))
+        .map(|e| e.bounds())
+        .collect();
+    markers.sort_by(|a, b| a.x0.total_cmp(&b.x0));
+    // Each marker's bar: the vertical stroke whose middle lies in the marker.
+    markers
+        .iter()
+        .map(|m| {
+            let bar = drawn
+                .iter()
+                .filter(|e| e.is_vertical_stroke())
+                .map(|e| e.bounds())
+                .find(|b| {
+                    let middle = b.centre().1;
+                    (b.x0 - m.centre().0).abs() <= 1.0 && m.y0 <= middle && middle <= m.y1
+                })
+                .unwrap_or_else(|| panic!("{name}: no error bar through the marker at {m:?}"));
+            bar.y1 - bar.y0
+        })
+        .collect()
+}
+
+/// Each bar as long as twice its spread, on one scale (px per unit) taken from the longest.
+#[track_caller]
+fn bars_match(what: &str, bars: &[f64], spreads: &[f64]) {
+    assert_eq!(bars.len(), spreads.len(), "{what}: a marker per point");
+    let widest = spreads.iter().copied().fold(0.0, f64::max);
+    let px_per_unit = bars.iter().copied().fold(0.0, f64::max) / (2.0 * widest);
+    // plotters rounds each end to the pixel: 1 px on a bar, and the scale taken from the
+    // longest bar is off by 1 px over its length, which is spread / widest px on another.
+    for (length, spread) in bars.iter().zip(spreads) {
+        near(
+            what,
+            *length,
+            2.0 * spread * px_per_unit,
+            1.0 + spread / widest,
+        );
+    }
+}
+
+#[test]
+fn figs_9_and_11_draw_table_3_with_its_spreads() {
+    let volumes: Vec<f64> = TABLE3.iter().filter(|r| r.0 <= 300).map(|r| r.3).collect();
+    bars_match(
+        "Fig. 11's volume bars (px)",
+        &error_bars("fig11_volume.svg", FIG11_TABLE3),
+        &volumes,
+    );
+    let mut bars = error_bars("fig9_hardness.svg", "Table 3, in the track");
+    bars.extend(error_bars("fig9_hardness.svg", FIG9_BULK));
+    let mut hardness: Vec<f64> = PAPER_TABLE3.iter().map(|r| r.hardness_spread_mpa).collect();
+    hardness.push(PAPER_BULK_HARDNESS_SPREAD_MPA);
+    bars_match("Fig. 9's hardness bars (px)", &bars, &hardness);
+}
+
+#[test]
+fn fig_14_shows_the_fall_of_a_r_on_its_own_axis() {
+    let elements = figure("fig14_areas.svg");
+    let labels: Vec<&str> = LEGENDS[5].1.iter().map(|e| e.0).collect();
+    let real = legend(&elements, &labels).data_of(&elements, FIG14_REAL);
+    let plot = plot_area(&elements);
+    let span = real
+        .iter()
+        .map(|e| e.bounds())
+        .fold(0.0_f64, |m, b| m.max(b.y1 - b.y0));
+    // On the areas' shared axis A_r's fall (2.02 to 1.69e-3 mm^2 against A_a's 110) took
+    // 0.3% of the height, a pixel; on its own axis it spans that axis less its 5% pads.
+    assert!(
+        span >= 0.5 * (plot.y1 - plot.y0),
+        "A_r spans {span} px of the plot's {} px",
+        plot.y1 - plot.y0
+    );
+    let right_ticks = elements
+        .iter()
+        .filter(|e| e.tag == "text" && e.text.parse::<f64>().is_ok())
+        .filter(|e| e.points()[0].0 > plot.x1)
+        .count();
+    assert!(
+        right_ticks >= 3,
+        "the right axis has {right_ticks} tick labels"
+    );
+}
+
+#[test]
+fn the_pressure_maps_have_a_colour_bar_in_mpa() {
+    for name in ["fig10a_pressure_6.svg", "fig10b_pressure_300.svg"] {
+        let elements = figure(name);
+        // The maps' 16 steps, white to red.
+        let bar = colour_bar(&elements, 16);
+        assert_eq!(bar.bands.len(), 16, "{name}");
+        let texts: Vec<&str> = elements.iter().map(|e| e.text.as_str()).collect();
+        assert!(texts.contains(&"pressure (MPa)"), "{name}: the bar's unit");
+        assert!(
+            texts
+                .iter()
+                .any(|t| t.starts_with("Y = ") && t.ends_with(" MPa")),
+            "{name}: the black of the yield pressure is named"
+        );
+        // Ticks rise up the bar, 0 at its foot (1 px of rounding).
+        assert!(bar.ticks.len() >= 3, "{name}: ticks {:?}", bar.ticks);
+        let mut ticks = bar.ticks.clone();
+        ticks.sort_by(|a, b| a.0.total_cmp(&b.0));
+        assert!(
+            ticks.windows(2).all(|t| t[1].1 < t[0].1),
+            "{name}: {ticks:?}"
+        );
+        assert!(
+            ticks[0].0.abs() < 0.5,
+            "{name}: the lowest tick is not 0: {ticks:?}"
+        );
+        near("the 0 tick (px)", ticks[0].1, bar.bands[0].y1, 1.0);
+        // Every cell of the map, left of the bar, is a colour of the bar or the yield's
+        // black; under the bar only the black's swatch.
+        let black = "#000000";
+        let rects = elements[1..]
+            .iter()
+            .filter(|e| e.tag == "rect" && e.is_filled() && !bar.bands.contains(&e.bounds()));
+        for rect in rects {
+            let b = rect.bounds();
+            if b.x0 >= bar.bands[0].x0 {
+                assert!(
+                    rect.colour() == black && b.y0 > bar.bands[0].y1,
+                    "{name}: {rect:?}"
+                );
+                continue;
+            }
+            assert!(
+                bar.fills.iter().any(|f| f == rect.colour()) || rect.colour() == black,
+                "{name}: a cell of a colour off the bar: {rect:?}"
+            );
+            assert!(
+                b.x1 <= bar.bands[0].x0,
+                "{name}: a cell reaches the bar: {rect:?}"
+            );
+        }
+    }
 }

@@ -26,6 +26,7 @@ pub use paper::{
     AROUND_10_CYCLES, COARSE_GRID, CapNumbers, CapRun, HALF_MICRON_UM, INITIAL_YIELDS_MPA,
     PAPER_GRID, PaperNumbers, PaperStudy, READING_CYCLES, Reading, ReadingRun, Statement, TABLE3,
     Verdict, markdown as paper_markdown, run_readings, statements, write as write_paper,
+    write_figures as write_paper_figures,
 };
 
 use contact::{CAPPED_REFERENCE_N, GRID_STUDY_SIZES, Reference, TOLERANCE_STUDY};

@@ -48,8 +48,8 @@ pub use record::{MAX_RECORD_CYCLES, RecordCycles, TABLE3_TIMES_S};
 pub use reference::{FIELDS_BEGIN, FIELDS_END, field_table};
 pub use sections::{
     ANNEALED_316L_PROOF_STRESS_MPA, ArchardCalibration, Ball, DEFAULT_TOLERANCE, Disc, Numerics,
-    PAPER_ARCHARD_CALIBRATION, PAPER_CYCLES, PAPER_HARDNESS_TABLE, PAPER_TABLE3, STEP_CHANGE_BOUND,
-    Switch, Table3Row, TestConditions, Wear, YieldCapLaw,
+    PAPER_ARCHARD_CALIBRATION, PAPER_BULK_HARDNESS_SPREAD_MPA, PAPER_CYCLES, PAPER_HARDNESS_TABLE,
+    PAPER_TABLE3, STEP_CHANGE_BOUND, Switch, Table3Row, TestConditions, Wear, YieldCapLaw,
 };
 pub use slips::{
     HardnessSlip, REFUSE_HARD_MPA, REFUSE_HARDNESS_MPA, WARN_HARD_MPA, WARN_HARDNESS_MPA,

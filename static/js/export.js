@@ -24,7 +24,20 @@ function axesSvg(s, { X, Y, sx, sy }) {
   return out;
 }
 
-// Each series as a polyline, or as dots for measured points.
+// A marker series' error bars (its `yErrors`, by x), with 4 px caps.
+function errorBarsSvg(series, xs, ys, { X, Y }) {
+  if (!series.yErrors) return "";
+  const bars = [];
+  xs.forEach((x, i) => {
+    const e = series.yErrors.get(x);
+    if (ys[i] == null || !e) return;
+    const cx = X(x), top = Y(ys[i] + e).toFixed(2), bottom = Y(ys[i] - e).toFixed(2);
+    bars.push(`M${cx.toFixed(2)} ${top}V${bottom}M${(cx - 4).toFixed(2)} ${top}h8M${(cx - 4).toFixed(2)} ${bottom}h8`);
+  });
+  return `<path class="error-bars" fill="none" stroke="${series.stroke}" stroke-width="1.5" d="${bars.join("")}"/>`;
+}
+
+// Each series as a polyline, or as dots for measured points, with their error bars.
 function seriesSvg(s, { X, Y }) {
   const xs = s.data[0];
   return s.series.map((series, k) => {
@@ -32,7 +45,7 @@ function seriesSvg(s, { X, Y }) {
     const pts = [];
     for (let i = 0; i < xs.length; i++) if (ys[i] != null && xs[i] != null) pts.push([X(xs[i]).toFixed(2), Y(ys[i]).toFixed(2)]);
     if (series.marker) {
-      return `<g clip-path="url(#plotarea)" fill="${series.stroke}" data-series="${esc(series.label)}">${pts.map(([a, b]) => `<circle cx="${a}" cy="${b}" r="4"/>`).join("")}</g>`;
+      return `<g clip-path="url(#plotarea)" fill="${series.stroke}" data-series="${esc(series.label)}">${errorBarsSvg(series, xs, ys, { X, Y })}${pts.map(([a, b]) => `<circle cx="${a}" cy="${b}" r="4"/>`).join("")}</g>`;
     }
     if (!pts.length) return "";
     const dash = series.dash ? ` stroke-dasharray="${series.dash.join(" ")}"` : "";

@@ -60,9 +60,69 @@ export function resizeAll() {
 /** A line series: 2 px, across gaps, no points. */
 export const lineSeries = (label, stroke) => ({ label, stroke, width: 2, spanGaps: true, points: { show: false } });
 
-/** A series of measured points only (no line): drawn as dots, exported as dots. */
-export function markerSeries(label, color) {
-  return { label, stroke: color, fill: color, marker: true, width: 0, paths: () => null, points: { show: true, size: 8, fill: color } };
+/**
+ * A series of measured points only (no line): drawn as dots, exported as dots. `yErrors`,
+ * if given, maps a point's x to the half-length of its error bar (in y's unit).
+ */
+export function markerSeries(label, color, yErrors = null) {
+  return { label, stroke: color, fill: color, marker: true, yErrors, width: 0, paths: () => null, points: { show: true, size: 8, fill: color } };
+}
+
+/** The colour a series is drawn in (uPlot keeps it as a function). */
+const strokeOf = (u, i) => (typeof u.series[i].stroke === "function" ? u.series[i].stroke(u, i) : u.series[i].stroke);
+
+/** How a series is drawn, as its legend sample shows it: "marker", "dashed" or "line". */
+export const sampleKind = (series) => (series.marker ? "marker" : series.dash ? "dashed" : "line");
+
+// uPlot's legend marks every series with a square: a line, a dashed line and a measured
+// point look alike. Each sample is redrawn as its series is: a short line, solid or
+// dashed, or a dot.
+function legendSamples(u) {
+  u.root.querySelectorAll(".u-legend .u-series").forEach((row, i) => {
+    const series = u.series[i], marker = row.querySelector(".u-marker");
+    if (i === 0 || !marker) return;
+    const kind = sampleKind(series);
+    marker.dataset.sample = kind;
+    Object.assign(marker.style, kind === "marker"
+      ? { width: "8px", height: "8px", border: "none", borderRadius: "50%", background: strokeOf(u, i) }
+      : { width: "24px", height: "0", border: "none", borderTop: `${series.width || 2}px ${kind === "dashed" ? "dashed" : "solid"} ${strokeOf(u, i)}`, background: "none", verticalAlign: "middle" });
+  });
+}
+
+// The error bars of the series that have them: a vertical stroke from y - e to y + e with
+// 4 px caps, in the series' colour, over the plot.
+function errorBars(u) {
+  const px = devicePixelRatio || 1;
+  u.ctx.save();
+  u.series.forEach((series, i) => {
+    if (!series.yErrors || !series.show) return;
+    u.ctx.strokeStyle = strokeOf(u, i);
+    u.ctx.lineWidth = 1.5 * px;
+    u.ctx.beginPath();
+    u.data[0].forEach((x, k) => {
+      const y = u.data[i][k], e = series.yErrors.get(x);
+      if (y == null || !e) return;
+      const cx = u.valToPos(x, "x", true), top = u.valToPos(y + e, "y", true), bottom = u.valToPos(y - e, "y", true);
+      u.ctx.moveTo(cx, top); u.ctx.lineTo(cx, bottom);
+      for (const end of [top, bottom]) { u.ctx.moveTo(cx - 4 * px, end); u.ctx.lineTo(cx + 4 * px, end); }
+    });
+    u.ctx.stroke();
+  });
+  u.ctx.restore();
+}
+
+// The y range holding every point and its error bar, padded as uPlot pads its own.
+function errorRange(series) {
+  return (u, min, max) => {
+    for (const [i, s] of series.entries()) {
+      if (!s.yErrors) continue;
+      u.data[0].forEach((x, k) => {
+        const y = u.data[i + 1][k], e = s.yErrors.get(x) || 0;
+        if (y != null) { min = Math.min(min, y - e); max = Math.max(max, y + e); }
+      });
+    }
+    return uPlot.rangeNum(min, max, 0.1, true);
+  };
 }
 
 /** Several [x, y] tables on one x column (uPlot's join wants each sorted by x). */
@@ -103,7 +163,7 @@ function chartOptions(plotId, series, xLabel, yLabel, extra) {
   return {
     width: chartWidth(plotId),
     height: HEIGHT,
-    scales: { x: { time: false }, ...(extra.scales || {}) },
+    scales: { x: { time: false }, ...(series.some((s) => s.yErrors) ? { y: { range: errorRange(series) } } : {}), ...(extra.scales || {}) },
     axes: [
       { label: xLabel, stroke: "#1b1f24", grid: { stroke: "#eee" }, incrs: ROUND_STEPS, space: 45, values: tickLabels },
       { label: yLabel, stroke: "#1b1f24", grid: { stroke: "#eee" }, size: 60, incrs: ROUND_STEPS, space: 20, values: tickLabels },
@@ -113,7 +173,7 @@ function chartOptions(plotId, series, xLabel, yLabel, extra) {
     // Every series reads the cursor's own row, so the legend's values are of one x (one
     // cycle, one time, one y), never of neighbouring points.
     cursor: { dataIdx: (_u, _s, idx) => idx },
-    hooks: { ready: [blankLegend], setLegend: [blankLegend], drawClear: extra.band ? [shade(extra.band)] : [] },
+    hooks: { ready: [blankLegend, legendSamples], setLegend: [blankLegend], drawClear: extra.band ? [shade(extra.band)] : [], draw: [errorBars] },
   };
 }
 

@@ -145,7 +145,8 @@ function mapSvg(m, k, e, x, { umPerPx, pMax, rough }) {
   return { svg: out.join(""), width: pw, cells };
 }
 
-// The colour bar, with its maximum labelled; round ticks that would crowd it are left out.
+// The colour bar, with its maximum labelled and a round tick about every 40 px; ticks that
+// would crowd the maximum's label are left out.
 function colourBar(bx, PH, pMax) {
   const bw = 12;
   const parts = [];
@@ -153,7 +154,7 @@ function colourBar(bx, PH, pMax) {
   parts.push(`<defs><linearGradient id="pbar" x1="0" y1="1" x2="0" y2="0">${stops}</linearGradient></defs>`);
   parts.push(`<rect x="${bx}" y="${T}" width="${bw}" height="${PH}" fill="url(#pbar)" stroke="#1b1f24"/>`);
   parts.push(`<text ${FONT} x="${bx + bw + 4}" y="${T + 4}">${Math.round(pMax)} max</text>`);
-  for (const v of niceTicks(0, pMax, 4)) {
+  for (const v of niceTicks(0, pMax, Math.max(2, Math.floor(PH / 40)))) {
     const py = T + PH - (v / (pMax || 1)) * PH;
     if (py - T < 14) continue;
     parts.push(`<text ${FONT} x="${bx + bw + 4}" y="${(py + 4).toFixed(1)}">${Math.round(v)}</text>`);

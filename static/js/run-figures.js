@@ -61,13 +61,13 @@ export function updateTable3Choice(scene) {
   return Boolean(chart(RUN_PLOT.volume));
 }
 
-// Table 3's wear volumes from the preset's `measured` points: [cycles, 1e-3 mm^3], its
-// seconds turned into cycles at the preset's speed.
+// Table 3's wear volumes from the preset's `measured` points: [cycles, 1e-3 mm^3, the
+// spread in 1e-3 mm^3], its seconds turned into cycles at the preset's speed.
 function table3Points() {
   const preset = presetNamed(TABLE3_PRESET);
   if (!preset) return [];
   const rpm = getPath(preset.scene, "test.speed_rpm");
-  return (preset.measured || []).map((m) => [(m.time_s * rpm) / 60, m.wear_volume_mm3 * 1e3]);
+  return (preset.measured || []).map((m) => [(m.time_s * rpm) / 60, m.wear_volume_mm3 * 1e3, m.spread_mm3 * 1e3]);
 }
 
 const volumeTable = (records) => [records.map((r) => r.cycle), records.map((r) => r.wear_volume_mm3 * 1e3)];
@@ -96,7 +96,7 @@ function drawVolume(cycles, c, scene, fig11) {
   const measured = fig11 || $(RUN.showTable3).checked ? table3Points().filter((p) => p[0] <= end) : [];
   if (measured.length) {
     tables.push([measured.map((p) => p[0]), measured.map((p) => p[1])]);
-    volSeries.push(markerSeries("Table 3, measured", MEASURED_COLOR));
+    volSeries.push(markerSeries("Table 3, measured", MEASURED_COLOR, new Map(measured.map((p) => [p[0], p[2]]))));
   }
   // Attached wear volumes: at their cycles, or at their times turned into cycles at the run's speed.
   const rpm = getPath(scene, "test.speed_rpm") || 60;

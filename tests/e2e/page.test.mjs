@@ -14,6 +14,7 @@ import { calibration } from "./steps/calibration.mjs";
 import { cancel } from "./steps/cancel.mjs";
 import { compare } from "./steps/compare.mjs";
 import { fig11 } from "./steps/fig11.mjs";
+import { figures } from "./steps/figures.mjs";
 import { form } from "./steps/form.mjs";
 import { listing } from "./steps/listing.mjs";
 import { measurements } from "./steps/measurements.mjs";
@@ -55,7 +56,7 @@ try {
   page.on("response", (r) => { if (r.status() === 404 && !r.url().includes("/api/")) errors.push(`404 ${r.url()}`); });
   // What one step finds and a later one uses (the runs' ids, the run's length, ...).
   const found = {};
-  for (const scenario of [form, run, measurements, report, compare, access, study, calibration, listing, cancel, rough, ocp, views, fig11, origin]) {
+  for (const scenario of [form, run, measurements, report, compare, access, study, calibration, listing, cancel, rough, ocp, views, figures, fig11, origin]) {
     await scenario(page, found);
   }
   assert.deepEqual(errors, [], "errors in the page");

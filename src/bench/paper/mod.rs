@@ -105,13 +105,18 @@ pub fn write(path: &Path) -> Result<usize, BenchError> {
         path: folder.clone(),
         source,
     })?;
-    let figures = figures::write_all(&study, &folder)?;
+    let figures = write_figures(&study, &folder)?;
     let text = markdown(&study);
     std::fs::write(path, text).map_err(|source| BenchError::Write {
         path: path.to_owned(),
         source,
     })?;
     Ok(figures)
+}
+
+/// Writes the figures of `study` as SVG into `folder` (which exists); returns how many.
+pub fn write_figures(study: &PaperStudy, folder: &Path) -> Result<usize, BenchError> {
+    figures::write_all(study, folder)
 }
 
 fn plan(json: &str) -> Result<Plan, SimulationError> {

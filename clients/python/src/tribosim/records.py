@@ -109,6 +109,6 @@ class Preset(Record):
     description: str
     scene: dict[str, Any]
     #: What was measured on the preset's test, a row per time (``time_s``,
-    #: ``hardness_mpa``, ``wear_volume_mm3``, ``spread_mm3``): the paper's Table 3 for
-    #: ``dalmau2018-316l``.
+    #: ``hardness_mpa``, ``hardness_spread_mpa``, ``wear_volume_mm3``, ``spread_mm3``):
+    #: the paper's Table 3 for ``dalmau2018-316l``.
     measured: list[dict[str, Any]]
