@@ -11,6 +11,7 @@
 
 pub mod depassivation;
 pub mod faraday;
+pub mod plausible;
 pub mod reference;
 
 use thiserror::Error;

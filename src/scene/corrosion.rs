@@ -19,6 +19,10 @@ pub const PAPER_CORROSION_POTENTIAL_V: f64 = -0.10;
 /// this constant is no longer the fit to the digits written).
 pub const PAPER_REPASSIVATION_TIME_S: f64 = 0.148;
 
+/// The overpotentials E - E_corr a Tafel domain may span, V: below E_corr, within the few
+/// volts an aqueous scan covers.
+pub const TAFEL_OVERPOTENTIAL_RANGE_V: (f64, f64) = (-3.0, 0.0);
+
 /// The electrochemical cell (paper Section 5.1); units in the names.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]

@@ -37,6 +37,7 @@ pub use crate::wear::ArchardRegimeChange;
 pub use auto_or::{CycleStep, DomainSize, FixedStrideError, GridSize, SolverThreads};
 pub use corrosion::{
     AnodicArea, Corrosion, PAPER_CORROSION_POTENTIAL_V, PAPER_REPASSIVATION_TIME_S,
+    TAFEL_OVERPOTENTIAL_RANGE_V,
 };
 pub use error::{FieldError, FieldWarning, MAX_LISTED_PROBLEMS, SceneErrors, listed};
 pub use field::{Field, Range};

@@ -1,6 +1,7 @@
 //! The descriptors of `corrosion`, the electrochemical cell of Section 5.1, and of the
 //! open-circuit times of `test` around the rubbing (see [`super::FIELDS`]).
 
+use crate::scene::TAFEL_OVERPOTENTIAL_RANGE_V;
 use crate::scene::field::{Field, Range};
 
 const FARADAY_FEEDS: &str = "Faraday's law: V_WAC = i_a A_a t M / (z F rho)";
@@ -81,7 +82,7 @@ pub(in crate::scene) const TAFEL_B: Field = Field {
 pub(in crate::scene) const TAFEL_ETA_MIN: Field = Field {
     path: "corrosion.tafel_overpotential_min_v",
     unit: "V",
-    range: Range::Closed(-3.0, 0.0),
+    range: Range::Closed(TAFEL_OVERPOTENTIAL_RANGE_V.0, TAFEL_OVERPOTENTIAL_RANGE_V.1),
     why: "below E_corr, within the few volts an aqueous scan covers",
     meaning: "The most cathodic potential of the Tafel line's fitted domain, as E - E_corr \
               (the paper's scan ends at -1.1 V: -1.0). A potential during rubbing below it \
@@ -93,7 +94,7 @@ pub(in crate::scene) const TAFEL_ETA_MIN: Field = Field {
 pub(in crate::scene) const TAFEL_ETA_MAX: Field = Field {
     path: "corrosion.tafel_overpotential_max_v",
     unit: "V",
-    range: Range::Closed(-3.0, 0.0),
+    range: Range::Closed(TAFEL_OVERPOTENTIAL_RANGE_V.0, TAFEL_OVERPOTENTIAL_RANGE_V.1),
     why: "below E_corr, within the few volts an aqueous scan covers, and above \
           `tafel_overpotential_min_v`",
     meaning: "The least cathodic potential of the Tafel line's fitted domain, as E - E_corr \
