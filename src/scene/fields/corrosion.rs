@@ -182,7 +182,16 @@ pub(in crate::scene) const FARADAY: Field = Field {
     unit: "",
     range: Range::OneOf(&["316l_g102", "pure_iron", "given"]),
     why: "",
-    meaning: "What Faraday's law dissolves, as its equivalent weight EW = M / z and density               (V_WAC = Q EW / (F rho)). `316l_g102` (the default): 316L dissolving               congruently, ASTM G102's EW = 1 / sum(n_i f_i / W_i) over Fe 68.5, Cr 17, Ni               12, Mo 2.5 wt% at valences 2, 3, 2, 3, 25.50 g/eq, at 7.98 g/cm^3;               `pure_iron`: Fe -> Fe2+, 27.92 g/eq at 7.874 g/cm^3, 11% more volume per               coulomb; `given`: `molar_mass_g_mol / valence` at `density_g_cm3`. Before               this field, every run dissolved iron (55.85 g/mol, z 2, 7.9 g/cm^3): the               default WAC is 9.6% below those runs'. A section that gives `molar_mass_g_mol`,               `valence` or `density_g_cm3` without `faraday` is `given`. The result's               `models` name the choice (`faraday`).",
+    meaning: "What Faraday's law dissolves, as its equivalent weight EW = M / z and density \
+              (V_WAC = Q EW / (F rho)). `316l_g102` (the default): 316L dissolving \
+              congruently, ASTM G102's EW = 1 / sum(n_i f_i / W_i) over Fe 68.5, Cr 17, Ni \
+              12, Mo 2.5 wt% at valences 2, 3, 2, 3, 25.50 g/eq, at 7.98 g/cm^3; \
+              `pure_iron`: Fe -> Fe2+, 27.92 g/eq at 7.874 g/cm^3, 11% more volume per \
+              coulomb; `given`: `molar_mass_g_mol / valence` at `density_g_cm3`. Before \
+              this field, every run dissolved iron (55.85 g/mol, z 2, 7.9 g/cm^3): the \
+              default WAC is 9.6% below those runs'. A section that gives `molar_mass_g_mol`, \
+              `valence` or `density_g_cm3` without `faraday` is `given`. The result's \
+              `models` name the choice (`faraday`).",
     feeds: FARADAY_FEEDS,
 };
 
