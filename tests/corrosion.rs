@@ -100,7 +100,7 @@ fn the_papers_test_reads_the_papers_potential_and_dissolves_less_than_was_measur
         );
     }
     // Table 3's volumes are totals, corrosion included: the model's corrosion alone must
-    // stay below each. Measured shares: 0.3, 1.6, 7.6, 11.3 and 10.9%.
+    // stay below each. Measured shares (316L, `corrosion.faraday`): 0.3, 1.5, 6.9, 10.2 and 9.9%.
     for (time, measured) in TABLE3_TIMES_S.iter().zip(TABLE3_TOTAL_MM3) {
         let record = result
             .cycles
