@@ -44,9 +44,12 @@ const NERNST_SLOPE_V: f64 = 0.059_16;
 const TAFEL_SLOPE_WARN_V_PER_DECADE: (f64, f64) = (0.03, 1.0);
 
 /// No reaction's slope lies below 2.303 R T / (4 F) = 0.015 V/decade (four electrons at a
-/// transfer coefficient of 1), nor above 10 V/decade (a transfer coefficient of 0.006):
-/// outside these a slope is a unit slip.
-const TAFEL_SLOPE_REFUSE_V_PER_DECADE: (f64, f64) = (NERNST_SLOPE_V / 4.0, 10.0);
+/// transfer coefficient of 1): the steepest a Tafel line can be.
+pub const SMALLEST_TAFEL_SLOPE_V_PER_DECADE: f64 = NERNST_SLOPE_V / 4.0;
+
+/// Outside [`SMALLEST_TAFEL_SLOPE_V_PER_DECADE`] and 10 V/decade (a transfer coefficient of
+/// 0.006) a slope is a unit slip.
+const TAFEL_SLOPE_REFUSE_V_PER_DECADE: (f64, f64) = (SMALLEST_TAFEL_SLOPE_V_PER_DECADE, 10.0);
 
 /// Aqueous electrode potentials run from Li+/Li at -3.04 V to F2/F- at +2.87 V vs SHE; the
 /// references offered sit within 0.25 V of SHE. A magnitude above this is a slip (mV as V).

@@ -12,8 +12,8 @@ use crate::corrosion::plausible::{self, Finding};
 pub(super) const RESOLUTION_DECADES: f64 = 1e-3;
 
 /// The steepest log10 |i| against E a Tafel line has, decades per V: 1 / b_c at the
-/// smallest slope any reaction gives (2.303 RT / (4F) = 0.0148 V/decade, `plausible`).
-const STEEPEST_DECADES_PER_V: f64 = 1.0 / 0.0148;
+/// smallest slope any reaction gives (2.303 RT / (4F) = 0.0148 V/decade).
+const STEEPEST_DECADES_PER_V: f64 = 1.0 / plausible::SMALLEST_TAFEL_SLOPE_V_PER_DECADE;
 
 /// A jump between neighbouring rows of at least this many decades, steeper than any Tafel
 /// line, is a change of units: mA and A differ by 3 decades, A/m^2 and A/cm^2 by 4. Two is
