@@ -180,6 +180,14 @@ enum Command {
         /// with `--scene`, else where the measured current changes sign).
         #[arg(long, value_name = "V", allow_hyphen_values = true)]
         e_corr: Option<f64>,
+        /// Tafel: the domain's end nearest E_corr, as E - E_corr in V (e.g. -0.15); chosen
+        /// from the data if absent.
+        #[arg(long, value_name = "V", allow_hyphen_values = true)]
+        tafel_overpotential_max: Option<f64>,
+        /// Tafel: the domain's most cathodic end, as E - E_corr in V (e.g. -1.0); the scan's
+        /// end if absent.
+        #[arg(long, value_name = "V", allow_hyphen_values = true)]
+        tafel_overpotential_min: Option<f64>,
         /// OCP: when the rubbing started, s on the table's clock (the table is then the
         /// whole trace; without it every row is during the rubbing and `time_s` is the
         /// rubbing time).
@@ -406,6 +414,8 @@ fn main() -> ExitCode {
             output,
             no_bulk,
             e_corr,
+            tafel_overpotential_max,
+            tafel_overpotential_min,
             rubbing_start,
             rubbing_stop,
             regime_change,
@@ -413,6 +423,8 @@ fn main() -> ExitCode {
             let options = CommandOptions {
                 without_bulk: no_bulk,
                 corrosion_potential_v: e_corr,
+                tafel_overpotential_max_v: tafel_overpotential_max,
+                tafel_overpotential_min_v: tafel_overpotential_min,
                 scene_given: scene.is_some(),
                 rubbing_start_s: rubbing_start,
                 rubbing_stop_s: rubbing_stop,

@@ -255,3 +255,52 @@ async fn an_ocp_trace_over_http_fits_the_repassivation_time_as_tribosim_calibrat
         "{error}"
     );
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_tafel_domains_bounds_are_options_over_http_and_on_the_command_line() {
+    let dir = TempDir::new("calibration-tafel-domain");
+    // Table 2's line, E_corr -0.10 V, 1 to 1000 mV below it, no noise.
+    let mut table = String::from("potential_v,current_density_a_cm2\n");
+    for k in 1..=1000 {
+        let eta = -1e-3 * f64::from(k);
+        let current = -(10f64.powf((-3.31 - eta) / 0.56));
+        table.push_str(&format!("{},{current:e}\n", -0.10 + eta));
+    }
+    let path = dir.path().join("curve.csv");
+    std::fs::write(&path, &table).expect("write the table");
+    let server = ServerProcess::start(&dir.path().join("data"));
+    let options = json!({"e_corr_v": -0.10, "tafel_overpotential_max_v": -0.2,
+        "tafel_overpotential_min_v": -0.8});
+    let request = json!({"kind": "tafel", "table": table, "options": options});
+    let cli = [
+        "calibrate",
+        "tafel",
+        path.to_str().expect("path"),
+        "--e-corr",
+        "-0.10",
+        "--tafel-overpotential-max",
+        "-0.2",
+        "--tafel-overpotential-min",
+        "-0.8",
+    ];
+    let fit = same_fit_as_the_cli(&dir, &cli, &request, &server).await;
+    // 200 to 800 mV below E_corr, 1 mV apart, both ends included.
+    assert_eq!(fit["domain"]["points"], 601, "{}", fit["domain"]);
+    assert_eq!(fit["domain"]["given"], true);
+    // A bound in mV is refused at its option, naming the slip.
+    let client = reqwest::Client::new();
+    let url = server.url("/api/v1/calibrations");
+    let slip = json!({"kind": "tafel", "table": table,
+        "options": {"e_corr_v": -0.10, "tafel_overpotential_max_v": -150}});
+    let error = refused(&client, &url, &slip).await;
+    assert_eq!(
+        error["fields"][0]["path"], "options.tafel_overpotential_max_v",
+        "{error}"
+    );
+    assert!(
+        error["fields"][0]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("was it in mV?")),
+        "{error}"
+    );
+}

@@ -100,7 +100,7 @@ fn the_papers_test_reads_the_papers_potential_and_dissolves_less_than_was_measur
         );
     }
     // Table 3's volumes are totals, corrosion included: the model's corrosion alone must
-    // stay below each. Measured shares: 0.3, 1.6, 7.6, 11.3 and 10.9%.
+    // stay below each. Measured shares (316L, `corrosion.faraday`): 0.3, 1.5, 6.9, 10.2 and 9.9%.
     for (time, measured) in TABLE3_TIMES_S.iter().zip(TABLE3_TOTAL_MM3) {
         let record = result
             .cycles
@@ -231,5 +231,78 @@ fn a_clamped_potential_and_an_oversized_anode_are_said_not_hidden() {
     assert!(
         warnings.contains("outside the domain the Tafel line"),
         "{warnings}"
+    );
+}
+
+#[test]
+fn an_implausible_cell_is_refused_at_its_field_with_the_slip() {
+    // The unit slips of the issue: each refused at its own path, naming the likely slip.
+    let refused = |corrosion: serde_json::Value, path: &str, slip: &str| {
+        let document = json!({"test": {"cycles": 5}, "corrosion": corrosion});
+        let errors = tribosim::simulation::parse_scene(&document).expect_err("implausible");
+        let found = errors.0.iter().find(|e| e.path == path);
+        let message = found.map_or("", |e| e.message.as_str());
+        assert!(message.contains(slip), "{path}: {errors}");
+    };
+    refused(
+        json!({"tafel_b_c_v_per_decade": 100.0}),
+        "corrosion.tafel_b_c_v_per_decade",
+        "was it in mV/decade? 100 mV/decade = 0.1 V/decade",
+    );
+    refused(
+        json!({"corrosion_potential_v": 1e300}),
+        "corrosion.corrosion_potential_v",
+        "was it in mV?",
+    );
+    refused(
+        json!({"anodic_current_density_a_cm2": 1000.0}),
+        "corrosion.anodic_current_density_a_cm2",
+        "was it in mA/cm^2 (1000 mA/cm^2 = 1 A/cm^2)",
+    );
+    // a_c 1000 times Table 2's line current is a_c + 0.56 x 3 = -1.63 V: warned, not
+    // refused (a current a real cell may give).
+    let plan = tribosim::simulation::parse_scene(&json!({"corrosion": {"tafel_a_c_v": -1.63}}))
+        .expect("a warning only");
+    let warnings = plan
+        .warnings()
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>();
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.contains("mA/cm^2 typed as A/cm^2")),
+        "{warnings:?}"
+    );
+}
+
+#[test]
+fn no_total_is_below_its_own_wac() {
+    // 5 A/cm^2 on the whole wear track, a pit's current (warned, not refused): its WAC
+    // outgrows the wear track k fitted on total losses makes the total. The total reads the
+    // WAC, the mechanical part 0, and the run says so; once the total read the track.
+    let result = run(r#"{"test": {"cycles": 20}, "numerics": {"grid": 32},
+        "corrosion": {"anodic_area": "wear_track", "anodic_current_density_a_cm2": 5.0}}"#);
+    let last = result.cycles.last().expect("records");
+    let wac = last.wac_volume_mm3.expect("on");
+    assert!(wac > last.wear_volume_mm3, "{wac} {}", last.wear_volume_mm3);
+    for record in &result.cycles {
+        let (total, wac) = (
+            record.total_volume_mm3.expect("on"),
+            record.wac_volume_mm3.expect("on"),
+        );
+        assert!(
+            total >= wac,
+            "cycle {}: total {total} below WAC {wac}",
+            record.cycle
+        );
+    }
+    assert!(
+        result
+            .warnings
+            .iter()
+            .any(|w| w.contains("the total reads the WAC")),
+        "{:?}",
+        result.warnings
     );
 }

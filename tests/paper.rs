@@ -134,12 +134,15 @@ fn the_volumes_of_fig_11_and_table_3() {
         1.2077706e-2,
     ];
     let wear_tolerance = [7.6e-8, 8.2e-8, 7.6e-8, 3.4e-7, 6.2e-7];
+    // The mechanical part dissolves 316L by ASTM G102 (`corrosion.faraday`), whose WAC is
+    // 0.9041 times the pure iron's these tolerances were measured with: the grids' spread
+    // of the WAC shrinks by the same factor, so they still bound it.
     let mechanical = [
-        2.141852e-4,
-        3.792320e-4,
-        1.137435e-3,
-        5.619686e-3,
-        1.0797815e-2,
+        2.144708e-4,
+        3.809246e-4,
+        1.146049e-3,
+        5.677164e-3,
+        1.0920549e-2,
     ];
     let mechanical_tolerance = [7.6e-8, 1.1e-7, 2.4e-7, 1.8e-6, 3.4e-6];
     for i in 0..5 {

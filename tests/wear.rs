@@ -166,7 +166,11 @@ fn corrosion_follows_eq18_and_faraday_in_the_users_units() {
     let area_cm2 = last.anodic_area_mm2.expect("corrosion on") / 100.0;
     let potential = -0.10 - 3.31 - 0.56 * (0.01 * area_cm2 / (2.56 - area_cm2)).log10();
     assert!((last.potential_v.expect("corrosion on") - potential).abs() < 1e-12);
-    let rate_cm3_s = 0.01 * area_cm2 * 55.85 / (2.0 * 96_485.332_12 * 7.9);
+    // The default metal is 316L by ASTM G102: EW = 1 / sum(n f / W) over Fe, Cr, Ni, Mo at
+    // 68.5, 17, 12, 2.5 wt% and valences 2, 3, 2, 3, at 7.98 g/cm3.
+    let per_eq =
+        2.0 * 0.685 / 55.845 + 3.0 * 0.17 / 51.996 + 2.0 * 0.12 / 58.693 + 3.0 * 0.025 / 95.95;
+    let rate_cm3_s = 0.01 * area_cm2 / (per_eq * 96_485.332_12 * 7.98);
     let dt = last.time_s - before.time_s;
     let grown_mm3 = last.wac_volume_mm3.expect("on") - before.wac_volume_mm3.expect("on");
     assert!(relative_error(grown_mm3, rate_cm3_s * dt * 1e3) < 1e-12);

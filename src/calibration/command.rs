@@ -82,6 +82,18 @@ pub fn calibrate_files(
             FitKind::Tafel,
         ),
         (
+            "--tafel-overpotential-max",
+            "tafel",
+            options.tafel_overpotential_max_v.is_some(),
+            FitKind::Tafel,
+        ),
+        (
+            "--tafel-overpotential-min",
+            "tafel",
+            options.tafel_overpotential_min_v.is_some(),
+            FitKind::Tafel,
+        ),
+        (
             "--rubbing-start",
             "ocp",
             options.rubbing_start_s.is_some(),

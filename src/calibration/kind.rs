@@ -40,6 +40,10 @@ pub struct CommandOptions {
     pub without_bulk: bool,
     /// Tafel: E_corr, V.
     pub corrosion_potential_v: Option<f64>,
+    /// Tafel: the domain's least cathodic end, E - E_corr, V; absent: from the data.
+    pub tafel_overpotential_max_v: Option<f64>,
+    /// Tafel: the domain's most cathodic end, E - E_corr, V; absent: the scan's end.
+    pub tafel_overpotential_min_v: Option<f64>,
     /// Tafel: whether the scene is the lab's own (given by the caller, not the default
     /// preset), so that its E_corr may stand for a curve that does not show one.
     pub scene_given: bool,
@@ -62,7 +66,8 @@ impl CommandOptions {
         TafelOptions {
             corrosion_potential_v: self.corrosion_potential_v,
             scene_corrosion_potential: self.scene_given,
-            upper_v: None,
+            overpotential_max_v: self.tafel_overpotential_max_v,
+            overpotential_min_v: self.tafel_overpotential_min_v,
         }
     }
 

@@ -127,6 +127,40 @@ pub enum CalibrationError {
     /// A Tafel domain too narrow to measure a Tafel line on.
     #[error("column `potential_v`: the Tafel domain is too narrow: {0}")]
     NarrowTafelDomain(String),
+    /// A current column whose neighbouring rows jump by decades, more steeply than any Tafel
+    /// line: rows in different units.
+    #[error(
+        "column `current_density_a_cm2`: rows {} and {} differ by {decades:.1} decades over {millivolts:.1} mV, more steeply than any Tafel line (b_c >= 0.015 V/decade): does the column mix units? mA/cm^2 rows among A/cm^2 ones differ by 3 decades, A/m^2 among A/cm^2 by 4",
+        rows.0, rows.1
+    )]
+    MixedUnits {
+        /// The two rows, from 1.
+        rows: (usize, usize),
+        /// Their difference in log10 |i|, decades.
+        decades: f64,
+        /// Their difference in potential, mV.
+        millivolts: f64,
+    },
+    /// A fitted value no real cell gives: a unit slip, named.
+    #[error("the fitted {what}: {message}")]
+    Implausible {
+        /// Which value.
+        what: &'static str,
+        /// The value, the range and the likely slip.
+        message: String,
+    },
+    /// A Tafel domain bound out of its range.
+    #[error("{flag} (options.{option}) = {value} V: {why}")]
+    DomainOption {
+        /// The option as the service names it.
+        option: &'static str,
+        /// The option as the command line names it.
+        flag: &'static str,
+        /// Its value, V.
+        value: f64,
+        /// The allowed range and the likely slip.
+        why: String,
+    },
     /// A rubbing stop given without its start.
     #[error(
         "a rubbing stop needs the rubbing start (`--rubbing-start S`, `options.rubbing_start_s`)"

@@ -11,19 +11,36 @@
 //! show it: the top of a cathodic-only scan lies below E_corr by however far the scan
 //! stopped short of it.
 //!
-//! The domain: from the most cathodic point up, the longest stretch on which a parabola in
-//! E does not bend log10 |i| by more than 3 standard errors of its curvature, then cut back
-//! to twice its distance below E_corr ([`BEND_MARGIN`]). Near E_corr the anodic current
-//! bends the curve away from the line, which the test sees where the bend is near the noise.
-//! A domain narrower than [`MIN_DOMAIN_SPAN_V`] or of fewer than [`MIN_TAFEL_POINTS`] points
-//! is refused: it cannot show a Tafel line.
+//! The domain, chosen from the data unless its ends are given (`--tafel-overpotential-max`,
+//! `--tafel-overpotential-min`; `options.tafel_overpotential_max_v`, `_min_v`, as E - E_corr):
+//! from the scan's most cathodic point up, the longest stretch on which a parabola in E does
+//! not bend log10 |i| by more than 3 standard errors of its curvature (the scatter floored at
+//! the current's resolution, [`checks::RESOLUTION_DECADES`]), then cut back to twice its
+//! distance below E_corr ([`BEND_MARGIN`]), or kept whole, with a warning, where twice as
+//! far leaves too little of the scan to measure a line on. Near E_corr the anodic current bends the curve away from
+//! the line, which the test sees where the bend is near the noise. A domain narrower than
+//! [`MIN_DOMAIN_SPAN_V`] or of fewer than [`MIN_TAFEL_POINTS`] points is refused: it cannot
+//! show a Tafel line.
+//!
+//! Before the fit, a current column whose rows jump by decades between neighbours is refused
+//! (mixed units); after it, the residuals' outliers are flagged and the fitted E_corr, b_c and
+//! i_corr judged by the scene's plausibility rules (a current 1000 times 316L's names
+//! mA/cm^2 typed as A/cm^2).
 
 use nalgebra::{Matrix3, Vector3};
 use serde::Serialize;
 
 use super::line::Line;
 use super::{CalibrationError, Estimate, Table, require_increasing};
-use crate::scene::{Corrosion, Scene};
+use checks::RESOLUTION_DECADES;
+
+mod checks;
+use crate::scene::{Corrosion, Scene, TAFEL_OVERPOTENTIAL_RANGE_V};
+
+/// The domain's least cathodic end, as the service and the command line name it.
+const MAX_OPTION: (&str, &str) = ("tafel_overpotential_max_v", "--tafel-overpotential-max");
+/// The domain's most cathodic end, as the service and the command line name it.
+const MIN_OPTION: (&str, &str) = ("tafel_overpotential_min_v", "--tafel-overpotential-min");
 
 /// A/cm^2 per A/m^2.
 const A_CM2_PER_A_M2: f64 = 1e-4;
@@ -57,10 +74,6 @@ const CURVATURE_LIMIT: f64 = 3.0;
 /// (largest 2.1) with 2 (`tafel::tests`).
 const BEND_MARGIN: f64 = 2.0;
 
-/// Relative round-off of the parabola's residuals (sums of up to thousands of terms near
-/// 1e-16 each, with margin), below which residual scatter is not noise.
-const ROUND_OFF: f64 = 1e-12;
-
 /// Settings of the Tafel fit.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct TafelOptions {
@@ -70,8 +83,10 @@ pub struct TafelOptions {
     /// Whether the scene's E_corr is the lab's own and may stand for a curve that does not
     /// show one (false for the default preset, whose E_corr is the paper's).
     pub scene_corrosion_potential: bool,
-    /// The domain's upper end, V; absent: found by the curvature test.
-    pub upper_v: Option<f64>,
+    /// The domain's least cathodic end as E - E_corr, V; absent: chosen from the data.
+    pub overpotential_max_v: Option<f64>,
+    /// The domain's most cathodic end as E - E_corr, V; absent: the scan's end.
+    pub overpotential_min_v: Option<f64>,
 }
 
 /// Where E_corr came from.
@@ -93,6 +108,12 @@ pub struct TafelDomain {
     pub lower_v: f64,
     /// Potential nearest E_corr, V.
     pub upper_v: f64,
+    /// `lower_v` as E - E_corr, V.
+    pub overpotential_min_v: f64,
+    /// `upper_v` as E - E_corr, V.
+    pub overpotential_max_v: f64,
+    /// Whether the bounds were given (the options) rather than chosen from the data.
+    pub given: bool,
     /// Points in it.
     pub points: usize,
 }
@@ -129,6 +150,9 @@ pub struct TafelFit {
     pub residuals: Vec<TafelResidual>,
     /// Root-mean-square residual, decades.
     pub rms_residual_decades: f64,
+    /// The domain's points whose residual lies more than 3.5 robust standard deviations
+    /// from the median (each also in `residuals`; the fit keeps them).
+    pub outliers: Vec<TafelResidual>,
     /// What the fit assumed: where E_corr came from, how the domain was cut.
     pub warnings: Vec<String>,
     /// The scene with `corrosion` E_corr, a_c, b_c and the domain filled in.
@@ -141,62 +165,190 @@ pub fn fit_tafel(
     scene: &Scene,
     options: TafelOptions,
 ) -> Result<TafelFit, CalibrationError> {
+    check_bounds(options)?;
     let (potential, current) = curve(table)?;
     let (e_corr, source, mut warnings) = corrosion_potential(&potential, &current, scene, options)?;
-    // The cathodic branch, most cathodic first.
-    let mut branch: Vec<(f64, f64)> = potential
+    warnings.extend(checks::potential(e_corr)?);
+    let branch = cathodic_branch(&potential, &current, e_corr)?;
+    checks::mixed_units(&branch)?;
+    let etas: Vec<f64> = branch.iter().map(|p| p.0).collect();
+    let logs: Vec<f64> = branch.iter().map(|p| p.1).collect();
+    let (start, end) = domain(&etas, &logs, e_corr, options, &mut warnings)?;
+    let (etas, logs) = (&etas[start..end], &logs[start..end]);
+    require_measurable(etas, e_corr)?;
+    let line = Line::fit(etas, logs);
+    if line.slope >= 0.0 {
+        return Err(CalibrationError::NoTafelDomain(
+            "|i| does not grow as the potential falls".to_owned(),
+        ));
+    }
+    let fit = finish(scene, e_corr, &line, etas, logs);
+    warnings.extend(checks::line(
+        fit.tafel_b_c_v_per_decade.value,
+        fit.corrosion_current_density_a_cm2,
+    )?);
+    let outliers = checks::outliers(&fit.residuals);
+    if let Some(worst) = outliers.iter().max_by(|a, b| {
+        a.residual_decades
+            .abs()
+            .total_cmp(&b.residual_decades.abs())
+    }) {
+        warnings.push(format!(
+            "{} of the domain's {} points lie more than 3.5 robust standard deviations off the \
+             line (`outliers`), the worst at {:.4} V by {:+.3} decades; the fit keeps them: \
+             check those rows, or narrow the domain",
+            outliers.len(),
+            etas.len(),
+            worst.potential_v,
+            worst.residual_decades
+        ));
+    }
+    let given = options.overpotential_max_v.is_some() || options.overpotential_min_v.is_some();
+    Ok(TafelFit {
+        corrosion_potential_given: source != CorrosionPotentialSource::SignChange,
+        corrosion_potential_source: source,
+        warnings,
+        outliers,
+        domain: TafelDomain {
+            given,
+            ..fit.domain
+        },
+        ..fit
+    })
+}
+
+/// The cathodic branch below `e_corr`, most cathodic first: E - E_corr, log10 |i| and the
+/// table's row (from 1).
+fn cathodic_branch(
+    potential: &[f64],
+    current: &[f64],
+    e_corr: f64,
+) -> Result<Vec<(f64, f64, usize)>, CalibrationError> {
+    let mut branch: Vec<(f64, f64, usize)> = potential
         .iter()
-        .zip(&current)
-        .filter(|&(&e, &i)| e < e_corr && i != 0.0)
-        .map(|(&e, &i)| (e - e_corr, i.abs().log10()))
+        .zip(current)
+        .enumerate()
+        .filter(|&(_, (&e, &i))| e < e_corr && i != 0.0)
+        .map(|(row, (&e, &i))| (e - e_corr, i.abs().log10(), row + 1))
         .collect();
     branch.sort_by(|a, b| a.0.total_cmp(&b.0));
     let etas: Vec<f64> = branch.iter().map(|p| p.0).collect();
     require_increasing("potential_v", &etas)?;
-    let logs: Vec<f64> = branch.iter().map(|p| p.1).collect();
     if branch.len() < MIN_DOMAIN_POINTS {
         return Err(CalibrationError::NoTafelDomain(format!(
             "{} points below E_corr = {e_corr} V, a domain needs {MIN_DOMAIN_POINTS}",
             branch.len()
         )));
     }
-    let end = match options.upper_v {
-        Some(upper) => etas.partition_point(|&eta| eta <= upper - e_corr),
-        None => {
-            let straight = straight_end(&etas, &logs).ok_or_else(|| {
-                CalibrationError::NoTafelDomain(format!(
-                    "log10 |i| bends by more than {CURVATURE_LIMIT} standard errors of its curvature on every stretch of {MIN_DOMAIN_POINTS} or more points from the most cathodic one"
-                ))
-            })?;
-            if straight == etas.len() {
-                straight
+    Ok(branch)
+}
+
+/// Refuses a domain bound outside the scene's range of Tafel overpotentials, or bounds in
+/// the wrong order.
+fn check_bounds(options: TafelOptions) -> Result<(), CalibrationError> {
+    let (low, high) = TAFEL_OVERPOTENTIAL_RANGE_V;
+    let bounds = [
+        (MAX_OPTION, options.overpotential_max_v),
+        (MIN_OPTION, options.overpotential_min_v),
+    ];
+    for ((option, flag), value) in bounds {
+        let Some(value) = value else { continue };
+        if !(low..high).contains(&value) {
+            let slip = if value.abs() > high - low {
+                format!("was it in mV? {value} mV = {} V", value * 1e-3)
             } else {
-                let top = BEND_MARGIN * etas[straight - 1];
-                warnings.push(format!(
-                    "the curve bends away from a line above {:.4} V; the domain ends at \
-                     {:.4} V, twice as far below E_corr, where the anodic current's bend is \
-                     below the noise",
-                    etas[straight - 1] + e_corr,
-                    top + e_corr
-                ));
-                etas.partition_point(|&eta| eta <= top)
-            }
+                "a value at or above 0 lies above E_corr: was it E rather than E - E_corr, or \
+                 its sign left out?"
+                    .to_owned()
+            };
+            return Err(CalibrationError::DomainOption {
+                option,
+                flag,
+                value,
+                why: format!(
+                    "an overpotential E - E_corr of the cathodic branch, from {low} V to below \
+                     {high} V: {slip}"
+                ),
+            });
         }
-    };
-    require_measurable(&etas[..end], e_corr)?;
-    let line = Line::fit(&etas[..end], &logs[..end]);
-    if line.slope >= 0.0 {
-        return Err(CalibrationError::NoTafelDomain(
-            "|i| does not grow as the potential falls".to_owned(),
-        ));
     }
-    let fit = finish(scene, e_corr, &line, &etas[..end], &logs[..end]);
-    Ok(TafelFit {
-        corrosion_potential_given: source != CorrosionPotentialSource::SignChange,
-        corrosion_potential_source: source,
-        warnings,
-        ..fit
-    })
+    if let (Some(max), Some(min)) = (options.overpotential_max_v, options.overpotential_min_v) {
+        if max <= min {
+            return Err(CalibrationError::DomainOption {
+                option: MAX_OPTION.0,
+                flag: MAX_OPTION.1,
+                value: max,
+                why: format!("must lie above {} = {min} V (nearer E_corr)", MIN_OPTION.0),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The domain's first and last-plus-one index into `etas` (E - E_corr, increasing): the
+/// options' bounds, else from the scan's end up to where [`chosen_end`] stops.
+fn domain(
+    etas: &[f64],
+    logs: &[f64],
+    e_corr: f64,
+    options: TafelOptions,
+    warnings: &mut Vec<String>,
+) -> Result<(usize, usize), CalibrationError> {
+    let start = options
+        .overpotential_min_v
+        .map_or(0, |min| etas.partition_point(|&eta| eta < min));
+    let (etas, logs) = (&etas[start..], &logs[start..]);
+    let end = match options.overpotential_max_v {
+        Some(max) => etas.partition_point(|&eta| eta <= max),
+        None if etas.len() < MIN_DOMAIN_POINTS => etas.len(),
+        None => chosen_end(etas, logs, e_corr, warnings)?,
+    };
+    Ok((start, start + end))
+}
+
+/// Where the data's straight stretch from the most cathodic point ends, cut back by
+/// [`BEND_MARGIN`]; where the margin's end lies past the scan's end, or leaves too few
+/// points or too little span to measure a line on, the stretch's own end, with a warning:
+/// the margin once put the domain's end past the scan's and refused a clean curve.
+fn chosen_end(
+    etas: &[f64],
+    logs: &[f64],
+    e_corr: f64,
+    warnings: &mut Vec<String>,
+) -> Result<usize, CalibrationError> {
+    let straight = straight_end(etas, logs).ok_or_else(|| {
+        CalibrationError::NoTafelDomain(format!(
+            "log10 |i| bends by more than {CURVATURE_LIMIT} standard errors of its curvature on every stretch of {MIN_DOMAIN_POINTS} or more points from the most cathodic one"
+        ))
+    })?;
+    if straight == etas.len() {
+        return Ok(straight);
+    }
+    let stop = etas[straight - 1];
+    let margin = BEND_MARGIN * stop;
+    let end = etas.partition_point(|&eta| eta <= margin);
+    let bent = format!(
+        "the curve bends away from a line above {:.4} V",
+        stop + e_corr
+    );
+    if end >= MIN_TAFEL_POINTS && margin - etas[0] >= MIN_DOMAIN_SPAN_V {
+        warnings.push(format!(
+            "{bent}; the domain ends at {:.4} V, twice as far below E_corr, where the anodic \
+             current's bend is below the noise",
+            margin + e_corr
+        ));
+        return Ok(end);
+    }
+    warnings.push(format!(
+        "{bent}; twice as far below E_corr, {:.4} V, leaves too little of the scan (it ends \
+         at {:.4} V), so the domain ends where the curve bends, where the anodic current's bend \
+         is up to the noise and may bias a_c and b_c by a few standard errors; `{}` sets the \
+         end",
+        margin + e_corr,
+        etas[0] + e_corr,
+        MAX_OPTION.1
+    ));
+    Ok(straight)
 }
 
 /// E_corr and where it came from (with the words that say so): the option, where the
@@ -351,9 +503,13 @@ fn finish(scene: &Scene, e_corr: f64, line: &Line, etas: &[f64], logs: &[f64]) -
         domain: TafelDomain {
             lower_v: etas[0] + e_corr,
             upper_v: etas[etas.len() - 1] + e_corr,
+            overpotential_min_v: etas[0],
+            overpotential_max_v: etas[etas.len() - 1],
+            given: false,
             points: etas.len(),
         },
         rms_residual_decades: (rss / etas.len() as f64).sqrt(),
+        outliers: Vec::new(),
         residuals,
         scene: fitted,
     }
@@ -391,10 +547,10 @@ fn curvature_t(xs: &[f64], ys: &[f64]) -> f64 {
             (y - c[0] - c[1] * u - c[2] * u * u).powi(2)
         })
         .sum();
-    // Noise-free data leave only round-off in the residuals; floor the scatter there so
-    // that a straight line's round-off curvature does not count as bending.
-    let floor = ROUND_OFF * ys.iter().fold(0.0_f64, |m, y| m.max(y.abs()));
-    let scatter = (rss / (xs.len() as f64 - 3.0)).max(floor * floor);
+    // Noise-free data leave only round-off in the residuals, against which any bend is
+    // significant; floor the scatter at the current's resolution, below which no measured
+    // curve shows a bend.
+    let scatter = (rss / (xs.len() as f64 - 3.0)).max(RESOLUTION_DECADES.powi(2));
     let se = (scatter * inverse[(2, 2)]).sqrt();
     c[2].abs() / se
 }

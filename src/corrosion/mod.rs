@@ -1,7 +1,8 @@
 //! Wear-accelerated corrosion (paper Section 5.1): galvanic coupling between the depassivated
 //! anode and the passive cathode (eq. 18), Faraday's law for the dissolved volume, the
-//! depassivated area of a sliding contact ([`depassivation`]) and the reference electrodes
-//! potentials are measured against ([`mod@reference`]).
+//! depassivated area of a sliding contact ([`depassivation`]), what dissolves per coulomb
+//! ([`faraday`]) and the reference electrodes potentials are measured against
+//! ([`mod@reference`]).
 //!
 //! Everything here is in SI units (V, A/m^2, m^2, s, kg/mol, kg/m^3, m^3). The one exception is
 //! inside the Tafel logarithm: the paper fitted a_c with current densities in A/cm^2, so the
@@ -9,6 +10,8 @@
 //! whichever electrode E_corr is given against: eq. 18 only adds differences to it.
 
 pub mod depassivation;
+pub mod faraday;
+pub mod plausible;
 pub mod reference;
 
 use thiserror::Error;
@@ -16,6 +19,7 @@ use thiserror::Error;
 pub use depassivation::{
     AreaInputs, ContactGeometry, band_area_m2, recovering_area_m2, wake_area_m2,
 };
+pub use faraday::{Dissolving, FaradayBasis};
 pub use reference::ReferenceElectrode;
 
 /// Faraday constant, C/mol (CODATA 2018, exact since the 2019 SI redefinition).
@@ -40,14 +44,10 @@ pub enum CorrosionError {
     },
 }
 
-/// Volume of metal dissolved by an anodic charge (Faraday's law), V = Q M / (n F rho), m^3.
-pub fn faraday_volume_m3(
-    charge_c: f64,
-    molar_mass_kg_mol: f64,
-    valence: f64,
-    density_kg_m3: f64,
-) -> f64 {
-    charge_c * molar_mass_kg_mol / (valence * FARADAY_C_PER_MOL * density_kg_m3)
+/// Volume of metal dissolved by an anodic charge (Faraday's law), V = Q EW / (F rho), m^3,
+/// with EW = M / n the mass dissolved per mole of electrons.
+pub fn faraday_volume_m3(charge_c: f64, equivalent_weight_kg_mol: f64, density_kg_m3: f64) -> f64 {
+    charge_c * equivalent_weight_kg_mol / (FARADAY_C_PER_MOL * density_kg_m3)
 }
 
 /// Real contact area of the plastically deformed asperities, A_r = F / H (paper Section 5.1),
@@ -69,10 +69,9 @@ pub struct CorrosionModel {
     pub anodic_current_density_a_m2: f64,
     /// Electrode area exposed to the electrolyte, m^2.
     pub exposed_area_m2: f64,
-    /// Molar mass of the dissolving metal, kg/mol.
-    pub molar_mass_kg_mol: f64,
-    /// Charge number of the dissolution reaction.
-    pub valence: f64,
+    /// Mass of metal dissolved per mole of electrons (M / n, or ASTM G102's alloy sum),
+    /// kg/mol.
+    pub equivalent_weight_kg_mol: f64,
     /// Density of the metal, kg/m^3.
     pub density_kg_m3: f64,
 }
@@ -149,12 +148,7 @@ impl CorrosionModel {
 
     /// Volume dissolved by the anodic charge `charge_c` (Faraday's law), m^3.
     pub fn dissolved_volume_m3(&self, charge_c: f64) -> f64 {
-        faraday_volume_m3(
-            charge_c,
-            self.molar_mass_kg_mol,
-            self.valence,
-            self.density_kg_m3,
-        )
+        faraday_volume_m3(charge_c, self.equivalent_weight_kg_mol, self.density_kg_m3)
     }
 
     /// Depassivated (anodic) area implied by a measured potential: eq. 18 solved for A_a with
@@ -191,8 +185,7 @@ mod tests {
             tafel_b_c_v_per_decade: 0.56,
             anodic_current_density_a_m2: 0.01 * 1e4,
             exposed_area_m2: 2.56e-4,
-            molar_mass_kg_mol: 55.85e-3,
-            valence: 2.0,
+            equivalent_weight_kg_mol: 55.85e-3 / 2.0,
             density_kg_m3: 7900.0,
         }
     }

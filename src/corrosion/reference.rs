@@ -3,13 +3,17 @@
 
 use serde::{Deserialize, Serialize};
 
-/// A reference electrode, named in the JSON as `ag_agcl_3m_kcl`, `sce` or `she`.
+/// A reference electrode, named in the JSON as `ag_agcl_3m_kcl`, `ag_agcl_sat_kcl`, `sce` or
+/// `she`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ReferenceElectrode {
     /// Silver/silver chloride in 3 M KCl, the paper's (Section 2.2).
     #[serde(rename = "ag_agcl_3m_kcl")]
     AgAgCl3MKcl,
+    /// Silver/silver chloride in saturated KCl.
+    #[serde(rename = "ag_agcl_sat_kcl")]
+    AgAgClSatKcl,
     /// The saturated calomel electrode.
     Sce,
     /// The standard hydrogen electrode.
@@ -21,11 +25,14 @@ impl ReferenceElectrode {
     ///
     /// Ag/AgCl in 3 M KCl: +0.205 V, the value the paper gives for its electrode (Section
     /// 2.2; tables quote +0.210 V for 3 M KCl, between +0.236 V in 1 M and +0.200 V in 4 M, so
-    /// the two conventions differ by 5 mV). SCE: +0.241 V (Bard and Faulkner, Electrochemical
+    /// the two conventions differ by 5 mV). Ag/AgCl in saturated KCl: +0.197 V (Bard and
+    /// Faulkner, 2nd ed., 2001, Table C.1: 0.197 V; Sawyer, Sobkowiak and Roberts,
+    /// Electrochemistry for Chemists, 2nd ed., 1995: 0.199 V). SCE: +0.241 V (Bard and Faulkner, Electrochemical
     /// Methods, 2nd ed., 2001: 0.2412 V with saturated KCl).
     pub fn against_she_v(self) -> f64 {
         match self {
             Self::AgAgCl3MKcl => 0.205,
+            Self::AgAgClSatKcl => 0.197,
             Self::Sce => 0.241,
             Self::She => 0.0,
         }
@@ -40,6 +47,7 @@ impl ReferenceElectrode {
     pub fn label(self) -> &'static str {
         match self {
             Self::AgAgCl3MKcl => "Ag/AgCl (3 M KCl)",
+            Self::AgAgClSatKcl => "Ag/AgCl (sat. KCl)",
             Self::Sce => "SCE",
             Self::She => "SHE",
         }
@@ -65,5 +73,11 @@ mod tests {
             serde_json::to_value(ag).expect("serialises"),
             serde_json::json!("ag_agcl_3m_kcl")
         );
+        // Saturated KCl sits 8 mV below 3 M KCl and 44 mV above the SCE.
+        let saturated = ag.convert_v(e_corr, ReferenceElectrode::AgAgClSatKcl);
+        assert!((saturated - -0.092).abs() < 1e-15, "{saturated}");
+        let parsed: ReferenceElectrode =
+            serde_json::from_value(serde_json::json!("ag_agcl_sat_kcl")).expect("a name");
+        assert_eq!(parsed, ReferenceElectrode::AgAgClSatKcl);
     }
 }

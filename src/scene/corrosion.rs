@@ -5,7 +5,8 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use crate::corrosion::{
-    AreaInputs, CorrosionModel, ReferenceElectrode, band_area_m2, wake_area_m2,
+    AreaInputs, CorrosionModel, Dissolving, FaradayBasis, ReferenceElectrode, band_area_m2,
+    wake_area_m2,
 };
 
 /// The paper's free corrosion potential, V against its Ag/AgCl (3 M KCl) electrode (Table 2,
@@ -17,6 +18,10 @@ pub const PAPER_CORROSION_POTENTIAL_V: f64 = -0.10;
 /// on the default run (`docs/corrosion.md`; `tests/corrosion.rs` fits it again and fails when
 /// this constant is no longer the fit to the digits written).
 pub const PAPER_REPASSIVATION_TIME_S: f64 = 0.148;
+
+/// The overpotentials E - E_corr a Tafel domain may span, V: below E_corr, within the few
+/// volts an aqueous scan covers.
+pub const TAFEL_OVERPOTENTIAL_RANGE_V: (f64, f64) = (-3.0, 0.0);
 
 /// The electrochemical cell (paper Section 5.1); units in the names.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -45,11 +50,13 @@ pub struct Corrosion {
     pub repassivation_time_s: f64,
     /// Multiplier on the chosen anodic area.
     pub anodic_area_factor: f64,
-    /// Molar mass of the dissolving metal, g/mol.
+    /// What dissolves: 316L by ASTM G102, pure iron, or the three fields below.
+    pub faraday: FaradayBasis,
+    /// Molar mass of the dissolving metal, g/mol (with `faraday` `given`).
     pub molar_mass_g_mol: f64,
-    /// Charge number of the dissolution reaction.
+    /// Charge number of the dissolution reaction (with `faraday` `given`).
     pub valence: f64,
-    /// Density of the metal, g/cm^3.
+    /// Density of the metal, g/cm^3 (with `faraday` `given`).
     pub density_g_cm3: f64,
 }
 
@@ -69,6 +76,8 @@ impl Default for Corrosion {
             anodic_area: AnodicArea::DepassivatedWake,
             repassivation_time_s: PAPER_REPASSIVATION_TIME_S,
             anodic_area_factor: 1.0,
+            faraday: FaradayBasis::default(),
+            // Iron's, the values Faraday's law used before `faraday` chose 316L by default.
             molar_mass_g_mol: 55.85,
             valence: 2.0,
             density_g_cm3: 7.9,
@@ -79,16 +88,22 @@ impl Default for Corrosion {
 impl Corrosion {
     /// The cell in SI units.
     pub fn model(&self) -> CorrosionModel {
+        let dissolving = self.dissolving();
         CorrosionModel {
             corrosion_potential_v: self.corrosion_potential_v,
             tafel_a_c_v: self.tafel_a_c_v,
             tafel_b_c_v_per_decade: self.tafel_b_c_v_per_decade,
             anodic_current_density_a_m2: self.anodic_current_density_a_cm2 * 1e4,
             exposed_area_m2: self.exposed_area_cm2 * 1e-4,
-            molar_mass_kg_mol: self.molar_mass_g_mol * 1e-3,
-            valence: self.valence,
-            density_kg_m3: self.density_g_cm3 * 1e3,
+            equivalent_weight_kg_mol: dissolving.equivalent_weight_g_per_eq * 1e-3,
+            density_kg_m3: dissolving.density_g_cm3 * 1e3,
         }
+    }
+
+    /// What Faraday's law dissolves, by `faraday`.
+    pub fn dissolving(&self) -> Dissolving {
+        self.faraday
+            .dissolving(self.molar_mass_g_mol, self.valence, self.density_g_cm3)
     }
 
     /// The charge that repassivates a unit of stripped area, Q_p = i_a tau, mC/cm^2: all of
@@ -167,6 +182,25 @@ pub(super) fn follow_reference(document: &mut Value, given: Option<&Value>, base
     }
 }
 
+/// The fields `faraday` `given` reads.
+const GIVEN_FARADAY_KEYS: [&str; 3] = ["molar_mass_g_mol", "valence", "density_g_cm3"];
+
+/// A metal keeps its meaning when the default basis changes: a `corrosion` section (`given`,
+/// the user's own object) that names the molar mass, valence or density without `faraday`
+/// meant those numbers, as every scene did before `faraday` existed, so `document` gets
+/// `faraday` `given`.
+pub(super) fn follow_faraday(document: &mut Value, given: Option<&Value>) {
+    let Some(given) = given.and_then(Value::as_object) else {
+        return;
+    };
+    if given.contains_key("faraday") || !GIVEN_FARADAY_KEYS.iter().any(|k| given.contains_key(*k)) {
+        return;
+    }
+    if let Some(Value::Object(section)) = document.get_mut("corrosion") {
+        section.insert("faraday".to_owned(), Value::from("given"));
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -187,6 +221,22 @@ mod tests {
         let mut document = json!({"corrosion": given.clone()});
         follow_reference(&mut document, Some(&given), &base);
         assert_eq!(document["corrosion"]["corrosion_potential_v"], json!(0.2));
+    }
+
+    #[test]
+    fn a_section_that_names_its_metal_keeps_it() {
+        let user = json!({"molar_mass_g_mol": 55.85});
+        let mut document = json!({"corrosion": user.clone()});
+        follow_faraday(&mut document, Some(&user));
+        assert_eq!(document["corrosion"]["faraday"], json!("given"));
+        let chosen = json!({"valence": 2.0, "faraday": "pure_iron"});
+        let mut document = json!({"corrosion": chosen.clone()});
+        follow_faraday(&mut document, Some(&chosen));
+        assert_eq!(document["corrosion"]["faraday"], json!("pure_iron"));
+        let other = json!({"tafel_a_c_v": -3.0});
+        let mut document = json!({"corrosion": other.clone()});
+        follow_faraday(&mut document, Some(&other));
+        assert!(document["corrosion"].get("faraday").is_none());
     }
 
     #[test]

@@ -38,6 +38,7 @@ pub use crate::wear::ArchardRegimeChange;
 pub use auto_or::{CycleStep, DomainSize, FixedStrideError, GridSize, SolverThreads};
 pub use corrosion::{
     AnodicArea, Corrosion, PAPER_CORROSION_POTENTIAL_V, PAPER_REPASSIVATION_TIME_S,
+    TAFEL_OVERPOTENTIAL_RANGE_V,
 };
 pub use error::{FieldError, FieldWarning, MAX_LISTED_PROBLEMS, SceneErrors, listed};
 pub use field::{Field, Range};
@@ -195,8 +196,12 @@ mod tests {
         // Each is one multiplication by a power of ten: one rounding (1e-15 relative).
         assert!(relative_error(model.anodic_current_density_a_m2, 100.0) < 1e-15);
         assert!(relative_error(model.exposed_area_m2, 2.56e-4) < 1e-15);
-        assert!(relative_error(model.molar_mass_kg_mol, 55.85e-3) < 1e-15);
-        assert!(relative_error(model.density_kg_m3, 7900.0) < 1e-15);
+        // 316L by default: G102's equivalent weight (one more rounding) and 7.98 g/cm^3.
+        let steel = crate::corrosion::faraday::equivalent_weight_g_per_eq(
+            &crate::corrosion::faraday::STAINLESS_316L,
+        );
+        assert!(relative_error(model.equivalent_weight_kg_mol, steel * 1e-3) < 1e-15);
+        assert!(relative_error(model.density_kg_m3, 7980.0) < 1e-15);
     }
 
     #[test]

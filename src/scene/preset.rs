@@ -3,7 +3,7 @@
 use serde::Serialize;
 use serde_json::{Map, Value};
 
-use super::corrosion::follow_reference;
+use super::corrosion::{follow_faraday, follow_reference};
 use super::{Corrosion, FieldError, PAPER_TABLE3, Scene, SceneErrors, Table3Row};
 
 /// Name of the paper's scene: AISI 316L against alumina, 5 N, 60 rpm, 3600 cycles.
@@ -48,6 +48,7 @@ pub(super) fn resolve(json: &Value) -> Result<(Value, &'static str), SceneErrors
     let Some(object) = json.as_object().filter(|o| o.contains_key("preset")) else {
         let mut document = json.clone();
         follow_reference(&mut document, json.get("corrosion"), &Corrosion::default());
+        follow_faraday(&mut document, json.get("corrosion"));
         return Ok((document, ""));
     };
     let mut errors: Vec<FieldError> = object
@@ -112,6 +113,7 @@ pub(super) fn resolve(json: &Value) -> Result<(Value, &'static str), SceneErrors
             keep_one_archard_setting(&mut document, &overrides);
             let base = preset.scene.corrosion.clone().unwrap_or_default();
             follow_reference(&mut document, overrides.get("corrosion"), &base);
+            follow_faraday(&mut document, overrides.get("corrosion"));
             Ok((document, "overrides"))
         }
         _ => Err(SceneErrors(errors)),

@@ -103,8 +103,8 @@ pub(super) fn overdrawn(scene: &Scene, records: &[CycleRecord]) -> Option<FieldW
             format!(
                 "the wear-accelerated corrosion after {} s, {wac:.4e} mm^3, exceeds the wear \
                  track, {:.4e} mm^3, which k fitted on total losses makes the whole loss: \
-                 the mechanical part reads 0; the anodic area dissolves too much, or k was \
-                 fitted on the mechanical loss (`mechanical`)",
+                 the total reads the WAC and the mechanical part 0; the anodic area or i_a \
+                 dissolves too much, or k was fitted on the mechanical loss (`mechanical`)",
                 last.time_s, last.wear_volume_mm3
             ),
         )

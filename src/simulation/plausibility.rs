@@ -9,6 +9,7 @@ use super::estimate::{RunEstimate, describe_duration, describe_size};
 use super::feasibility::Derived;
 use super::sizing::sizing_radius_m;
 use crate::contact::Hertz;
+use crate::corrosion::plausible;
 use crate::scene::format::{num, sig};
 use crate::scene::{
     FieldError, FieldWarning, MAX_RMS_HEIGHT_UM, REFUSE_HARD_MPA, REFUSE_HARDNESS_MPA, Scene,
@@ -92,6 +93,23 @@ pub(super) fn judge(scene: &Scene, derived: &Derived, estimate: &RunEstimate) ->
     initial_yield(&mut verdict, scene);
     contact_size(&mut verdict, scene, derived);
     cost(&mut verdict, scene, estimate);
+    if let Some(c) = &scene.corrosion {
+        let cell = plausible::Cell {
+            corrosion_potential_v: c.corrosion_potential_v,
+            tafel_a_c_v: c.tafel_a_c_v,
+            tafel_b_c_v_per_decade: c.tafel_b_c_v_per_decade,
+            anodic_current_density_a_cm2: c.anodic_current_density_a_cm2,
+        };
+        for (path, finding) in plausible::judge_cell(cell) {
+            let found = FieldError::new(path, finding.message);
+            match finding.refuse {
+                true => verdict.refusals.push(found),
+                false => verdict
+                    .warnings
+                    .push(FieldWarning::new(found.path, found.message)),
+            }
+        }
+    }
     verdict
 }
 
@@ -416,6 +434,7 @@ pub fn rules_table() -> String {
                 .to_owned(),
         ],
     ];
+    let rows = rows.into_iter().chain(plausible::rules());
     let mut out = format!(
         "{RULES_BEGIN}\n\n| what | field | warned | refused | why |\n|---|---|---|---|---|\n"
     );

@@ -109,6 +109,8 @@ pub enum Model {
     Archard,
     /// Wear-accelerated corrosion (eq. 18 and Faraday).
     Corrosion,
+    /// What Faraday's law dissolves: its equivalent weight and density.
+    Faraday,
     /// The disc's initial roughness and how the grid resolves it.
     Surface,
 }
@@ -416,6 +418,7 @@ mod tests {
             (Model::SolveWindow, "solve_window"),
             (Model::Archard, "archard"),
             (Model::Corrosion, "corrosion"),
+            (Model::Faraday, "faraday"),
             (Model::Surface, "surface"),
         ];
         for (model, name) in names {

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 ///
 /// A profilometer measures the whole loss, corrosion included, and the paper derives k from
 /// such a volume (eq. 1 with Table 3's 3600 s point). Adding the WAC to a groove of that k
-/// counts the corrosion twice: on `{}` the sum reads 13.36e-3 mm^3 after 3600 s against
+/// counts the corrosion twice: on `{}` the sum reads 13.24e-3 mm^3 after 3600 s against
 /// the 11.72e-3 mm^3 measured (`tribosim run '{}'` on the `mechanical` basis).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -35,13 +35,16 @@ pub struct LossSplit {
 
 impl VolumeBasis {
     /// The loss of a groove of `groove_m3` beside `wac_m3` of corrosion. On the total-loss
-    /// basis a WAC beyond the groove leaves no mechanical part (0, not negative): the run
-    /// then warns that its corrosion exceeds the loss its k was fitted on.
+    /// basis a WAC beyond the groove leaves no mechanical part (0, not negative) and the
+    /// total is the WAC: the dissolved metal has left the disc, so no loss is below it. The
+    /// run then warns that its corrosion exceeds the loss its k was fitted on. (Refusing
+    /// instead is not possible before the run: the WAC follows the contact's area as it
+    /// wears.)
     pub fn split(self, groove_m3: f64, wac_m3: f64) -> LossSplit {
         match self {
             Self::TotalLoss => LossSplit {
                 mechanical_m3: (groove_m3 - wac_m3).max(0.0),
-                total_m3: groove_m3,
+                total_m3: groove_m3.max(wac_m3),
             },
             Self::Mechanical => LossSplit {
                 mechanical_m3: groove_m3,
@@ -74,7 +77,8 @@ mod tests {
     #[test]
     fn the_total_loss_basis_keeps_the_groove_as_the_total_and_never_goes_negative() {
         assert_eq!(VolumeBasis::TotalLoss.split(10.0, 1.5), split(8.5, 10.0));
-        assert_eq!(VolumeBasis::TotalLoss.split(1.0, 3.0), split(0.0, 1.0));
+        // A WAC beyond the groove is the whole loss: never a total below its own WAC.
+        assert_eq!(VolumeBasis::TotalLoss.split(1.0, 3.0), split(0.0, 3.0));
     }
 
     #[test]

@@ -82,7 +82,7 @@ export function readable(text) {
 
 /** The summary's quantities: [field, words, unit, factor to the unit shown]. */
 /** The reference electrodes of `corrosion.reference_electrode`: in full, and short for an axis. */
-const REFERENCES = { ag_agcl_3m_kcl: ["Ag/AgCl (3 M KCl)", "Ag/AgCl"], sce: ["SCE", "SCE"], she: ["SHE", "SHE"] };
+const REFERENCES = { ag_agcl_3m_kcl: ["Ag/AgCl (3 M KCl)", "Ag/AgCl"], ag_agcl_sat_kcl: ["Ag/AgCl (sat. KCl)", "Ag/AgCl sat."], sce: ["SCE", "SCE"], she: ["SHE", "SHE"] };
 
 /** The electrode a scene's potentials are against, in words (the paper's by default). */
 export const referenceLabel = (name) => (REFERENCES[name] || REFERENCES.ag_agcl_3m_kcl)[0];

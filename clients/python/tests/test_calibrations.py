@@ -106,3 +106,25 @@ def test_a_running_fit_is_listed_cancelled_and_deleted(client: tribosim.Client) 
     calibration.delete()
     with pytest.raises(tribosim.NotFoundError):
         calibration.refresh()
+
+
+def test_the_tafel_domain_is_an_option(client: tribosim.Client) -> None:
+    # Table 2's line, E_corr -0.10 V, 1 to 1000 mV below it, no noise.
+    etas = [-1e-3 * k for k in range(1, 1001)]
+    table = {
+        "potential_v": [-0.10 + eta for eta in etas],
+        "current_density_a_cm2": [-(10 ** ((-3.31 - eta) / 0.56)) for eta in etas],
+    }
+    fit = client.calibrations.fit(
+        "tafel",
+        table,
+        e_corr_v=-0.10,
+        tafel_overpotential_max_v=-0.2,
+        tafel_overpotential_min_v=-0.8,
+    )
+    # 200 to 800 mV below E_corr, 1 mV apart, both ends included.
+    assert fit.raw["domain"]["points"] == 601
+    assert fit.raw["domain"]["given"] is True
+    with pytest.raises(tribosim.ValidationError) as refused:
+        client.calibrations.submit("tafel", table, e_corr_v=-0.10, tafel_overpotential_max_v=-150)
+    assert [f.path for f in refused.value.fields] == ["options.tafel_overpotential_max_v"]

@@ -194,7 +194,7 @@ fn a_domain_too_narrow_for_a_tafel_line_is_refused_with_the_reason() {
     assert!(err.to_string().contains("at least 10"), "{err}");
     // A given upper end that leaves 4 mV, the window a noisy curve was once fitted on.
     let options = TafelOptions {
-        upper_v: Some(-1.096),
+        overpotential_max_v: Some(-0.996),
         ..given_e_corr()
     };
     let err = fit_tafel(&synthetic_curve(0.02, 15, true), &scene, options).expect_err("4 mV");
@@ -229,8 +229,16 @@ fn a_curve_without_a_tafel_domain_is_refused() {
         ("current_density_a_cm2", &bent),
     ])
     .expect("equal-length finite columns");
+    // At the current's resolution (1e-3 decades) the bottom 29 mV of the parabola bend too
+    // little to tell from a line: that stretch is refused as too narrow rather than none.
     let err = fit_tafel(&curved, &scene, given_e_corr()).expect_err("curved");
-    assert!(matches!(err, CalibrationError::NoTafelDomain(_)), "{err}");
+    assert!(
+        matches!(
+            err,
+            CalibrationError::NoTafelDomain(_) | CalibrationError::NarrowTafelDomain(_)
+        ),
+        "{err}"
+    );
     // Current in A/m^2 is read too; a missing current column is named.
     let missing =
         Table::from_columns(&[("potential_v", &potential)]).expect("equal-length finite columns");
@@ -279,4 +287,220 @@ fn the_domain_leaves_no_bias_beyond_the_statistical_error() {
         mean_a.abs() < limit && mean_b.abs() < limit,
         "{mean_a} {mean_b}"
     );
+}
+
+/// `curve`'s current column with row `k` (from 0) multiplied by `factor(k)`.
+fn rescaled(curve: &Table, factor: impl Fn(usize) -> f64) -> Table {
+    let potential = curve.column("potential_v").expect("present").to_vec();
+    let current: Vec<f64> = curve
+        .column("current_density_a_cm2")
+        .expect("present")
+        .iter()
+        .enumerate()
+        .map(|(k, i)| i * factor(k))
+        .collect();
+    Table::from_columns(&[
+        ("potential_v", &potential),
+        ("current_density_a_cm2", &current),
+    ])
+    .expect("equal-length finite columns")
+}
+
+#[test]
+fn a_clean_curve_is_fitted_on_its_tafel_region_never_past_the_scans_end() {
+    // Table 2's cell scanned 300 mV below E_corr without noise: 203 points lie below the
+    // anodic branch's 10% bend (-0.199 V). Its straight stretch ends where the bend reaches
+    // the current's resolution, and twice that lies past the scan's end; this curve was
+    // once refused as too narrow.
+    let curve = curve_over(&scan(1, 300), 0.0, 0, true);
+    let fit = fit_tafel(&curve, &Scene::default(), given_e_corr()).expect("a Tafel region");
+    println!(
+        "{:?}, b_c {:?}, warnings {:?}",
+        fit.domain, fit.tafel_b_c_v_per_decade, fit.warnings
+    );
+    assert!(
+        fit.domain.lower_v >= E_CORR - 0.300 - 1e-12,
+        "{:?}",
+        fit.domain
+    );
+    assert!(fit.domain.points >= MIN_TAFEL_POINTS, "{:?}", fit.domain);
+    assert!(!fit.domain.given);
+    // The anodic branch is the only error: at the domain's top it is 10^(eta (1/b_a + 1/b_c))
+    // of the cathodic current, bending log10 |i| by -log10(1 - that); spread over the domain
+    // it tilts the slope 1/b_c by at most that bend over the span. Measured: domain -0.3 to
+    // -0.2 V from E_corr, b_c 0.5494 (-1.9%) against that bound's 2.3%.
+    let (top, span) = (
+        fit.domain.overpotential_max_v,
+        fit.domain.overpotential_max_v - fit.domain.overpotential_min_v,
+    );
+    let share = 10f64.powf(top * (1.0 / B_A + 1.0 / B_C));
+    let tilt_relative = -(1.0 - share).log10() / span * B_C;
+    let b = fit.tafel_b_c_v_per_decade.value;
+    assert!(
+        ((b - B_C) / B_C).abs() <= tilt_relative,
+        "{b} against {tilt_relative}"
+    );
+    assert!(fit.outliers.is_empty(), "{:?}", fit.outliers);
+}
+
+#[test]
+fn the_domains_bounds_are_options_refused_out_of_range_with_the_slip() {
+    let curve = synthetic_curve(0.02, 15, true);
+    let bounded = TafelOptions {
+        overpotential_max_v: Some(-0.2),
+        overpotential_min_v: Some(-0.8),
+        ..given_e_corr()
+    };
+    let fit = fit_tafel(&curve, &Scene::default(), bounded).expect("inside the scan");
+    // Potentials 1 mV apart from 200 to 800 mV below E_corr, both ends included.
+    assert_eq!(fit.domain.points, 601, "{:?}", fit.domain);
+    assert!(fit.domain.given);
+    assert!((fit.domain.overpotential_max_v - -0.2).abs() < 1e-9);
+    assert!((fit.domain.overpotential_min_v - -0.8).abs() < 1e-9);
+    let refused = |max: Option<f64>, min: Option<f64>| {
+        let options = TafelOptions {
+            overpotential_max_v: max,
+            overpotential_min_v: min,
+            ..given_e_corr()
+        };
+        fit_tafel(&curve, &Scene::default(), options).expect_err("out of range")
+    };
+    let err = refused(Some(-150.0), None);
+    assert!(
+        matches!(err, CalibrationError::DomainOption { .. }),
+        "{err}"
+    );
+    assert!(
+        err.to_string().contains("was it in mV? -150 mV = -0.15 V"),
+        "{err}"
+    );
+    assert!(
+        err.to_string().contains("tafel_overpotential_max_v"),
+        "{err}"
+    );
+    let err = refused(Some(0.15), None);
+    assert!(
+        err.to_string().contains("E rather than E - E_corr"),
+        "{err}"
+    );
+    let err = refused(Some(-0.8), Some(-0.2));
+    assert!(err.to_string().contains("must lie above"), "{err}");
+}
+
+#[test]
+fn a_curve_in_ma_typed_as_a_is_named() {
+    // The Table 2 curve in mA/cm^2 under an A/cm^2 name: i_corr 1000 times Table 2's.
+    let curve = rescaled(&synthetic_curve(0.02, 15, true), |_| 1e3);
+    let fit = fit_tafel(&curve, &Scene::default(), given_e_corr()).expect("a line");
+    assert!(
+        fit.warnings
+            .iter()
+            .any(|w| w.contains("mA/cm^2 typed as A/cm^2")),
+        "{:?}",
+        fit.warnings
+    );
+    // The same curve in A/cm^2 says nothing of units.
+    let fit = fit_tafel(
+        &synthetic_curve(0.02, 15, true),
+        &Scene::default(),
+        given_e_corr(),
+    )
+    .expect("a line");
+    assert!(
+        !fit.warnings.iter().any(|w| w.contains("typed as")),
+        "{:?}",
+        fit.warnings
+    );
+}
+
+#[test]
+fn rows_mixing_ma_and_a_are_refused_with_the_rows() {
+    // Rows 301 to 600 of the scan in mA/cm^2, the rest in A/cm^2: a three-decade step.
+    let curve = rescaled(&synthetic_curve(0.02, 15, true), |k| {
+        if (300..600).contains(&k) { 1e3 } else { 1.0 }
+    });
+    let err = fit_tafel(&curve, &Scene::default(), given_e_corr()).expect_err("mixed");
+    assert!(matches!(err, CalibrationError::MixedUnits { .. }), "{err}");
+    let words = err.to_string();
+    assert!(
+        words.contains("rows 300 and 301") || words.contains("rows 600 and 601"),
+        "{words}"
+    );
+    assert!(words.contains("mix units"), "{words}");
+}
+
+#[test]
+fn outliers_are_flagged_and_reported() {
+    // Three rows deep in the domain read ten times high: one decade off against 0.02 of
+    // noise, 50 robust standard deviations; fewer than the 2 decades of a change of units.
+    let curve = rescaled(&synthetic_curve(0.02, 15, true), |k| {
+        if [500, 600, 700].contains(&k) {
+            10.0
+        } else {
+            1.0
+        }
+    });
+    let fit = fit_tafel(&curve, &Scene::default(), given_e_corr()).expect("a line");
+    let flagged: Vec<f64> = fit.outliers.iter().map(|r| r.potential_v).collect();
+    // Row k (from 0) is E_corr - (k + 1) mV.
+    for k in [500, 600, 700] {
+        let e = E_CORR - 1e-3 * f64::from(k + 1);
+        assert!(
+            flagged.iter().any(|f| (f - e).abs() < 1e-9),
+            "{k}: {flagged:?}"
+        );
+    }
+    // Normal noise passes 3.5 robust deviations with probability 4.7e-4: of ~900 points,
+    // a few at most beside the three.
+    assert!(fit.outliers.len() <= 3 + 3, "{flagged:?}");
+    assert!(
+        fit.warnings.iter().any(|w| w.contains("outliers")),
+        "{:?}",
+        fit.warnings
+    );
+}
+
+#[test]
+fn implausible_fitted_values_are_refused_with_the_slip() {
+    // Potentials and E_corr in mV under V names.
+    let curve = synthetic_curve(0.02, 15, true);
+    let millivolts: Vec<f64> = curve
+        .column("potential_v")
+        .expect("present")
+        .iter()
+        .map(|e| e * 1e3)
+        .collect();
+    let current = curve
+        .column("current_density_a_cm2")
+        .expect("present")
+        .to_vec();
+    let table = Table::from_columns(&[
+        ("potential_v", &millivolts),
+        ("current_density_a_cm2", &current),
+    ])
+    .expect("equal-length finite columns");
+    let options = TafelOptions {
+        corrosion_potential_v: Some(E_CORR * 1e3),
+        ..TafelOptions::default()
+    };
+    let err = fit_tafel(&table, &Scene::default(), options).expect_err("mV as V");
+    assert!(matches!(err, CalibrationError::Implausible { .. }), "{err}");
+    assert!(
+        err.to_string().contains("was it in mV? -100 mV = -0.1 V"),
+        "{err}"
+    );
+    // E_corr of 1e300 V.
+    let options = TafelOptions {
+        corrosion_potential_v: Some(1e300),
+        ..TafelOptions::default()
+    };
+    let err = fit_tafel(&curve, &Scene::default(), options).expect_err("1e300 V");
+    assert!(matches!(err, CalibrationError::Implausible { .. }), "{err}");
+    // The potentials in mV with E_corr in V: b_c = 560 V/decade.
+    let options = TafelOptions {
+        corrosion_potential_v: Some(0.0),
+        ..TafelOptions::default()
+    };
+    let err = fit_tafel(&table, &Scene::default(), options).expect_err("560 V/decade");
+    assert!(err.to_string().contains("mV/decade"), "{err}");
 }

@@ -1,6 +1,7 @@
 //! The descriptors of `corrosion`, the electrochemical cell of Section 5.1, and of the
 //! open-circuit times of `test` around the rubbing (see [`super::FIELDS`]).
 
+use crate::scene::TAFEL_OVERPOTENTIAL_RANGE_V;
 use crate::scene::field::{Field, Range};
 
 const FARADAY_FEEDS: &str = "Faraday's law: V_WAC = i_a A_a t M / (z F rho)";
@@ -47,12 +48,13 @@ pub(in crate::scene) const CORROSION_POTENTIAL: Field = Field {
 pub(in crate::scene) const REFERENCE: Field = Field {
     path: "corrosion.reference_electrode",
     unit: "",
-    range: Range::OneOf(&["ag_agcl_3m_kcl", "sce", "she"]),
+    range: Range::OneOf(&["ag_agcl_3m_kcl", "ag_agcl_sat_kcl", "sce", "she"]),
     why: "",
     meaning: "The electrode every potential is against: E_corr here, the potentials of \
               `tribosim calibrate tafel` and `ocp` tables, and every potential of the result \
               (`summary.potential_reference` names it). `ag_agcl_3m_kcl`: +0.205 V vs SHE, \
-              the paper's (Section 2.2); `sce`: +0.241 V vs SHE; `she`: 0.",
+              the paper's (Section 2.2); `ag_agcl_sat_kcl`: Ag/AgCl in saturated KCl, \
+              +0.197 V vs SHE; `sce`: +0.241 V vs SHE; `she`: 0.",
     feeds: "the reference of every potential",
 };
 
@@ -80,7 +82,7 @@ pub(in crate::scene) const TAFEL_B: Field = Field {
 pub(in crate::scene) const TAFEL_ETA_MIN: Field = Field {
     path: "corrosion.tafel_overpotential_min_v",
     unit: "V",
-    range: Range::Closed(-3.0, 0.0),
+    range: Range::Closed(TAFEL_OVERPOTENTIAL_RANGE_V.0, TAFEL_OVERPOTENTIAL_RANGE_V.1),
     why: "below E_corr, within the few volts an aqueous scan covers",
     meaning: "The most cathodic potential of the Tafel line's fitted domain, as E - E_corr \
               (the paper's scan ends at -1.1 V: -1.0). A potential during rubbing below it \
@@ -92,7 +94,7 @@ pub(in crate::scene) const TAFEL_ETA_MIN: Field = Field {
 pub(in crate::scene) const TAFEL_ETA_MAX: Field = Field {
     path: "corrosion.tafel_overpotential_max_v",
     unit: "V",
-    range: Range::Closed(-3.0, 0.0),
+    range: Range::Closed(TAFEL_OVERPOTENTIAL_RANGE_V.0, TAFEL_OVERPOTENTIAL_RANGE_V.1),
     why: "below E_corr, within the few volts an aqueous scan covers, and above \
           `tafel_overpotential_min_v`",
     meaning: "The least cathodic potential of the Tafel line's fitted domain, as E - E_corr \
@@ -174,13 +176,32 @@ pub(in crate::scene) const ANODIC_AREA_FACTOR: Field = Field {
     feeds: "A_a in eq. 18 and in Faraday's law",
 };
 
+/// `corrosion.faraday`.
+pub(in crate::scene) const FARADAY: Field = Field {
+    path: "corrosion.faraday",
+    unit: "",
+    range: Range::OneOf(&["316l_g102", "pure_iron", "given"]),
+    why: "",
+    meaning: "What Faraday's law dissolves, as its equivalent weight EW = M / z and density \
+              (V_WAC = Q EW / (F rho)). `316l_g102` (the default): 316L dissolving \
+              congruently, ASTM G102's EW = 1 / sum(n_i f_i / W_i) over Fe 68.5, Cr 17, Ni \
+              12, Mo 2.5 wt% at valences 2, 3, 2, 3, 25.50 g/eq, at 7.98 g/cm^3; \
+              `pure_iron`: Fe -> Fe2+, 27.92 g/eq at 7.874 g/cm^3, 11% more volume per \
+              coulomb; `given`: `molar_mass_g_mol / valence` at `density_g_cm3`. Before \
+              this field, every run dissolved iron (55.85 g/mol, z 2, 7.9 g/cm^3): the \
+              default WAC is 9.6% below those runs'. A section that gives `molar_mass_g_mol`, \
+              `valence` or `density_g_cm3` without `faraday` is `given`. The result's \
+              `models` name the choice (`faraday`).",
+    feeds: FARADAY_FEEDS,
+};
+
 /// `corrosion.molar_mass_g_mol`.
 pub(in crate::scene) const MOLAR_MASS: Field = Field {
     path: "corrosion.molar_mass_g_mol",
     unit: "g/mol",
     range: Range::Positive,
     why: "",
-    meaning: "Molar mass M of the dissolving metal (iron).",
+    meaning: "Molar mass M of the dissolving metal, read with `faraday` `given` (default:               iron's).",
     feeds: FARADAY_FEEDS,
 };
 
@@ -190,7 +211,7 @@ pub(in crate::scene) const VALENCE: Field = Field {
     unit: "",
     range: Range::Positive,
     why: "",
-    meaning: "Charge number z of the dissolution reaction (Fe -> Fe2+ + 2e-).",
+    meaning: "Charge number z of the dissolution reaction, read with `faraday` `given`               (default: Fe -> Fe2+ + 2e-).",
     feeds: FARADAY_FEEDS,
 };
 
@@ -200,6 +221,6 @@ pub(in crate::scene) const DENSITY: Field = Field {
     unit: "g/cm^3",
     range: Range::Positive,
     why: "",
-    meaning: "Density rho of the dissolving metal.",
+    meaning: "Density rho of the dissolving metal, read with `faraday` `given`.",
     feeds: FARADAY_FEEDS,
 };

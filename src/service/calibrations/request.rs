@@ -39,6 +39,10 @@ struct RequestOptions {
     include_bulk: Option<bool>,
     /// Tafel: E_corr, V, against the scene's reference electrode.
     e_corr_v: Option<f64>,
+    /// Tafel: the domain's least cathodic end, E - E_corr, V.
+    tafel_overpotential_max_v: Option<f64>,
+    /// Tafel: the domain's most cathodic end, E - E_corr, V.
+    tafel_overpotential_min_v: Option<f64>,
     /// OCP: when the rubbing started, s on the table's clock.
     rubbing_start_s: Option<f64>,
     /// OCP: when the rubbing stopped, s on the table's clock.
@@ -115,6 +119,8 @@ impl CalibrationRequest {
         let options = CommandOptions {
             without_bulk: !options.include_bulk.unwrap_or(true),
             corrosion_potential_v: options.e_corr_v,
+            tafel_overpotential_max_v: options.tafel_overpotential_max_v,
+            tafel_overpotential_min_v: options.tafel_overpotential_min_v,
             scene_given: self.scene.is_some(),
             rubbing_start_s: options.rubbing_start_s,
             rubbing_stop_s: options.rubbing_stop_s,
@@ -160,6 +166,16 @@ impl RequestOptions {
                 FitKind::Hardness,
             ),
             ("e_corr_v", self.e_corr_v.is_some(), FitKind::Tafel),
+            (
+                "tafel_overpotential_max_v",
+                self.tafel_overpotential_max_v.is_some(),
+                FitKind::Tafel,
+            ),
+            (
+                "tafel_overpotential_min_v",
+                self.tafel_overpotential_min_v.is_some(),
+                FitKind::Tafel,
+            ),
             (
                 "rubbing_start_s",
                 self.rubbing_start_s.is_some(),

@@ -171,10 +171,11 @@ impl From<CalibrationError> for ApiError {
         let path = match error {
             CalibrationError::MissingSection(_)
             | CalibrationError::Scene(_)
-            | CalibrationError::Hardness(_) => "scene",
-            _ => "table",
+            | CalibrationError::Hardness(_) => "scene".to_owned(),
+            CalibrationError::DomainOption { option, .. } => format!("options.{option}"),
+            _ => "table".to_owned(),
         };
-        invalid(path, error.to_string())
+        invalid(&path, error.to_string())
     }
 }
 

@@ -479,6 +479,11 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 active: true,
                 reason,
             });
+            models.push(ModelChoice {
+                name: Model::Faraday,
+                active: true,
+                reason: cell.settings().dissolving().reason,
+            });
             ocp = ocp_trace(scene, cell, &self.records);
         } else {
             models.push(ModelChoice {

@@ -52,12 +52,16 @@ class Calibrations:
         *,
         include_bulk: bool | None = None,
         e_corr_v: float | None = None,
+        tafel_overpotential_max_v: float | None = None,
+        tafel_overpotential_min_v: float | None = None,
         regime_change: int | str | None = None,
     ) -> Calibration:
         """Starts a fit of `table` (a DataFrame, columns, rows, CSV text or a CSV file's
         `pathlib.Path`) with `scene` (a mapping or a JSON file's path; the paper's preset
         by default). The options are the command's: `include_bulk` (hardness), `e_corr_v`
-        (tafel), `regime_change` (archard: a cycle or ``"auto"``). A table the fit cannot
+        and the Tafel domain's ends as E - E_corr in V, `tafel_overpotential_max_v` and
+        `tafel_overpotential_min_v` (tafel; chosen from the data when absent),
+        `regime_change` (archard: a cycle or ``"auto"``). A table the fit cannot
         use raises `ValidationError` naming ``table`` (its message the column and row);
         two fits running already `RateLimitedError`."""
         body: dict[str, Any] = {"kind": kind, "table": table_json(table)}
@@ -72,6 +76,8 @@ class Calibrations:
             for name, value in [
                 ("include_bulk", include_bulk),
                 ("e_corr_v", e_corr_v),
+                ("tafel_overpotential_max_v", tafel_overpotential_max_v),
+                ("tafel_overpotential_min_v", tafel_overpotential_min_v),
                 ("regime_change", regime_change),
             ]
             if value is not None
@@ -91,6 +97,8 @@ class Calibrations:
         *,
         include_bulk: bool | None = None,
         e_corr_v: float | None = None,
+        tafel_overpotential_max_v: float | None = None,
+        tafel_overpotential_min_v: float | None = None,
         regime_change: int | str | None = None,
         timeout: float | None = None,
     ) -> Fit:
@@ -101,6 +109,8 @@ class Calibrations:
             scene,
             include_bulk=include_bulk,
             e_corr_v=e_corr_v,
+            tafel_overpotential_max_v=tafel_overpotential_max_v,
+            tafel_overpotential_min_v=tafel_overpotential_min_v,
             regime_change=regime_change,
         )
         return calibration.wait(timeout=timeout)
