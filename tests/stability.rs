@@ -161,11 +161,9 @@ fn softening_toward_zero_runs_on_a_domain_sized_for_the_lowest_cap() {
 
 #[test]
 fn softening_below_what_the_ball_can_carry_is_refused() {
-    // H(60) = 0.4 MPa: Y = 0.143 MPa would need a 3.3 mm contact under a 3 mm ball. Run
-    // anyway, it would stop at cycle 60 with "contact reaches the domain edge; enlarge the
-    // domain" on a domain the user had left to the simulation.
-    // Only a hardness below 0.5 MPa softens the paper's ball past its load, far below any
-    // metal's, so the table's point is refused as a unit slip too.
+    // H(60) = 0.4 MPa: Y = 0.143 MPa would need a 3.3 mm contact under a 3 mm ball. Only a
+    // hardness below 0.5 MPa softens the paper's ball past its 5 N, far below any metal's,
+    // so the scene's checks refuse the point as a unit slip before the load is judged.
     let errors = parse_scene_str(
         r#"{"preset": "dalmau2018-316l", "overrides": {
             "disc": {"hardness_table": [[60, 0.4]]}, "test": {"cycles": 60}}}"#,
@@ -173,20 +171,27 @@ fn softening_below_what_the_ball_can_carry_is_refused() {
     .expect_err("refused")
     .0;
     let paths: Vec<&str> = errors.iter().map(|e| e.path.as_str()).collect();
-    assert_eq!(
-        paths,
-        [
-            "overrides.test.load_n",
-            "overrides.disc.hardness_table[0][1]"
-        ],
-        "{errors:?}"
-    );
-    let message = &errors[0].message;
-    assert!(message.contains("at cycle 60"), "{message}");
-    // pi R^2 Y = pi (3 mm)^2 (0.4 / 2.8) MPa = 4.039 N.
+    assert_eq!(paths, ["overrides.disc.hardness_table[0][1]"], "{errors:?}");
+    assert!(errors[0].message.contains("was it in GPa?"), "{errors:?}");
+    // A metal's softening (6 MPa at cycle 60, warned only) under a load past what the cap
+    // carries there: run anyway, it would stop at cycle 60 with "contact reaches the domain
+    // edge" on a domain left to the simulation. pi R^2 Y = pi (3 mm)^2 (6 / 2.8) MPa =
+    // 60.59 N.
+    let errors = parse_scene_str(
+        r#"{"preset": "dalmau2018-316l", "overrides": {
+            "disc": {"hardness_table": [[60, 6]]}, "test": {"cycles": 60, "load_n": 100}}}"#,
+    )
+    .expect_err("refused")
+    .0;
+    let load = errors
+        .iter()
+        .find(|e| e.path == "overrides.test.load_n")
+        .unwrap_or_else(|| panic!("{errors:?}"));
+    assert!(load.message.contains("at cycle 60"), "{}", load.message);
     assert!(
-        message.contains("must be < pi R^2 Y = 4.039 N"),
-        "{message}"
+        load.message.contains("must be < pi R^2 Y = 60.59 N"),
+        "{}",
+        load.message
     );
 }
 

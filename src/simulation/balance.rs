@@ -97,15 +97,17 @@ pub(super) fn overdrawn(scene: &Scene, records: &[CycleRecord]) -> Option<FieldW
     }
     let last = records.last()?;
     let wac = last.wac_volume_mm3?;
-    (wac > last.wear_volume_mm3).then(|| {
+    // The total is the larger of the wear track and the WAC: a mechanical part of 0 is a
+    // WAC that reached the track.
+    (wac > 0.0 && last.mechanical_volume_mm3 == Some(0.0)).then(|| {
         FieldWarning::new(
             "wear.archard_k_basis",
             format!(
-                "the wear-accelerated corrosion after {} s, {wac:.4e} mm^3, exceeds the wear \
-                 track, {:.4e} mm^3, which k fitted on total losses makes the whole loss: \
-                 the total reads the WAC and the mechanical part 0; the anodic area or i_a \
-                 dissolves too much, or k was fitted on the mechanical loss (`mechanical`)",
-                last.time_s, last.wear_volume_mm3
+                "the wear-accelerated corrosion after {} s, {wac:.4e} mm^3, reaches the wear \
+                 track, which k fitted on total losses makes the whole loss: the total reads \
+                 the WAC and the mechanical part 0; the anodic area or i_a dissolves too \
+                 much, or k was fitted on the mechanical loss (`mechanical`)",
+                last.time_s
             ),
         )
     })
