@@ -2,7 +2,7 @@
 //! pass, against a cap that hardens from the disc's initial yield strength
 //! ([`crate::hardness::YieldCap`]), at the sourced strength of annealed 316L and at higher
 //! ones as a sensitivity. Each run is measured against every statement of
-//! [`super::statements`].
+//! [`super::statements()`].
 
 use crate::bench::report::format::table;
 use crate::scene::ANNEALED_316L_PROOF_STRESS_MPA;

@@ -32,14 +32,14 @@ pub const EARLY: [u64; 3] = [10, 60, 300];
 pub struct CapNumbers {
     /// The groove's deepest point at cycles 10 and 300, um.
     pub groove_depth_um: [f64; 2],
-    /// The groove's volume at cycles 10, 60 and 300 ([`EARLY`]), mm^3.
+    /// The groove's volume at cycles 10, 60 and 300, mm^3.
     pub groove_volume_mm3: [f64; 3],
     /// The first cycle from which no pressure sits at the cap.
     pub plastic_gone_cycle: u64,
 }
 
 impl CapNumbers {
-    /// The numbers of `result`, a run of at least 300 cycles solving each of [`EARLY`].
+    /// The numbers of `result`, a run of at least 300 cycles solving cycles 10, 60 and 300.
     pub fn of(result: &SimulationResult) -> Self {
         let depth = |c: u64| record(result, c).max_depth_um;
         Self {
