@@ -86,7 +86,7 @@ async function printed(page, html, dir, paper) {
 export async function report(page) {
   step("the printable report: downloaded from the run panel, every figure and table in it");
   const [download] = await Promise.all([page.waitForEvent("download"), page.click(sel(RUN.downloadReport))]);
-  assert.match(download.suggestedFilename(), /-report\.html$/);
+  assert.match(download.suggestedFilename(), /\.report\.html$/);
   const html = fs.readFileSync(await download.path(), "utf8");
   for (const tag of ["script", "link", "img", "iframe"]) assert.equal(count(html, tag), 0, `the report holds <${tag}>`);
   assert.equal(count(html, "figure"), FIGURES);
