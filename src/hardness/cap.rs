@@ -10,10 +10,12 @@
 //!
 //! [`YieldCap::StrainHardening`] starts at that proof stress and rises, linearly in the
 //! surface's cumulative plastic strain, to `H(n) / 2.8` at Tabor's 8%; from there on it is
-//! the paper's cap. Each pass that yields strains the surface by Tabor's representative
-//! strain of a spherical indentation, `0.2 a / R` ([`pass_strain`]). Linear is the simplest
-//! law between the two sourced ends; the measured ends, not the shape between them, are
-//! what the paper's statements test (`docs/paper.md`).
+//! the paper's cap: a hardening in strain, as annealed 316L's cyclic hardening is modelled
+//! (Chaboche's isotropic hardening, identified on 316L in Lemaitre and Chaboche, *Mechanics
+//! of Solid Materials*, 1990). Each pass that yields strains the surface by Tabor's
+//! representative strain of a spherical indentation, `0.2 a / R` ([`pass_strain`]). Linear
+//! is the simplest law between the two sourced ends; the measured ends, not the shape
+//! between them, are what the paper's statements test (`docs/paper.md`).
 
 use super::HardnessLaw;
 
@@ -97,7 +99,8 @@ impl YieldCap {
 }
 
 /// The plastic strain one yielding pass gives the surface: Tabor's representative strain of
-/// a spherical indentation, `0.2 a / R`, with `a` the half-width across the track of the zone at the cap
+/// a spherical indentation, `0.2 a / R`, with `a` the half-width across the track of the
+/// zone at the cap
 /// and `R` the ball's radius.
 pub fn pass_strain(contact_half_width_m: f64, ball_radius_m: f64) -> f64 {
     TABOR_SPHERE_STRAIN_PER_A_OVER_R * contact_half_width_m / ball_radius_m
