@@ -64,6 +64,9 @@ function followResize() {
 // was opened.
 async function openAsked() {
   const asked = readHash();
+  // On one column (a phone), a linked view comes before the form, so that it opens in
+  // place: scrolled down to, a headless screenshot of the link caught a blank page.
+  if (asked) document.querySelector("main").classList.add("linked");
   if (asked && asked.kind === "run") { jobs.view(asked.value, { scroll: true }); return true; }
   if (asked && asked.kind === "compare") {
     jobs.tick(asked.value.split(","));

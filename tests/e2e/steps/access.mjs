@@ -64,7 +64,26 @@ async function phone(page) {
     return top >= -1 && top < window.innerHeight / 2 && plot.top < window.innerHeight;
   }, [RUN.panel, RUN_PLOT.volume]);
   await page.screenshot({ path: path.join(shots, "phone.png"), fullPage: false });
+  await phoneLink(page);
   await page.setViewportSize({ width: 1440, height: 1000 });
+}
+
+// A run's link opened afresh at phone width shows the run where the page opens, with no
+// scroll: scrolled down to, a headless `--screenshot` of the link caught a blank page.
+async function phoneLink(page) {
+  step("a run's link opened at phone width: the run at the top of the page, not scrolled to");
+  const hash = await page.evaluate(() => location.hash);
+  assert.match(hash, /^#run=/);
+  await openPage(page, hash);
+  await page.waitForFunction((panel) => !document.getElementById(panel).hidden, RUN.panel);
+  const where = await page.evaluate((panel) => ({
+    scrollY: window.scrollY,
+    top: document.getElementById(panel).getBoundingClientRect().top,
+    height: window.innerHeight,
+  }), RUN.panel);
+  console.log(`   run link: ${JSON.stringify(where)}`);
+  assert.equal(where.scrollY, 0);
+  assert.ok(where.top >= 0 && where.top < where.height / 2, `the run panel's top at ${where.top} px`);
 }
 
 // The page's elements the Tab key went through, and the steps that went back up the page.
