@@ -15,15 +15,14 @@ use super::scene::{closest_preset, flatten, shown};
 pub fn summary_rows(summary: &Summary) -> Vec<Vec<Cell>> {
     let mut rows = vec![
         ("cycles", Some(summary.cycles as f64), "cycles"),
-        ("wear volume", Some(summary.wear_volume_mm3), "mm^3"),
-        ("maximum depth", Some(summary.max_depth_um), "um"),
-        ("WAC volume", summary.wac_volume_mm3, "mm^3"),
         (
-            "total volume (mechanical + WAC)",
-            summary.total_volume_mm3,
+            "total volume lost (mechanical + WAC)",
+            Some(summary.wear_volume_mm3),
             "mm^3",
         ),
         ("mechanical volume", summary.mechanical_volume_mm3, "mm^3"),
+        ("WAC volume", summary.wac_volume_mm3, "mm^3"),
+        ("maximum depth", Some(summary.max_depth_um), "um"),
         ("anodic charge", summary.charge_c, "C"),
         ("final potential", summary.potential_v, "V"),
         ("Archard k", Some(summary.wear.archard_k), "dimensionless"),

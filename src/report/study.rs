@@ -15,13 +15,15 @@ use super::methods::{PAPER, build_table, report_provenance};
 /// A summary quantity: its name, its unit and where in a summary it is.
 type Quantity = (&'static str, &'static str, fn(&Summary) -> Option<f64>);
 
-/// The quantities drawn against each axis.
-const QUANTITIES: [Quantity; 4] = [
-    ("wear volume", "mm^3", |s| Some(s.wear_volume_mm3)),
-    ("maximum depth", "um", |s| Some(s.max_depth_um)),
-    ("total volume (mechanical + WAC)", "mm^3", |s| {
-        s.total_volume_mm3
+/// The quantities drawn against each axis: the volume a profilometer measures, its
+/// mechanical and corrosion parts, the depth and the potential.
+const QUANTITIES: [Quantity; 5] = [
+    ("total volume lost", "mm^3", |s| Some(s.wear_volume_mm3)),
+    ("mechanical volume", "mm^3", |s| s.mechanical_volume_mm3),
+    ("wear-accelerated corrosion volume", "mm^3", |s| {
+        s.wac_volume_mm3
     }),
+    ("maximum depth", "um", |s| Some(s.max_depth_um)),
     ("final potential", "V", |s| s.potential_v),
 ];
 
