@@ -330,8 +330,8 @@ pub fn accepted(wanted: &[String]) -> String {
     )
 }
 
-/// Each name in backticks, joined by `separator`.
-fn quoted(names: &[String], separator: &str) -> String {
+/// Each name in backticks, joined by `separator`: how a refusal lists names.
+pub fn quoted(names: &[String], separator: &str) -> String {
     names
         .iter()
         .map(|name| format!("`{name}`"))

@@ -10,7 +10,8 @@ use serde::Serialize;
 use thiserror::Error;
 
 use crate::calibration::{
-    CalibrationError, Table, TableError, accepted, require_at_least, require_increasing, spellings,
+    CalibrationError, Table, TableError, accepted, quoted, require_at_least, require_increasing,
+    spellings,
 };
 use crate::json::{self, JsonError};
 
@@ -200,14 +201,6 @@ pub enum MeasurementError {
     /// A value the calibration would refuse too: a time not increasing, a negative volume.
     #[error(transparent)]
     Value(CalibrationError),
-}
-
-fn quoted(names: &[String], separator: &str) -> String {
-    names
-        .iter()
-        .map(|name| format!("`{name}`"))
-        .collect::<Vec<_>>()
-        .join(separator)
 }
 
 impl MeasurementError {
