@@ -163,8 +163,8 @@ fn a_comparison_and_a_study_have_their_own_reports() {
     // The total, mechanical and corrosion volumes, the depth and the potential against each
     // of the two axes.
     assert_eq!(html.matches("<svg").count(), 10);
-    assert!(html.contains("total volume lost against test.speed_rpm"));
-    assert!(html.contains("wear-accelerated corrosion volume against test.load_n"));
+    assert!(html.contains("total volume lost against speed (rpm)"));
+    assert!(html.contains("wear-accelerated corrosion volume against load (N)"));
     assert!(html.contains("<th>test.load_n</th><th>test.speed_rpm</th>"));
 }
 
@@ -256,6 +256,6 @@ async fn the_service_serves_a_job_report_with_its_measurements_a_comparison_and_
     )
     .await;
     assert_self_contained(&html);
-    assert!(html.contains("total volume lost against test.load_n"));
+    assert!(html.contains("total volume lost against load (N)"));
     server.stop().await;
 }

@@ -137,9 +137,10 @@ fn figures(study: &StudySummary) -> Result<String, FigureError> {
                     Series::new(label.clone(), points, Style::Line)
                 })
                 .collect();
+            let words = axis_words(axis);
             let f = LineFigure {
-                title: format!("{name} against {axis}"),
-                x_label: axis.clone(),
+                title: format!("{name} against {words}"),
+                x_label: words,
                 y_label: format!("{name} ({unit})"),
                 series,
             };
@@ -151,6 +152,34 @@ fn figures(study: &StudySummary) -> Result<String, FigureError> {
         }
     }
     Ok(html)
+}
+
+/// An axis in words with its unit, from the scene's field table: the field's name without
+/// its unit suffix, after the part for a ball's or a disc's (`test.load_n` is "load (N)",
+/// `disc.hardness_mpa` "disc hardness (MPa)"); a path the table does not know, as it is.
+fn axis_words(path: &str) -> String {
+    let Some(field) = crate::scene::field(path) else {
+        return path.to_owned();
+    };
+    let mut parts = path.split('.');
+    let section = parts.next().unwrap_or_default();
+    let name = parts.next_back().unwrap_or(path);
+    let token = field.unit.to_lowercase().replace('/', "_").replace('^', "");
+    let bare = name
+        .strip_suffix(&format!("_{token}"))
+        .filter(|_| !token.is_empty())
+        .unwrap_or(name);
+    let owner = if matches!(section, "ball" | "disc") {
+        format!("{section} ")
+    } else {
+        String::new()
+    };
+    let words = format!("{owner}{}", bare.replace('_', " "));
+    if field.unit.is_empty() {
+        words
+    } else {
+        format!("{words} ({})", field.unit)
+    }
 }
 
 /// The report of the study `name` summarised in `study`.
@@ -180,4 +209,25 @@ pub fn study_report(name: &str, study: &StudySummary) -> Result<String, FigureEr
     }
     body.push_str(&report_provenance());
     Ok(page(&format!("tribosim study report: {name}"), &body))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::axis_words;
+
+    #[test]
+    fn an_axis_reads_in_words_with_its_unit() {
+        assert_eq!(axis_words("test.load_n"), "load (N)");
+        assert_eq!(axis_words("test.speed_rpm"), "speed (rpm)");
+        assert_eq!(axis_words("disc.hardness_mpa"), "disc hardness (MPa)");
+        assert_eq!(
+            axis_words("test.friction_coefficient"),
+            "friction coefficient"
+        );
+        assert_eq!(
+            axis_words("corrosion.anodic_current_density_a_cm2"),
+            "anodic current density (A/cm^2)"
+        );
+        assert_eq!(axis_words("no.such_field"), "no.such_field");
+    }
 }
