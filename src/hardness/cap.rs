@@ -67,6 +67,12 @@ impl YieldCap {
         }
     }
 
+    /// Whether more plastic strain can still raise the cap: never for the paper's, and for
+    /// the hardening cap only until Tabor's strain, so a run counts the strain no longer.
+    pub fn still_hardens(&self, plastic_strain: f64) -> bool {
+        matches!(self, Self::StrainHardening { .. }) && plastic_strain < TABOR_REPRESENTATIVE_STRAIN
+    }
+
     /// The lowest cap over `cycles` cycles, Pa, and the cycle and hardness where it lies:
     /// the initial yield strength at cycle 1 when the cap hardens from it, else `H / factor`
     /// at the first or last cycle (`A + B ln n` is monotone).
@@ -131,6 +137,8 @@ mod tests {
         let half = cap.pressure_pa(1.0, 0.04);
         assert!((half - (290e6 + paper(1.0)) / 2.0).abs() < 1e-6, "{half}");
         assert_eq!(cap.lowest(3600), (1, 2455e6, 290e6));
+        assert!(cap.still_hardens(0.079));
+        assert!(!cap.still_hardens(0.08));
     }
 
     #[test]
@@ -151,6 +159,7 @@ mod tests {
             );
         }
         assert_eq!(strong.lowest(300), paper.lowest(300));
+        assert!(!paper.still_hardens(0.0));
     }
 
     #[test]

@@ -210,7 +210,11 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         }
         let step = self.stepper.next(cycle, stop, reshaped, &pass);
         self.max_step = self.max_step.max(step);
-        self.plastic_strain += step as f64 * self.pass_strain(&solution, cap);
+        // The strain is counted only while it can still raise the cap: a scan of the
+        // pressures saved on every other solve.
+        if setup.plan.yield_cap().still_hardens(self.plastic_strain) {
+            self.plastic_strain += step as f64 * self.pass_strain(&solution, cap);
+        }
         // The profile update (eq. 17): the pass at this cycle's hardness, after the yielding.
         self.groove.deepen(
             &pass,
