@@ -11,8 +11,11 @@
 
 pub mod depassivation;
 pub mod faraday;
+pub mod galvanic;
+pub mod kinetics;
 pub mod plausible;
 pub mod reference;
+pub mod spots;
 
 use thiserror::Error;
 
@@ -174,11 +177,11 @@ impl CorrosionModel {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// The paper's 316L cell (Table 2 and Section 2.2) with i_a = 10 mA/cm^2 (Section 5.1).
-    fn paper_cell() -> CorrosionModel {
+    pub(crate) fn paper_cell() -> CorrosionModel {
         CorrosionModel {
             corrosion_potential_v: -0.10,
             tafel_a_c_v: -3.31,
