@@ -161,6 +161,16 @@ pub enum CalibrationError {
         /// The allowed range and the likely slip.
         why: String,
     },
+    /// An OCP fit asked of a scene whose potential is not eq. 18 of a fittable area.
+    #[error(
+        "corrosion.{field} = \"{value}\": the OCP fit adjusts tau or the factor of an area that eq. 18 as printed turns into a potential; the spot models and the balanced cell predict the potential from the solved contact and literature kinetics, with nothing to fit (run the scene and compare, or choose `anodic_area` depassivated_wake, hertz_band, wear_track, real_contact or bem_contact with `galvanic_cell` eq18)"
+    )]
+    NotFittable {
+        /// The field that makes it a prediction.
+        field: &'static str,
+        /// Its value.
+        value: &'static str,
+    },
     /// A rubbing stop given without its start.
     #[error(
         "a rubbing stop needs the rubbing start (`--rubbing-start S`, `options.rubbing_start_s`)"

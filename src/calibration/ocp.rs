@@ -18,7 +18,7 @@ use serde::Serialize;
 use super::minimise::{golden_section, standard_error};
 use super::{CalibrationError, Estimate, Table};
 use crate::corrosion::{AreaInputs, CorrosionModel, recovering_area_m2};
-use crate::scene::{AnodicArea, Corrosion, Scene};
+use crate::scene::{AnodicArea, Corrosion, GalvanicCell, Scene};
 use crate::simulation::OcpPhase;
 
 use model::model_areas;
@@ -107,6 +107,19 @@ pub struct OcpFit {
     pub scene: Scene,
 }
 
+/// The spot models and the balanced cell are predictions: nothing in them is fitted.
+fn refuse_predictions(corrosion: &Corrosion) -> Result<(), CalibrationError> {
+    let refused = match (corrosion.anodic_area, corrosion.galvanic_cell) {
+        (AnodicArea::AsperitySpots, _) => Some(("anodic_area", "asperity_spots")),
+        (AnodicArea::ContactSpots, _) => Some(("anodic_area", "contact_spots")),
+        (_, GalvanicCell::Balanced) => Some(("galvanic_cell", "balanced")),
+        _ => None,
+    };
+    refused.map_or(Ok(()), |(field, value)| {
+        Err(CalibrationError::NotFittable { field, value })
+    })
+}
+
 /// Fits the parameter of the scene's anodic area to a measured potential table.
 pub fn fit_ocp(
     table: &Table,
@@ -115,6 +128,7 @@ pub fn fit_ocp(
 ) -> Result<OcpFit, CalibrationError> {
     let trace = trace(table, scene, options)?;
     let corrosion = trace.corrosion;
+    refuse_predictions(corrosion)?;
     let cell = corrosion.model();
     let rubbing = trace.rubbing();
     let times: Vec<f64> = rubbing.iter().map(|&i| trace.rubbing_time_s(i)).collect();

@@ -67,6 +67,9 @@ pub struct AreaInputs {
     pub band_width_m: f64,
     /// The sliding speed, m/s.
     pub sliding_speed_m_s: f64,
+    /// The spot models' bare-equivalent area over the cycle (`spots`), m^2; 0 for the
+    /// others.
+    pub spot_area_m2: f64,
 }
 
 /// The depassivated area of the wake model, A_r (1 + v tau / L) with L the solved contact's

@@ -4,6 +4,8 @@
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
+use crate::corrosion::galvanic::Balance;
+use crate::corrosion::kinetics::{Repassivation, TransientForm};
 use crate::corrosion::{
     AreaInputs, CorrosionModel, Dissolving, FaradayBasis, ReferenceElectrode, band_area_m2,
     wake_area_m2,
@@ -18,6 +20,16 @@ pub const PAPER_CORROSION_POTENTIAL_V: f64 = -0.10;
 /// on the default run (`docs/corrosion.md`; `tests/corrosion.rs` fits it again and fails when
 /// this constant is no longer the fit to the digits written).
 pub const PAPER_REPASSIVATION_TIME_S: f64 = 0.148;
+
+/// The repassivation time tau of the spot models, s: not fitted. The paper says the grooves
+/// repassivate in "milliseconds" (Section 5.1), and scratched-electrode transients on 304 in
+/// 3.5% NaCl "extend well beyond the order of 10 ms" (`docs/corrosion.md`), so 10 ms is the
+/// shortest value both allow.
+pub const SPOT_REPASSIVATION_TIME_S: f64 = 0.010;
+
+/// The power law's exponent by default: n = 1/2, the transient of a film whose growth is
+/// limited by transport through it (the parabolic law).
+pub const PARABOLIC_EXPONENT: f64 = 0.5;
 
 /// The overpotentials E - E_corr a Tafel domain may span, V: below E_corr, within the few
 /// volts an aqueous scan covers.
@@ -50,6 +62,22 @@ pub struct Corrosion {
     pub repassivation_time_s: f64,
     /// Multiplier on the chosen anodic area.
     pub anodic_area_factor: f64,
+    /// The form of a stripped spot's current transient (the spot models and the recovery
+    /// after the stop).
+    pub repassivation_kinetics: TransientForm,
+    /// The power law's exponent n.
+    pub repassivation_exponent: f64,
+    /// How the potential follows from the anodic area.
+    pub galvanic_cell: GalvanicCell,
+    /// The bare metal's own corrosion potential, V against `reference_electrode`: the floor
+    /// of the `balanced` cell; `None`: no floor.
+    pub bare_corrosion_potential_v: Option<f64>,
+    /// Electrolyte resistance between the bare spots and the passive area, ohm (`balanced`).
+    pub ohmic_resistance_ohm: f64,
+    /// Open circuit, or held at `applied_potential_v` by a potentiostat.
+    pub control: Control,
+    /// The potential a potentiostat holds the disc at, V against `reference_electrode`.
+    pub applied_potential_v: Option<f64>,
     /// What dissolves: 316L by ASTM G102, pure iron, or the three fields below.
     pub faraday: FaradayBasis,
     /// Molar mass of the dissolving metal, g/mol (with `faraday` `given`).
@@ -76,6 +104,13 @@ impl Default for Corrosion {
             anodic_area: AnodicArea::DepassivatedWake,
             repassivation_time_s: PAPER_REPASSIVATION_TIME_S,
             anodic_area_factor: 1.0,
+            repassivation_kinetics: TransientForm::Exponential,
+            repassivation_exponent: PARABOLIC_EXPONENT,
+            galvanic_cell: GalvanicCell::Eq18,
+            bare_corrosion_potential_v: None,
+            ohmic_resistance_ohm: 0.0,
+            control: Control::OpenCircuit,
+            applied_potential_v: None,
             faraday: FaradayBasis::default(),
             // Iron's, the values Faraday's law used before `faraday` chose 316L by default.
             molar_mass_g_mol: 55.85,
@@ -124,8 +159,49 @@ impl Corrosion {
             AnodicArea::WearTrack => inputs.wear_track_m2,
             AnodicArea::RealContact => real,
             AnodicArea::BemContact => inputs.contact_area_m2,
+            // The spots carry ages from cycle to cycle: the run's cell computes them.
+            AnodicArea::AsperitySpots | AnodicArea::ContactSpots => inputs.spot_area_m2,
         };
         area * self.anodic_area_factor
+    }
+
+    /// The transient of a stripped spot.
+    pub fn repassivation(&self) -> Repassivation {
+        Repassivation {
+            form: self.repassivation_kinetics,
+            time_s: self.repassivation_time_s,
+            exponent: self.repassivation_exponent,
+        }
+    }
+
+    /// The potential a potentiostat holds, V; `None` at open circuit.
+    pub fn held_v(&self) -> Option<f64> {
+        match self.control {
+            Control::OpenCircuit => None,
+            Control::Potentiostatic => self.applied_potential_v,
+        }
+    }
+
+    /// The bare metal's side of the cell, as the balanced cell and the potentiostat see it.
+    pub fn bare_metal(&self) -> Balance {
+        Balance {
+            bare_corrosion_potential_v: self.bare_corrosion_potential_v,
+            ohmic_resistance_ohm: self.ohmic_resistance_ohm,
+        }
+    }
+
+    /// What the `balanced` cell adds to eq. 18; `None` for `eq18`.
+    pub fn balance(&self) -> Option<Balance> {
+        (self.galvanic_cell == GalvanicCell::Balanced).then(|| self.bare_metal())
+    }
+
+    /// Which cells of the solved contact are the spots, for the spot models.
+    pub fn spots(&self) -> Option<Spots> {
+        match self.anodic_area {
+            AnodicArea::AsperitySpots => Some(Spots::Capped),
+            AnodicArea::ContactSpots => Some(Spots::InContact),
+            _ => None,
+        }
     }
 
     /// Whether the anodic area is one of the depassivation models, whose parameter is the
@@ -154,6 +230,66 @@ pub enum AnodicArea {
     RealContact,
     /// The contact area of the boundary-element solution.
     BemContact,
+    /// The plastically deformed spots (cells at the cap), island by island, each stripped
+    /// as it enters the contact and repassivating with `repassivation_kinetics` until the
+    /// next spot of its row strips it again (`corrosion::spots`).
+    AsperitySpots,
+    /// As `asperity_spots`, with every cell in contact a spot.
+    ContactSpots,
+}
+
+/// Which cells strip the film.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Spots {
+    /// The cells at the yield pressure.
+    Capped,
+    /// The cells in contact.
+    InContact,
+}
+
+/// What sets the disc's potential.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Control {
+    /// Open circuit: the galvanic cell sets it (the paper's test).
+    #[default]
+    OpenCircuit,
+    /// A potentiostat holds it at `applied_potential_v`.
+    Potentiostatic,
+}
+
+/// How the potential follows from the anodic area.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GalvanicCell {
+    /// Eq. 18 as printed, capped at E_corr.
+    #[default]
+    Eq18,
+    /// The charge balance with the passive current kept, the bare metal's corrosion
+    /// potential as a floor and an ohmic drop (`corrosion::galvanic`).
+    Balanced,
+}
+
+/// The spot models' tau is not the wake's fit: a `corrosion` section (`given`, the user's
+/// own object) that names a spot model without `repassivation_time_s` gets
+/// [`SPOT_REPASSIVATION_TIME_S`] in `document`.
+pub(super) fn follow_area(document: &mut Value, given: Option<&Value>) {
+    let Some(given) = given.and_then(Value::as_object) else {
+        return;
+    };
+    let spots = given
+        .get("anodic_area")
+        .and_then(Value::as_str)
+        .is_some_and(|a| matches!(a, "asperity_spots" | "contact_spots"));
+    if !spots || given.contains_key("repassivation_time_s") {
+        return;
+    }
+    if let Some(Value::Object(section)) = document.get_mut("corrosion") {
+        section.insert(
+            "repassivation_time_s".to_owned(),
+            Value::from(SPOT_REPASSIVATION_TIME_S),
+        );
+    }
 }
 
 /// A potential keeps its meaning when its reference changes: a `corrosion` section that

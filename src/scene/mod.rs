@@ -37,14 +37,17 @@ use crate::wear::WearLaw;
 pub use crate::wear::ArchardRegimeChange;
 pub use auto_or::{CycleStep, DomainSize, FixedStrideError, GridSize, SolverThreads};
 pub use corrosion::{
-    AnodicArea, Corrosion, PAPER_CORROSION_POTENTIAL_V, PAPER_REPASSIVATION_TIME_S,
-    TAFEL_OVERPOTENTIAL_RANGE_V,
+    AnodicArea, Control, Corrosion, GalvanicCell, PAPER_CORROSION_POTENTIAL_V,
+    PAPER_REPASSIVATION_TIME_S, SPOT_REPASSIVATION_TIME_S, Spots, TAFEL_OVERPOTENTIAL_RANGE_V,
 };
 pub use error::{FieldError, FieldWarning, MAX_LISTED_PROBLEMS, SceneErrors, listed};
 pub use field::{Field, Range};
 pub use fields::{FIELDS, field};
 pub use parse::{parse_scene, parse_scene_str, parse_scene_str_with, parse_scene_with};
-pub use preset::{DALMAU2018_316L, Preset, dalmau2018_316l, presets};
+pub use preset::{
+    DALMAU2018_316L, DALMAU2018_316L_ASPERITIES, Preset, dalmau2018_316l,
+    dalmau2018_316l_asperities, paper_surface, presets,
+};
 pub use record::{MAX_RECORD_CYCLES, RecordCycles, TABLE3_TIMES_S};
 pub use reference::{FIELDS_BEGIN, FIELDS_END, field_table};
 pub use sections::{

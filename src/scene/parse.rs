@@ -111,7 +111,11 @@ mod tests {
         "tafel_overpotential_min_v": -1.0, "tafel_overpotential_max_v": -0.05,
         "anodic_current_density_a_cm2": 0.01, "exposed_area_cm2": 2.56,
         "anodic_area": "depassivated_wake", "repassivation_time_s": 0.148,
-        "anodic_area_factor": 1.0, "faraday": "316l_g102",
+        "anodic_area_factor": 1.0, "repassivation_kinetics": "exponential",
+        "repassivation_exponent": 0.5, "galvanic_cell": "eq18",
+        "bare_corrosion_potential_v": null, "ohmic_resistance_ohm": 0.0,
+        "control": "open_circuit", "applied_potential_v": null,
+        "faraday": "316l_g102",
         "molar_mass_g_mol": 55.85, "valence": 2.0, "density_g_cm3": 7.9
       },
       "numerics": { "grid": "auto", "domain_um": "auto", "tolerance": 1e-6,

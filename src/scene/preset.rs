@@ -3,11 +3,19 @@
 use serde::Serialize;
 use serde_json::{Map, Value};
 
-use super::corrosion::{follow_faraday, follow_reference};
-use super::{Corrosion, FieldError, PAPER_TABLE3, Scene, SceneErrors, Table3Row};
+use super::corrosion::{follow_area, follow_faraday, follow_reference};
+use super::surface::{SurfaceKind, SurfaceSpec};
+use super::{
+    AnodicArea, Corrosion, FieldError, GalvanicCell, PAPER_TABLE3, SPOT_REPASSIVATION_TIME_S,
+    Scene, SceneErrors, Table3Row,
+};
 
 /// Name of the paper's scene: AISI 316L against alumina, 5 N, 60 rpm, 3600 cycles.
 pub const DALMAU2018_316L: &str = "dalmau2018-316l";
+
+/// Name of the paper's test on the paper's polished surface, with the depassivated area
+/// predicted from the plastically deformed asperities (`docs/corrosion.md`).
+pub const DALMAU2018_316L_ASPERITIES: &str = "dalmau2018-316l-asperities";
 
 /// A named built-in scene.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -25,13 +33,59 @@ pub struct Preset {
 
 /// Every built-in scene, for `tribosim presets` and `GET /presets`.
 pub fn presets() -> Vec<Preset> {
-    vec![Preset {
-        name: DALMAU2018_316L,
-        description: "Dalmau et al., Wear 394-395 (2018): AISI 316L against an alumina ball \
+    vec![
+        Preset {
+            name: DALMAU2018_316L,
+            description: "Dalmau et al., Wear 394-395 (2018): AISI 316L against an alumina ball \
                       in 3% NaCl, Tables 2 and 3",
-        scene: dalmau2018_316l(),
-        measured: &PAPER_TABLE3,
-    }]
+            scene: dalmau2018_316l(),
+            measured: &PAPER_TABLE3,
+        },
+        Preset {
+            name: DALMAU2018_316L_ASPERITIES,
+            description: "The paper's test on its polished surface (Ra 0.1 um, Section 2.1), the \
+                      depassivated area predicted from the plastically deformed asperities \
+                      with a 10 ms repassivation and the balanced galvanic cell, nothing \
+                      fitted to the potential (about 2.5 minutes on 2 cores)",
+            scene: dalmau2018_316l_asperities(),
+            measured: &PAPER_TABLE3,
+        },
+    ]
+}
+
+/// The paper's polished surface: Ra 0.1 um (Section 2.1) is rms 0.125 um for Gaussian
+/// heights (Rq = 1.25 Ra); Hurst 0.85 is Persson's D_f = 2.15 for polished surfaces
+/// (Tribol. Lett. 54 (2014) 99); the long cut-off, 50 um, is the contact's size; the short
+/// one, 4 um (cells of 0.5 um), is the finest that 3600 cycles allow on 2 cores in minutes
+/// (`docs/corrosion.md`).
+pub fn paper_surface() -> SurfaceSpec {
+    SurfaceSpec {
+        kind: SurfaceKind::Synthetic,
+        rms_height_um: Some(0.125),
+        rms_slope: None,
+        hurst: Some(0.85),
+        short_cutoff_um: Some(4.0),
+        long_cutoff_um: Some(50.0),
+        seed: Some(1),
+        id: None,
+        remove_tilt: false,
+    }
+}
+
+/// The [`DALMAU2018_316L_ASPERITIES`] preset: the paper's test on [`paper_surface`], with
+/// `asperity_spots` at tau 10 ms and the balanced cell (eq. 18 as printed puts these
+/// spots' potential above E_corr).
+pub fn dalmau2018_316l_asperities() -> Scene {
+    let mut scene = dalmau2018_316l();
+    scene.name = "316L vs alumina, 5 N, 60 rpm, polished surface, asperity spots".to_owned();
+    scene.disc.surface = Some(paper_surface());
+    scene.corrosion = Some(Corrosion {
+        anodic_area: AnodicArea::AsperitySpots,
+        repassivation_time_s: SPOT_REPASSIVATION_TIME_S,
+        galvanic_cell: GalvanicCell::Balanced,
+        ..Corrosion::default()
+    });
+    scene
 }
 
 /// The paper's test, the [`DALMAU2018_316L`] preset: the defaults under the paper's name.
@@ -49,6 +103,7 @@ pub(super) fn resolve(json: &Value) -> Result<(Value, &'static str), SceneErrors
         let mut document = json.clone();
         follow_reference(&mut document, json.get("corrosion"), &Corrosion::default());
         follow_faraday(&mut document, json.get("corrosion"));
+        follow_area(&mut document, json.get("corrosion"));
         return Ok((document, ""));
     };
     let mut errors: Vec<FieldError> = object
@@ -114,6 +169,7 @@ pub(super) fn resolve(json: &Value) -> Result<(Value, &'static str), SceneErrors
             let base = preset.scene.corrosion.clone().unwrap_or_default();
             follow_reference(&mut document, overrides.get("corrosion"), &base);
             follow_faraday(&mut document, overrides.get("corrosion"));
+            follow_area(&mut document, overrides.get("corrosion"));
             Ok((document, "overrides"))
         }
         _ => Err(SceneErrors(errors)),

@@ -5,12 +5,13 @@
 
 use super::field::{Field, Range};
 use super::fields::{
-    ANODIC_AREA_FACTOR, ANODIC_CURRENT, ARCHARD_K, BALL_MODULUS, BALL_POISSON, BALL_RADIUS,
-    CALIBRATION_HARDNESS, CALIBRATION_LOAD, CALIBRATION_SPEED, CALIBRATION_TIME,
-    CALIBRATION_TRACK_RADIUS, CALIBRATION_VOLUME, CORROSION_POTENTIAL, CYCLE_STEP_BOUND, CYCLES,
-    DENSITY, DISC_HARDNESS, DISC_MODULUS, DISC_POISSON, DOMAIN, EXPOSED_AREA, FRICTION, GRID,
-    INITIAL_YIELD, LOAD, MOLAR_MASS, NAME, OCP_AFTER, OCP_BEFORE, REGIME_CHANGE_CYCLE,
-    REGIME_CHANGE_K_BEFORE, REPASSIVATION_TIME, SPEED, SURFACE_HURST, SURFACE_ID,
+    ANODIC_AREA_FACTOR, ANODIC_CURRENT, APPLIED_POTENTIAL, ARCHARD_K, BALL_MODULUS, BALL_POISSON,
+    BALL_RADIUS, BARE_CORROSION_POTENTIAL, CALIBRATION_HARDNESS, CALIBRATION_LOAD,
+    CALIBRATION_SPEED, CALIBRATION_TIME, CALIBRATION_TRACK_RADIUS, CALIBRATION_VOLUME,
+    CORROSION_POTENTIAL, CYCLE_STEP_BOUND, CYCLES, DENSITY, DISC_HARDNESS, DISC_MODULUS,
+    DISC_POISSON, DOMAIN, EXPOSED_AREA, FRICTION, GRID, INITIAL_YIELD, LOAD, MOLAR_MASS, NAME,
+    OCP_AFTER, OCP_BEFORE, OHMIC_RESISTANCE, REGIME_CHANGE_CYCLE, REGIME_CHANGE_K_BEFORE,
+    REPASSIVATION_EXPONENT, REPASSIVATION_TIME, SPEED, SURFACE_HURST, SURFACE_ID,
     SURFACE_LONG_CUTOFF, SURFACE_RMS_HEIGHT, SURFACE_RMS_SLOPE, SURFACE_SEED, SURFACE_SHORT_CUTOFF,
     TAFEL_A, TAFEL_B, TAFEL_ETA_MAX, TAFEL_ETA_MIN, THREADS, TOLERANCE, TRACK_RADIUS, VALENCE,
     YIELD_FACTOR,
@@ -18,7 +19,8 @@ use super::fields::{
 use super::format::num;
 use super::surface::SurfaceKind;
 use super::{
-    DomainSize, FieldError, GridSize, MAX_RECORD_CYCLES, RecordCycles, Scene, SolverThreads,
+    Control, Corrosion, DomainSize, FieldError, GridSize, MAX_RECORD_CYCLES, RecordCycles, Scene,
+    SolverThreads,
 };
 use crate::text::TextError;
 
@@ -340,9 +342,64 @@ fn check_corrosion(c: &mut Checks, scene: &Scene) {
         );
     }
     c.number(&ANODIC_AREA_FACTOR, corrosion.anodic_area_factor);
+    c.number(&REPASSIVATION_EXPONENT, corrosion.repassivation_exponent);
+    c.number(&OHMIC_RESISTANCE, corrosion.ohmic_resistance_ohm);
+    if let Some(floor) = corrosion.bare_corrosion_potential_v {
+        c.number(&BARE_CORROSION_POTENTIAL, floor);
+        if floor >= corrosion.corrosion_potential_v {
+            c.fail(
+                BARE_CORROSION_POTENTIAL.path,
+                format!(
+                    "must be below `corrosion.corrosion_potential_v` ({} V): bare metal is \
+                     more active than the passive surface; got {} V (was it against another \
+                     reference electrode?)",
+                    num(corrosion.corrosion_potential_v),
+                    num(floor)
+                ),
+            );
+        }
+    }
+    check_control(c, corrosion);
     c.number(&MOLAR_MASS, corrosion.molar_mass_g_mol);
     c.number(&VALENCE, corrosion.valence);
     c.number(&DENSITY, corrosion.density_g_cm3);
+}
+
+/// Potentiostatic control needs its potential, within what an aqueous cell holds, and the
+/// bare metal's corrosion potential that says whether the bare spots dissolve there.
+fn check_control(c: &mut Checks, corrosion: &Corrosion) {
+    if corrosion.control != Control::Potentiostatic {
+        return;
+    }
+    let e_corr = corrosion.corrosion_potential_v;
+    match corrosion.applied_potential_v {
+        None => c.fail(
+            APPLIED_POTENTIAL.path,
+            "`control: \"potentiostatic\"` needs the potential to hold, V against \
+             `reference_electrode`"
+                .to_owned(),
+        ),
+        Some(v) if !(e_corr - 3.0..=e_corr + 1.0).contains(&v) => c.fail(
+            APPLIED_POTENTIAL.path,
+            format!(
+                "must lie within 3 V below and 1 V above E_corr ({} to {} V), got {} V (was it \
+                 in mV?)",
+                num(e_corr - 3.0),
+                num(e_corr + 1.0),
+                num(v)
+            ),
+        ),
+        Some(_) => {}
+    }
+    if corrosion.bare_corrosion_potential_v.is_none() {
+        c.fail(
+            BARE_CORROSION_POTENTIAL.path,
+            "`control: \"potentiostatic\"` needs the bare metal's corrosion potential: below \
+             it the bare spots do not dissolve, and without it they would dissolve at i_a at \
+             any potential, cathodic protection included"
+                .to_owned(),
+        );
+    }
 }
 
 /// Collects failures.

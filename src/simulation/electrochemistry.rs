@@ -4,6 +4,9 @@
 //! stands for; with what the run should say about it (the cap at E_corr, potentials outside
 //! the Tafel line's fitted domain).
 
+use crate::corrosion::galvanic::Balance;
+use crate::corrosion::kinetics::Repassivation;
+use crate::corrosion::spots::{Sliding, SpotRows, TrackAges};
 use crate::corrosion::{
     AreaInputs, ContactGeometry, CorrosionError, CorrosionModel, real_contact_area_m2,
 };
@@ -26,7 +29,22 @@ pub(super) struct Cell<'a> {
     capped: Tally,
     /// Solved cycles whose potential lay outside the Tafel line's fitted domain.
     outside: Tally,
+    /// The spot models' state: each row of the track's age since it was last stripped.
+    ages: TrackAges,
+    /// The last solved cycle's spots, which the cycles it stands for repeat.
+    last_spots: Option<SpotRows>,
+    /// The sliding as the spots' kinetics see it.
+    sliding: Sliding,
+    /// What the `balanced` cell adds to eq. 18; `None` for eq. 18 as printed.
+    balance: Option<Balance>,
+    /// The largest share of the stripped rows' track that stayed bare over a solved cycle,
+    /// and its cycle: near 1 the film has no time to regrow between passes.
+    barest: Option<(f64, u64)>,
 }
+
+/// The bare share of the stripped track above which the run says the repassivation is
+/// incomplete: half the track still bare a revolution after stripping.
+const INCOMPLETE_REPASSIVATION: f64 = 0.5;
 
 /// What the surface offers the anodic reaction at one cycle.
 pub(super) struct Surface<'a> {
@@ -40,6 +58,8 @@ pub(super) struct Surface<'a> {
     pub(super) hardness_pa: f64,
     /// The length of the wear track, m.
     pub(super) track_length_m: f64,
+    /// The spots of the spot models (`None` for the other models).
+    pub(super) spots: Option<SpotRows>,
 }
 
 /// One solved cycle's electrochemistry.
@@ -106,7 +126,54 @@ impl<'a> Cell<'a> {
             last: None,
             capped: Tally::default(),
             outside: Tally::default(),
+            ages: TrackAges::default(),
+            last_spots: None,
+            sliding: Sliding {
+                speed_m_s: scene.sliding_speed_m_s(),
+                track_length_m: scene.track_length_m(),
+            },
+            balance: settings.balance(),
+            barest: None,
         })
+    }
+
+    /// The potential at the anodic area `area_m2` and the anodic current it passes: eq. 18
+    /// capped at E_corr with i_a A_a, or the balanced cell.
+    pub(super) fn couple(&self, area_m2: f64) -> Result<(f64, f64), CorrosionError> {
+        if let Some(applied_v) = self.settings.held_v() {
+            self.model.cathodic_area_m2(area_m2)?;
+            // Validation requires the bare corrosion potential with a potentiostat.
+            let held = self
+                .settings
+                .bare_metal()
+                .held(&self.model, area_m2, applied_v);
+            return Ok(held.map_or((applied_v, 0.0), |c| (c.potential_v, c.anodic_current_a)));
+        }
+        match &self.balance {
+            Some(balance) => {
+                let coupling = balance.couple(&self.model, area_m2)?;
+                Ok((coupling.potential_v, coupling.anodic_current_a))
+            }
+            None => Ok((
+                self.model.potential_v(area_m2)?,
+                self.model.anodic_current_a(area_m2),
+            )),
+        }
+    }
+
+    /// The spot models' bare-equivalent area `since_stop_s` after the stop, times the
+    /// factor, m^2; `None` for the other models.
+    pub(super) fn spot_area_after_stop_m2(&self, since_stop_s: f64) -> Option<f64> {
+        self.last_spots.as_ref()?;
+        let kinetics = self.kinetics();
+        let area = self
+            .ages
+            .area_after_stop_m2(since_stop_s, self.sliding, &kinetics);
+        Some(area * self.settings.anodic_area_factor)
+    }
+
+    fn kinetics(&self) -> Repassivation {
+        self.settings.repassivation()
     }
 
     /// The cell's model in SI units.
@@ -119,9 +186,15 @@ impl<'a> Cell<'a> {
         self.settings
     }
 
-    /// What `surface` offers the anodic area models.
-    fn inputs(&self, surface: &Surface) -> AreaInputs {
+    /// What `surface` offers the anodic area models; the spots advance the track's ages.
+    fn inputs(&mut self, surface: &Surface) -> AreaInputs {
+        let kinetics = self.kinetics();
+        let spot_area_m2 = surface.spots.as_ref().map_or(0.0, |spots| {
+            self.ages.cycle_area_m2(spots, self.sliding, &kinetics)
+        });
+        self.last_spots.clone_from(&surface.spots);
         AreaInputs {
+            spot_area_m2,
             real_contact_m2: real_contact_area_m2(surface.load_n, surface.hardness_pa),
             contact_area_m2: surface.contact.area_m2,
             mean_chord_m: surface.contact.mean_chord_m(),
@@ -140,20 +213,21 @@ impl<'a> Cell<'a> {
         period_s: f64,
     ) -> Result<Reading, CorrosionError> {
         let inputs = self.inputs(surface);
-        let area = self.settings.anodic_area_m2(&inputs);
-        let current = self.model.anodic_current_a(area);
-        self.charge_c += current * period_s;
-        let potential = self.model.potential_v(area)?;
-        if area > 0.0 && self.model.coupled_potential_v(area)? > potential {
-            self.capped.note(cycle, potential);
-        } else {
-            let overpotential = potential - self.model.corrosion_potential_v;
-            let fitted =
-                self.settings.tafel_overpotential_min_v..=self.settings.tafel_overpotential_max_v;
-            if !fitted.contains(&overpotential) {
-                self.outside.note(cycle, potential);
+        if let Some(spots) = &surface.spots {
+            let stripped_m2 = spots.stripped_width_m() * self.sliding.track_length_m;
+            let share = if stripped_m2 > 0.0 {
+                inputs.spot_area_m2 / stripped_m2
+            } else {
+                0.0
+            };
+            if self.barest.is_none_or(|(most, _)| share > most) {
+                self.barest = Some((share, cycle));
             }
         }
+        let area = self.settings.anodic_area_m2(&inputs);
+        let (potential, current) = self.couple(area)?;
+        self.charge_c += current * period_s;
+        self.tally(cycle, area, potential)?;
         let snapshot = Snapshot {
             cycle,
             to_real_contact: area / inputs.real_contact_m2,
@@ -171,10 +245,34 @@ impl<'a> Cell<'a> {
         })
     }
 
+    /// Notes a potential eq. 18 would have put above E_corr, or one outside the Tafel line's
+    /// fitted domain; a potentiostat's potential is neither eq. 18's nor the line's.
+    fn tally(&mut self, cycle: u64, area: f64, potential: f64) -> Result<(), CorrosionError> {
+        if self.settings.held_v().is_some() {
+            return Ok(());
+        }
+        if self.balance.is_none() && area > 0.0 && self.model.coupled_potential_v(area)? > potential
+        {
+            self.capped.note(cycle, potential);
+            return Ok(());
+        }
+        let overpotential = potential - self.model.corrosion_potential_v;
+        let fitted =
+            self.settings.tafel_overpotential_min_v..=self.settings.tafel_overpotential_max_v;
+        if !fitted.contains(&overpotential) {
+            self.outside.note(cycle, potential);
+        }
+        Ok(())
+    }
+
     /// The cycles a solve stands for after its own, `duration_s` in all, at the current of
     /// its `reading`.
     pub(super) fn skipped(&mut self, reading: &Reading, duration_s: f64) {
         self.charge_c += reading.anodic_current_a * duration_s;
+        if let Some(spots) = &self.last_spots {
+            let cycles = (duration_s / self.sliding.period_s()).round() as u64;
+            self.ages.repeat(spots, cycles, self.sliding);
+        }
     }
 
     /// How the anodic area is chosen and what it came to, for the `corrosion` model's reason.
@@ -199,9 +297,28 @@ impl<'a> Cell<'a> {
             AnodicArea::BemContact => "the contact area of the solution (on a rough disc the \
                                        real contact area of the asperities)"
                 .to_owned(),
+            AnodicArea::AsperitySpots | AnodicArea::ContactSpots => format!(
+                "the {} of the solved contact, island by island, each stripped as it enters \
+                 the contact and repassivating until its row's next spot ({}; not fitted), \
+                 each row of the track carrying its own age{}",
+                if settings.anodic_area == AnodicArea::AsperitySpots {
+                    "plastically deformed spots (cells at the cap)"
+                } else {
+                    "cells in contact"
+                },
+                self.kinetics().describe(),
+                self.last_spots.as_ref().map_or(String::new(), |s| format!(
+                    "; at the last solved cycle {} spot chord(s) on {:.1} um of stripped width, \
+                     {:.3e} mm^2 of spots",
+                    s.chords(),
+                    s.stripped_width_m() * 1e6,
+                    s.area_m2() * 1e6
+                ))
+            ),
         };
+        let cell = self.cell_words();
         let mut reason = format!(
-            "eq. 18 galvanic coupling and Faraday's law; anodic area: {area}, times {}; \
+            "{cell} and Faraday's law; anodic area: {area}, times {}; \
              A_a / (F / H) {}; potentials against {}",
             settings.anodic_area_factor,
             self.ratios(),
@@ -212,6 +329,38 @@ impl<'a> Cell<'a> {
             reason.push_str(&warning.message);
         }
         reason
+    }
+
+    /// What sets the potential, in words.
+    fn cell_words(&self) -> String {
+        if let Some(applied_v) = self.settings.held_v() {
+            let bare = self.settings.bare_metal();
+            let share = bare.held(&self.model, 1.0, applied_v).map_or(0.0, |c| {
+                c.anodic_current_a / self.model.anodic_current_density_a_m2
+            });
+            let passive_ma =
+                Balance::passive_current_a(&self.model, self.model.exposed_area_m2, applied_v)
+                    * 1e3;
+            return format!(
+                "held at {applied_v} V by a potentiostat: the bare spots dissolve at {share:.4} \
+                 of i_a there (the bare metal's corrosion potential {} V); beside them the \
+                 passive area passes a constant {passive_ma:.4e} mA (negative: cathodic), which \
+                 the potentiostat's current adds to each record's anodic current;",
+                bare.bare_corrosion_potential_v.unwrap_or(f64::NAN)
+            );
+        }
+        match &self.balance {
+            None => "eq. 18 galvanic coupling (capped at E_corr),".to_owned(),
+            Some(b) => format!(
+                "the galvanic cell balanced at open circuit (the passive area's own current \
+                 kept{}, ohmic drop {} ohm),",
+                b.bare_corrosion_potential_v
+                    .map_or(", no bare-metal floor".to_owned(), |v| format!(
+                        ", the bare metal's corrosion potential {v} V as the floor"
+                    )),
+                b.ohmic_resistance_ohm
+            ),
+        }
     }
 
     /// The solved contact's mean chord at the first and the last solved cycle, in words.
@@ -246,6 +395,20 @@ impl<'a> Cell<'a> {
     pub(super) fn warnings(&self) -> Vec<FieldWarning> {
         const AREA: &str = "corrosion.anodic_area";
         let mut warnings = Vec::new();
+        if let Some((share, cycle)) = self.barest.filter(|(s, _)| *s > INCOMPLETE_REPASSIVATION) {
+            warnings.push(FieldWarning::new(
+                "corrosion.repassivation_time_s",
+                format!(
+                    "incomplete repassivation: at cycle {cycle} {:.0}% of the stripped track was \
+                     still bare over the revolution (a revolution of {} s against the \
+                     transient's {} s): the film has no time to regrow between passes, and the \
+                     anodic area tends to the stripped width times the track",
+                    share * 100.0,
+                    self.sliding.period_s(),
+                    self.settings.repassivation_time_s
+                ),
+            ));
+        }
         if let Some(first) = self.capped.first_cycle {
             warnings.push(FieldWarning::new(
                 AREA,
@@ -292,6 +455,7 @@ mod tests {
             load_n: 5.0,
             hardness_pa: 2.5e9,
             track_length_m: 0.0188,
+            spots: None,
         }
     }
 

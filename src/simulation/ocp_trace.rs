@@ -9,7 +9,10 @@
 //! and which are the run's own states, not interpolations; after the stop, at tau / 8,
 //! tau / 4, tau / 2, tau, 2 tau, ... until eq. 18 reaches E_corr, at that instant and at the
 //! end. The model's recovery takes a few tau (a fraction of a second), after which it stays
-//! at E_corr, so geometric steps in tau resolve all of it in a dozen points.
+//! at E_corr, so geometric steps in tau resolve all of it in a dozen points. The spot models
+//! carry each row's age to the stop and let every row repassivate by its transient; a power
+//! law recovers over the whole hold, so they are sampled geometrically in revolutions to the
+//! end ([`spot_recovery_times`]).
 
 use crate::corrosion::recovering_area_m2;
 use crate::scene::Scene;
@@ -22,6 +25,10 @@ const FIRST_RECOVERY_SAMPLE: f64 = 0.125;
 
 /// The trace of a run of `scene` that recorded `records` with `cell`.
 pub(super) fn ocp_trace(scene: &Scene, cell: &Cell, records: &[CycleRecord]) -> Vec<OcpSample> {
+    if cell.settings().held_v().is_some() {
+        // A potentiostat holds the potential: there is no open-circuit trace.
+        return Vec::new();
+    }
     let model = cell.model();
     let e_corr = model.corrosion_potential_v;
     let start = scene.test.ocp_before_s;
@@ -52,14 +59,37 @@ pub(super) fn ocp_trace(scene: &Scene, cell: &Cell, records: &[CycleRecord]) -> 
         return trace;
     }
     let stop = start + scene.test.cycles as f64 * scene.cycle_period_s();
+    if let Some(spots_at_stop) = cell.spot_area_after_stop_m2(0.0) {
+        for since in spot_recovery_times(scene.cycle_period_s(), after) {
+            let area = cell.spot_area_after_stop_m2(since).unwrap_or(spots_at_stop);
+            let potential = cell.couple(area).map_or(e_corr, |(e, _)| e);
+            trace.push(sample(stop + since, potential, OcpPhase::After));
+        }
+        return trace;
+    }
     let tau = cell.settings().repassivation_time_s;
     for since in recovery_times(area_at_stop, model.capping_area_m2(), tau, after) {
         let area = recovering_area_m2(area_at_stop, since, tau);
         // The area only shrinks from one eq. 18 already took: it stays a valid anode.
-        let potential = model.potential_v(area).unwrap_or(e_corr);
+        let potential = cell.couple(area).map_or(e_corr, |(e, _)| e);
         trace.push(sample(stop + since, potential, OcpPhase::After));
     }
     trace
+}
+
+/// The times after the stop to sample for the spot models, up to `after_s`: from an eighth
+/// of a revolution `period_s`, doubling, and the end. The rows' ages at the stop spread over
+/// a revolution, and a power-law transient decays over the whole hold, so geometric steps
+/// resolve it in a dozen or so points (14 for a 1 s cycle and the paper's 1200 s).
+fn spot_recovery_times(period_s: f64, after_s: f64) -> Vec<f64> {
+    let mut times = Vec::new();
+    let mut t = FIRST_RECOVERY_SAMPLE * period_s;
+    while t < after_s {
+        times.push(t);
+        t *= 2.0;
+    }
+    times.push(after_s);
+    times
 }
 
 /// The times after the stop to sample, up to `after_s`: geometric in `tau` until the bare
@@ -103,5 +133,14 @@ mod tests {
         // Already at E_corr (or no repassivation time): the end alone.
         assert_eq!(bits(&recovery_times(0.5, 1.0, 0.15, 60.0)), bits(&[60.0]));
         assert_eq!(bits(&recovery_times(50.0, 1.0, 0.0, 60.0)), bits(&[60.0]));
+    }
+
+    #[test]
+    fn the_spots_recovery_is_sampled_from_an_eighth_of_a_revolution_to_the_end() {
+        let times = spot_recovery_times(1.0, 1200.0);
+        assert_eq!(times.len(), 15, "{times:?}");
+        assert!((times[0] - 0.125).abs() < f64::EPSILON);
+        assert!((times[13] - 1024.0).abs() < f64::EPSILON);
+        assert!((times[14] - 1200.0).abs() < f64::EPSILON);
     }
 }

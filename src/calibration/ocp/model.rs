@@ -60,6 +60,8 @@ pub(in crate::calibration) fn model_areas(
                 wear_track_m2: interpolate(&solved, &track, n),
                 band_width_m,
                 sliding_speed_m_s: scene.sliding_speed_m_s(),
+                // The fit refuses the spot models (`refuse_predictions`).
+                spot_area_m2: 0.0,
             }
         })
         .collect();

@@ -135,6 +135,8 @@ pub(in crate::scene) const ANODIC_AREA: Field = Field {
         "wear_track",
         "real_contact",
         "bem_contact",
+        "asperity_spots",
+        "contact_spots",
     ]),
     why: "",
     meaning: "Which area depassivates (`docs/corrosion.md`). `depassivated_wake`: the real \
@@ -145,7 +147,12 @@ pub(in crate::scene) const ANODIC_AREA: Field = Field {
               contact, bare for tau, F / H + 2a v tau; `wear_track` (track width x track \
               length, as in the paper's Fig. 13); `real_contact` (F / H) or `bem_contact` \
               (the solved contact area: on a rough disc, `disc.surface`, the real contact \
-              area at the asperity scale).",
+              area at the asperity scale); `asperity_spots`: the plastically deformed spots \
+              of the solved contact (cells at the cap), island by island, each stripped as it \
+              enters the contact and repassivating by `repassivation_kinetics` until the next \
+              spot of its row strips it again, every row of the track carrying its own age \
+              (no fitted constant: tau defaults to 0.01 s with these models); \
+              `contact_spots`: the same with every cell in contact a spot.",
     feeds: "A_a in eq. 18 and in Faraday's law",
 };
 
@@ -160,8 +167,106 @@ pub(in crate::scene) const REPASSIVATION_TIME: Field = Field {
               anodic current density i_a. During rubbing tau enters the potential and the WAC \
               volume only as Q_p = i_a tau, the charge that repassivates a unit of bare area \
               (default: 1.48 mC/cm^2); after the stop the bare area decays as exp(-t / tau). \
-              The default is the fit to the paper's A_a = 50 F / H on the default run.",
+              The default is the fit to the paper's A_a = 50 F / H on the default run; a \
+              section that names `asperity_spots` or `contact_spots` without this field gets \
+              0.01 s instead, not fitted (`docs/corrosion.md`). With the power law it is t0, \
+              how long a spot passes the full i_a.",
     feeds: "A_a in eq. 18 and in Faraday's law (Section 5.1's repassivation)",
+};
+
+/// `corrosion.repassivation_kinetics`.
+pub(in crate::scene) const REPASSIVATION_KINETICS: Field = Field {
+    path: "corrosion.repassivation_kinetics",
+    unit: "",
+    range: Range::OneOf(&["exponential", "power_law"]),
+    why: "",
+    meaning: "The current transient of a stripped spot, as a fraction of i_a: `exponential`, \
+              exp(-t / tau); `power_law`, 1 up to t0 = `repassivation_time_s`, then (t / \
+              t0)^-n with n = `repassivation_exponent` (film-growth laws: n = 1/2 limited by \
+              transport through the film, near 1 for high-field growth). Used by the spot \
+              models, during the rubbing and after the stop (the wake and the band decay \
+              as exp(-t / tau) after it).",
+    feeds: "A_a of `asperity_spots` and `contact_spots`; the OCP after the stop",
+};
+
+/// `corrosion.repassivation_exponent`.
+pub(in crate::scene) const REPASSIVATION_EXPONENT: Field = Field {
+    path: "corrosion.repassivation_exponent",
+    unit: "1",
+    range: Range::Open(0.0, 3.0),
+    why: " (film-growth transients fall as t^-1/2 to t^-1; above 3 the tail is gone within \
+          a few t0, an exponential's job)",
+    meaning: "The power law's exponent n (`repassivation_kinetics: \"power_law\"`).",
+    feeds: "the power-law transient",
+};
+
+/// `corrosion.galvanic_cell`.
+pub(in crate::scene) const GALVANIC_CELL: Field = Field {
+    path: "corrosion.galvanic_cell",
+    unit: "",
+    range: Range::OneOf(&["eq18", "balanced"]),
+    why: "",
+    meaning: "How the potential follows from the anodic area. `eq18`: eq. 18 as printed, \
+              capped at E_corr where it would rise above it. `balanced`: the charge balance \
+              at open circuit, with the passive area's own current 10^(a_c / b_c) kept (which \
+              eq. 18 drops: at the paper's A_a of 0.1 mm^2 that lowers E by 66 mV), the \
+              anode at E - I R (`ohmic_resistance_ohm`) and the bare metal's net current \
+              falling to 0 at `bare_corrosion_potential_v`, which bounds the potential.",
+    feeds: "the potential during rubbing and after; the anodic current and the WAC",
+};
+
+/// `corrosion.bare_corrosion_potential_v`.
+pub(in crate::scene) const BARE_CORROSION_POTENTIAL: Field = Field {
+    path: "corrosion.bare_corrosion_potential_v",
+    unit: "V",
+    range: Range::Finite,
+    why: " and below `corrosion_potential_v`, or null for none",
+    meaning: "The bare metal's own corrosion potential, against `reference_electrode`: the \
+              floor of the `balanced` cell. No value for 316L in NaCl was found in the \
+              literature this project could reach, so the default is null (no floor, the \
+              bare metal passes i_a at any potential, as eq. 18 assumes).",
+    feeds: "the `balanced` cell",
+};
+
+/// `corrosion.ohmic_resistance_ohm`.
+pub(in crate::scene) const OHMIC_RESISTANCE: Field = Field {
+    path: "corrosion.ohmic_resistance_ohm",
+    unit: "ohm",
+    range: Range::AtLeast(0.0),
+    why: "",
+    meaning: "Electrolyte resistance between the bare spots and the passive area (the \
+              `balanced` cell). 0 by default: Newman's disc resistance 1 / (4 kappa r) for \
+              0.1 mm^2 of anode in seawater-like 3% NaCl (kappa about 5 S/m) is about 280 \
+              ohm, a drop of about 3 mV at the paper's current.",
+    feeds: "the `balanced` cell",
+};
+
+/// `corrosion.control`.
+pub(in crate::scene) const CONTROL: Field = Field {
+    path: "corrosion.control",
+    unit: "",
+    range: Range::OneOf(&["open_circuit", "potentiostatic"]),
+    why: "",
+    meaning: "What sets the disc's potential. `open_circuit`: the galvanic cell (the paper's \
+              test). `potentiostatic`: a potentiostat holds it at `applied_potential_v`; the \
+              bare spots then dissolve at the bare metal's net current there, which needs \
+              `bare_corrosion_potential_v` (below it nothing dissolves: cathodic protection, \
+              ASTM G119's run for the mechanical loss alone). Each record's \
+              `anodic_current_ma` is then the potentiostat's current less the passive \
+              area's constant share, which the `corrosion` model gives; there is no OCP trace.",
+    feeds: "the potential, the anodic current and the WAC",
+};
+
+/// `corrosion.applied_potential_v`.
+pub(in crate::scene) const APPLIED_POTENTIAL: Field = Field {
+    path: "corrosion.applied_potential_v",
+    unit: "V",
+    range: Range::Finite,
+    why: ", within 3 V below and 1 V above `corrosion_potential_v` (what an aqueous cell \
+          holds without decomposing the water), with `control: \"potentiostatic\"`",
+    meaning: "The potential the potentiostat holds, against `reference_electrode`; null at \
+              open circuit.",
+    feeds: "the potentiostatic cell",
 };
 
 /// `corrosion.anodic_area_factor`.

@@ -173,6 +173,7 @@ impl From<CalibrationError> for ApiError {
             | CalibrationError::Scene(_)
             | CalibrationError::Hardness(_) => "scene".to_owned(),
             CalibrationError::DomainOption { option, .. } => format!("options.{option}"),
+            CalibrationError::NotFittable { field, .. } => format!("scene.corrosion.{field}"),
             _ => "table".to_owned(),
         };
         invalid(&path, error.to_string())

@@ -23,8 +23,9 @@ use crate::contact::{
     MIN_MARGIN, Window, WindowFractions, WindowedSolver, cold_start,
 };
 use crate::corrosion::ContactGeometry;
+use crate::corrosion::spots::SpotRows;
 use crate::hardness::pass_strain;
-use crate::scene::DomainSize;
+use crate::scene::{DomainSize, Spots};
 use crate::surface::count_islands;
 use crate::wear::Groove;
 
@@ -221,7 +222,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             wear.depth_scale(cycle..cycle + 1, setup.plan.hardness()),
         );
         // Corrosion (eq. 18, Faraday), the record, then the cycles the solve stands for.
-        let reading = self.corrode(cycle, &solution, hardness_pa)?;
+        let reading = self.corrode(cycle, &solution, (hardness_pa, cap))?;
         self.record(cycle, &solution, (cap, pass_wear_per_pa), reading, on_cycle);
         self.wear_skipped(cycle, step, &pass, reading.as_ref());
         // The gap of the solve, for the warm start's extrapolation of cells entering contact.
@@ -318,7 +319,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         &mut self,
         cycle: u64,
         solution: &ContactSolution,
-        hardness_pa: f64,
+        (hardness_pa, cap): (f64, f64),
     ) -> Result<Option<Reading>, SimulationError> {
         let scene = self.setup.scene();
         let Some(cell) = self.cell.as_mut() else {
@@ -326,7 +327,15 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         };
         let in_contact: Vec<bool> = solution.pressure.iter().map(|&p| p > 0.0).collect();
         let grid = &self.grid;
+        let spots = cell.settings().spots().map(|kind| {
+            let mask: Vec<bool> = match kind {
+                Spots::Capped => solution.pressure.iter().map(|&p| p >= cap).collect(),
+                Spots::InContact => in_contact.clone(),
+            };
+            SpotRows::of(&mask, grid.nx, grid.dx, grid.dy, grid.y(0))
+        });
         let surface = Surface {
+            spots,
             groove: &self.groove,
             contact: ContactGeometry::of(&in_contact, grid.nx, grid.dx, grid.dy),
             load_n: scene.load_n(),
