@@ -34,6 +34,16 @@ pub enum BenchError {
         /// What the file system said.
         source: std::io::Error,
     },
+    /// A page lacks the markers of the section a study rewrites.
+    #[error("{}: no `{begin}` ... `{end}` section to rewrite", path.display())]
+    NoSection {
+        /// The page.
+        path: PathBuf,
+        /// The first marker.
+        begin: &'static str,
+        /// The last marker.
+        end: &'static str,
+    },
     /// A plot could not be drawn.
     #[error("plot {}: {source}", path.display())]
     Plot {

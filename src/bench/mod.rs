@@ -12,6 +12,7 @@ mod plot;
 mod report;
 mod rough;
 mod speed;
+pub mod spots;
 mod threads;
 mod wear;
 
@@ -56,6 +57,10 @@ pub enum BenchTarget {
     /// The paper's Section 4 figure by figure: `--markdown docs/paper.md` writes the page
     /// and its SVG figures (never part of `all`).
     Paper,
+    /// The depassivated area predicted from the solved contact's spots against the paper's
+    /// Fig. 14 reading: `--markdown docs/corrosion.md` rewrites that page's section (never
+    /// part of `all`).
+    Spots,
     /// All five (the thread study within `speed`; `kappa` and `paper` apart).
     All,
 }
@@ -149,6 +154,9 @@ pub fn print(
     }
     if target == BenchTarget::Paper {
         return paper_only(markdown);
+    }
+    if target == BenchTarget::Spots {
+        return spots::write(markdown);
     }
     if target == BenchTarget::Threads {
         emit(&threads::thread_rows()?, json, threads::threads_table)?;
