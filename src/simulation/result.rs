@@ -329,16 +329,14 @@ impl std::fmt::Display for Summary {
             "  wear volume      {:.4e} mm^3 (the total a profilometer measures)",
             self.wear_volume_mm3
         )?;
-        writeln!(f, "  maximum depth    {:.3} um", self.max_depth_um)?;
-        if let Some(wac) = self.wac_volume_mm3 {
-            writeln!(f, "  WAC volume       {wac:.4e} mm^3")?;
-        }
-        if let Some(total) = self.total_volume_mm3 {
-            writeln!(f, "  total volume     {total:.4e} mm^3 (mechanical + WAC)")?;
-        }
+        // The wear volume is the total: its two parts follow it, not the total again.
         if let Some(mechanical) = self.mechanical_volume_mm3 {
-            writeln!(f, "  mechanical part  {mechanical:.4e} mm^3")?;
+            writeln!(f, "    of which mechanical {mechanical:.4e} mm^3")?;
         }
+        if let Some(wac) = self.wac_volume_mm3 {
+            writeln!(f, "    of which WAC        {wac:.4e} mm^3")?;
+        }
+        writeln!(f, "  maximum depth    {:.3} um", self.max_depth_um)?;
         if let Some(charge) = self.charge_c {
             writeln!(f, "  anodic charge    {charge:.4e} C")?;
         }
@@ -387,8 +385,11 @@ mod tests {
         );
         assert!(text.contains("wear volume      1.2000e-2 mm^3"), "{text}");
         assert!(text.contains("-0.5432 V vs Ag/AgCl (3 M KCl)"), "{text}");
-        assert!(text.contains("total volume     1.2000e-2 mm^3"), "{text}");
-        assert!(text.contains("mechanical part  1.1660e-2 mm^3"), "{text}");
+        assert!(!text.contains("total volume"), "{text}");
+        assert!(
+            text.contains("of which mechanical 1.1660e-2 mm^3"),
+            "{text}"
+        );
         let sce = Summary {
             potential_reference: Some(ReferenceElectrode::Sce),
             ..summary
