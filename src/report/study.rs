@@ -54,7 +54,7 @@ fn members_table(study: &StudySummary) -> String {
                     QUANTITIES
                         .iter()
                         .map(|(_, _, of)| Cell::optional(of(s)))
-                        .chain([Cell::text("")]),
+                        .chain([Cell::text(s.warnings.join("; "))]),
                 ),
                 None => {
                     row.extend(QUANTITIES.iter().map(|_| Cell::text("")));
@@ -72,8 +72,14 @@ fn members_table(study: &StudySummary) -> String {
     let mut header: Vec<&str> = vec!["member"];
     header.extend(study.axes.iter().map(String::as_str));
     header.extend(units.iter().map(String::as_str));
-    header.push("error");
-    table("One row per member", &header, &rows)
+    header.push("error, or the run's warnings");
+    table(
+        "One row per member; a member whose run warned (a potential capped at E_corr, one \
+         outside the Tafel domain, ...) says so in the last column, and its points in the \
+         figures carry the same caveat",
+        &header,
+        &rows,
+    )
 }
 
 /// The members that finished, grouped by their values on every axis but `axis` (a line per

@@ -72,6 +72,24 @@ impl FieldWarning {
     }
 }
 
+impl FieldWarning {
+    /// The warning in a line a table cell holds: its path and its first clause (up to the
+    /// first ": " or "; " of its message, where the explanation starts).
+    pub fn headline(&self) -> String {
+        let end = ["; ", ": "]
+            .iter()
+            .filter_map(|mark| self.message.find(mark))
+            .min()
+            .unwrap_or(self.message.len());
+        let clause = &self.message[..end];
+        if self.path.is_empty() {
+            clause.to_owned()
+        } else {
+            format!("{}: {clause}", self.path)
+        }
+    }
+}
+
 impl fmt::Display for FieldWarning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if self.path.is_empty() {

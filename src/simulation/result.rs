@@ -308,12 +308,27 @@ pub struct Summary {
     /// The wear law's fields (`archard_k`, `archard_regime_change`).
     #[serde(flatten)]
     pub wear: WearSummary,
+    /// The run's warnings, each as its field's path and its first clause (the result's
+    /// `field_warnings` hold them whole), so that a study's table can flag a member whose
+    /// numbers come with a caveat (a potential capped at E_corr, for one); absent when the
+    /// run warned of nothing.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
     /// Wall-clock time of the run, s.
     pub wall_s: f64,
     /// Contact solves performed.
     pub solves: usize,
     /// Solver iterations over all solves.
     pub iterations: usize,
+}
+
+impl Summary {
+    /// The summary with the run's `warnings` as [`Summary::warnings`] holds them.
+    #[must_use]
+    pub fn with_warnings(mut self, warnings: &[FieldWarning]) -> Self {
+        self.warnings = warnings.iter().map(FieldWarning::headline).collect();
+        self
+    }
 }
 
 /// The end-of-run summary a person reads: one quantity per line, with units.
@@ -374,6 +389,7 @@ mod tests {
                 archard_k: 1.0228e-4,
                 archard_regime_change: None,
             },
+            warnings: Vec::new(),
             wall_s: 6.31,
             solves: 326,
             iterations: 3400,

@@ -121,6 +121,7 @@ impl Setup {
                 .as_ref()
                 .map(|c| c.reference_electrode),
             wear: self.plan.wear().summary(),
+            warnings: Vec::new(),
             wall_s,
             solves: cycles.len(),
             iterations: cycles.iter().map(|c| c.iterations).sum(),

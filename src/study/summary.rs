@@ -68,9 +68,10 @@ impl Pending {
 }
 
 /// The table's columns after the member number and the axes: `wear_volume_mm3` is the
-/// total a profilometer measures, and `mechanical_volume_mm3` its mechanical part (after
-/// the older columns, which keep their places).
-const COLUMNS: [&str; 10] = [
+/// total a profilometer measures, and `mechanical_volume_mm3` its mechanical part;
+/// `warnings` flags a member whose numbers come with a caveat (after the older columns,
+/// which keep their places).
+const COLUMNS: [&str; 11] = [
     "cycles",
     "wear_volume_mm3",
     "max_depth_um",
@@ -81,6 +82,7 @@ const COLUMNS: [&str; 10] = [
     "solves",
     "mechanical_volume_mm3",
     "error",
+    "warnings",
 ];
 
 impl StudySummary {
@@ -176,11 +178,13 @@ impl StudySummary {
                 s.solves.to_string(),
                 optional(s.mechanical_volume_mm3),
                 String::new(),
+                s.warnings.join("; "),
             ]),
             None => {
-                cells.extend(std::iter::repeat_n(String::new(), COLUMNS.len() - 1));
+                cells.extend(std::iter::repeat_n(String::new(), COLUMNS.len() - 2));
                 let not_done = row.pending.map(|p| format!("not finished ({})", p.name()));
                 cells.push(row.error.clone().or(not_done).unwrap_or_default());
+                cells.push(String::new());
             }
         }
         cells
@@ -246,12 +250,12 @@ mod tests {
         let csv = failed_row(r#"cycle 3: "x", then y"#).to_csv();
         let header = csv.lines().next().expect("a header");
         assert!(
-            header.ends_with(",solves,mechanical_volume_mm3,error"),
+            header.ends_with(",solves,mechanical_volume_mm3,error,warnings"),
             "{header}"
         );
         let row = csv.lines().nth(1).expect("a data row");
-        // member, the axis, nine empty summary cells, then the quoted error.
-        assert_eq!(row, r#"0,a|b,,,,,,,,,,"cycle 3: ""x"", then y""#);
+        // member, the axis, nine empty summary cells, the quoted error, no warnings.
+        assert_eq!(row, r#"0,a|b,,,,,,,,,,"cycle 3: ""x"", then y","#);
     }
 
     #[test]
@@ -265,7 +269,7 @@ mod tests {
         let row = csv.lines().nth(1).expect("a data row");
         assert_eq!(
             row,
-            r#"0,"'=HYPERLINK(""http://example.com"")",,,,,,,,,,'=1+1"#
+            r#"0,"'=HYPERLINK(""http://example.com"")",,,,,,,,,,'=1+1,"#
         );
     }
 
@@ -274,6 +278,29 @@ mod tests {
         let markdown = failed_row("stopped").to_markdown();
         let row = markdown.lines().nth(2).expect("a data row");
         assert!(row.starts_with(r"| 0 | a\|b |"), "{row}");
-        assert!(row.ends_with("| stopped |"), "{row}");
+        assert!(row.ends_with("| stopped |  |"), "{row}");
+    }
+
+    #[test]
+    fn a_member_whose_run_warned_says_so_in_its_last_column() {
+        // A real run whose potential eq. 18 capped at E_corr: the real contact F / H alone.
+        let plan = crate::simulation::parse_scene_str(
+            r#"{"test": {"cycles": 3}, "numerics": {"grid": 32},
+                "corrosion": {"anodic_area": "real_contact"}}"#,
+        )
+        .expect("a valid scene");
+        let setup = crate::simulation::Setup::new(&plan, &crate::simulation::RunOptions::default())
+            .expect("a setup");
+        let stop = std::sync::atomic::AtomicBool::new(false);
+        let result = crate::simulation::run_setup(&setup, &mut |_| {}, &stop).expect("runs");
+        let mut study = failed_row("");
+        study.members[0].error = None;
+        study.members[0].summary = Some(result.summary);
+        let csv = study.to_csv();
+        let row = csv.lines().nth(1).expect("a data row");
+        // The last cell, quoted for its commas: the path and the first clause only, the
+        // explanation after it staying in the result's field warnings.
+        let cell = r#","corrosion.anodic_area: eq. 18 put the potential above E_corr at 3 solved cycle(s), the first at cycle 1""#;
+        assert!(row.ends_with(cell), "{csv}");
     }
 }

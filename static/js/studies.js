@@ -162,7 +162,10 @@ function memberPick(m) {
 
 function memberRow(m, row) {
   const tr = document.createElement("tr");
-  const cells = [String(m.index + 1), ...study.axes.map((a) => fmtValue(m.values[a.path])), m.status + (row.error ? ": " + readable(row.error) : "")];
+  const warned = (row.summary && row.summary.warnings) || [];
+  const status = m.status + (row.error ? ": " + readable(row.error) : "") +
+    (warned.length ? `, with ${warned.length} warning${warned.length > 1 ? "s" : ""}: ${warned.join("; ")}` : "");
+  const cells = [String(m.index + 1), ...study.axes.map((a) => fmtValue(m.values[a.path])), status];
   for (const key of ["wear_volume_mm3", "max_depth_um", "wac_volume_mm3", "potential_v"]) {
     const v = row.summary && row.summary[key];
     cells.push(v == null ? "" : fmtValue(key.endsWith("mm3") ? v * 1e3 : v));

@@ -159,7 +159,9 @@ fn partial(
         ..RunOptions::default()
     };
     let setup = Setup::new(&Plan::new(scene.clone())?, &options)?;
-    let summary = setup.summary(&cycles, wall_s);
+    let summary = setup
+        .summary(&cycles, wall_s)
+        .with_warnings(&setup.warnings);
     let warnings = setup.warning_lines();
     let provenance = Some(Provenance::of(scene));
     Ok(SimulationResult {

@@ -505,7 +505,9 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 reason: "no corrosion section in the scene".to_owned(),
             });
         }
-        let summary = setup.summary(&self.records, started.elapsed().as_secs_f64());
+        let summary = setup
+            .summary(&self.records, started.elapsed().as_secs_f64())
+            .with_warnings(&warnings);
         SimulationResult {
             complete: true,
             scene: scene.clone(),

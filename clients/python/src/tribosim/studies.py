@@ -149,8 +149,10 @@ class Study:
     @_SUMMARY.implements
     def summary(self) -> pandas.DataFrame:
         """One row per member: ``member``, a column per axis (its dotted path), the run's
-        summary (``total_volume_mm3``, ``max_depth_um``, ``wac_volume_mm3``, ...), and
-        ``error`` and ``pending`` (None for a member with a result)."""
+        summary (``total_volume_mm3``, ``max_depth_um``, ``wac_volume_mm3``, ...,
+        ``warnings``: the run's warnings as a list, a caveat on that member's numbers such as a
+        potential capped at E_corr; NaN when it warned of nothing), and ``error`` and
+        ``pending`` (None for a member with a result)."""
         rows = [
             {
                 "member": m["index"],
