@@ -304,3 +304,49 @@ async fn the_tafel_domains_bounds_are_options_over_http_and_on_the_command_line(
         "{error}"
     );
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_ended_calibration_survives_a_restart_and_its_delete_does_too() {
+    let dir = TempDir::new("calibration-restart");
+    let data = dir.path().join("data");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let table = std::fs::read_to_string(root.join("docs/calibration/table3_hardness.csv"))
+        .expect("read the table");
+    let client = reqwest::Client::new();
+    let (kept, deleted) = {
+        let mut server = ServerProcess::start(&data);
+        let url = server.url("/api/v1/calibrations");
+        let mut fits = Vec::new();
+        for _ in 0..2 {
+            let (code, started) =
+                post(&client, &url, &json!({"kind": "hardness", "table": table})).await;
+            assert_eq!(code, 202, "{started}");
+            let id = started["id"].as_str().expect("id").to_owned();
+            let fit = wait_for(&client, &format!("{url}/{id}"), |c| {
+                c["status"] != "running"
+            })
+            .await;
+            assert_eq!(fit["status"], "succeeded", "{fit}");
+            fits.push(fit);
+        }
+        let gone = fits[1]["id"].as_str().expect("id").to_owned();
+        let (code, _) = delete(&client, &format!("{url}/{gone}")).await;
+        assert_eq!(code, 204);
+        // No orderly shutdown: the record was written when the fit ended.
+        server.kill_9();
+        (fits.swap_remove(0), gone)
+    };
+    let server = ServerProcess::start(&data);
+    let url = server.url("/api/v1/calibrations");
+    let id = kept["id"].as_str().expect("id");
+    let again = get_json(&client, &format!("{url}/{id}")).await;
+    assert_eq!(
+        again, kept,
+        "the same record, result and all, after the restart"
+    );
+    let (code, _) = delete(&client, &format!("{url}/{deleted}")).await;
+    assert_eq!(code, 404, "a deleted fit stays deleted");
+    let listed = get_json(&client, &url).await;
+    println!("{listed}");
+    assert!(listed.to_string().contains(id), "{listed}");
+}

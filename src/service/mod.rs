@@ -68,7 +68,7 @@ pub use meta::OPENAPI_YAML;
 pub use route::{Route, Verb};
 pub use router::{BODY_LIMIT_BYTES, MAX_URI_BYTES, routes};
 
-use calibrations::{Calibrations, FitLimits};
+use calibrations::{CalibrationStore, Calibrations, FitLimits};
 use cursor::CursorKey;
 use extract::BodyTimeout;
 use jobs::{Jobs, Store, Streams};
@@ -272,14 +272,15 @@ pub async fn serve_on(
         parses: args.budgets.surface_parses.get(),
     };
     let memory_budget_bytes = args.budgets.job_memory_bytes();
-    let (jobs, studies, surfaces) = tokio::task::spawn_blocking(move || {
+    let (jobs, studies, surfaces, fits) = tokio::task::spawn_blocking(move || {
         let store = Store::open(&data_dir)?;
         let quarantine = store.quarantine_dir().to_owned();
         // Before the jobs load: a study interrupted as it was accepted takes its members.
         let studies = Studies::open(&data_dir, &quarantine, &store, max_members, workers)?;
         let surfaces = Arc::new(Surfaces::open(&data_dir, &quarantine, upload_limits)?);
         let jobs = Jobs::open(store, capacity, memory_budget_bytes, Arc::clone(&surfaces))?;
-        Ok::<_, io::Error>((jobs, Arc::new(studies), surfaces))
+        let fits = CalibrationStore::open(&data_dir)?;
+        Ok::<_, io::Error>((jobs, Arc::new(studies), surfaces, fits))
     })
     .await
     .map_err(io::Error::other)?
@@ -306,11 +307,14 @@ pub async fn serve_on(
     let app = AppState {
         jobs: Arc::clone(&jobs),
         studies,
-        calibrations: Arc::new(Calibrations::new(FitLimits {
-            max_grid: args.budgets.calibration_max_grid,
-            max_cell_cycles: args.budgets.calibration_max_cell_cycles,
-            kept_bytes: args.budgets.calibration_kept_bytes,
-        })),
+        calibrations: Arc::new(Calibrations::new(
+            FitLimits {
+                max_grid: args.budgets.calibration_max_grid,
+                max_cell_cycles: args.budgets.calibration_max_cell_cycles,
+                kept_bytes: args.budgets.calibration_kept_bytes,
+            },
+            Some(fits),
+        )),
         surfaces,
         token: token.map(Arc::from),
         static_dir: args.static_dir.as_deref().map(Arc::from),

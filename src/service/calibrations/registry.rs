@@ -6,19 +6,17 @@
 //! search whose every run depends on the ones before, so it occupies one core from start to
 //! end, like one job; a job queued behind it would wait seconds to minutes for nothing the
 //! fit needs. At most [`MAX_RUNNING`] fits run at once, beside the pool, and a further
-//! request gets 429; DELETE stops a running fit within a cycle of its run under way. Fits
-//! are not stored: a fit is recomputed from its request in seconds, and its result (with
-//! the scene filled in) is the client's to keep, so a restart forgets them. An ended fit
-//! keeps its result as JSON text, not its table or scene, and the ended fits kept are at
-//! most [`MAX_KEPT`] and at most `--calibration-kept-bytes` of results together, the oldest
-//! forgotten first.
+//! request gets 429; DELETE stops a running fit within a cycle of its run under way. An
+//! ended fit keeps its result as JSON text, not its table or scene, in memory and on disk
+//! (`store.rs`), so a restart keeps it; the ended fits kept are at most [`MAX_KEPT`] and at
+//! most `--calibration-kept-bytes` of results together, the oldest forgotten first.
 
 use std::collections::HashMap;
 use std::panic::{self, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
-use serde::{Serialize, Serializer};
+use serde::{Deserialize, Serialize, Serializer};
 use serde_json::value::RawValue;
 use time::OffsetDateTime;
 use uuid::Uuid;
@@ -26,6 +24,8 @@ use uuid::Uuid;
 use crate::calibration::{CalibrationError, CommandOptions, FitKind, Table, calibrate_until};
 use crate::scene::Scene;
 use crate::service::listing::{Filter, Listed};
+
+use super::store::CalibrationStore;
 
 /// Fits running at once: two keeps a lab's two-core workstation responsive while a
 /// simulation job runs beside them.
@@ -35,7 +35,7 @@ pub const MAX_RUNNING: usize = 2;
 pub const MAX_KEPT: usize = 100;
 
 /// Where a fit is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum CalibrationStatus {
     /// The fit is running.
@@ -64,7 +64,7 @@ impl CalibrationStatus {
 }
 
 /// A fit as the list shows it: everything but its result.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CalibrationInfo {
     /// The fit's id.
     pub id: Uuid,
@@ -87,6 +87,18 @@ pub struct CalibrationInfo {
 /// as a `serde_json::Value`).
 #[derive(Debug, Clone)]
 pub struct FitResult(Arc<str>);
+
+impl FitResult {
+    /// The result's JSON text.
+    pub(super) fn text(&self) -> &str {
+        &self.0
+    }
+
+    /// A result from its JSON text.
+    pub(super) fn from_text(text: &str) -> Self {
+        Self(text.into())
+    }
+}
 
 impl Serialize for FitResult {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -202,14 +214,58 @@ struct Inner {
 pub struct Calibrations {
     inner: Mutex<Inner>,
     pub(super) limits: FitLimits,
+    /// Where ended fits are kept across restarts; `None` keeps them in memory only.
+    store: Option<CalibrationStore>,
 }
 
 impl Calibrations {
-    /// No fits yet, under `limits`.
-    pub fn new(limits: FitLimits) -> Self {
-        Self {
-            inner: Mutex::default(),
+    /// The fits `store` kept, under `limits`.
+    pub fn new(limits: FitLimits, store: Option<CalibrationStore>) -> Self {
+        let mut inner = Inner::default();
+        let loaded = store
+            .as_ref()
+            .map_or_else(|| Ok(Vec::new()), CalibrationStore::load);
+        match loaded {
+            Ok(fits) => {
+                for (info, result) in fits {
+                    let entry = Entry {
+                        info,
+                        result,
+                        cancel: Arc::default(),
+                    };
+                    inner.entries.insert(entry.info.id, entry);
+                }
+            }
+            Err(e) => tracing::error!("cannot read the stored calibrations: {e}"),
+        }
+        let calibrations = Self {
+            inner: Mutex::new(inner),
             limits,
+            store,
+        };
+        let forgotten = forget_oldest(&mut calibrations.lock().entries, limits.kept_bytes);
+        calibrations.unstore(&forgotten);
+        calibrations
+    }
+
+    /// Keeps the ended fit `id` on disk, as `record` holds it.
+    fn keep(&self, record: Option<CalibrationRecord>) {
+        if let (Some(store), Some(record)) = (&self.store, record) {
+            if let Err(e) = store.save(&record.info, record.result.as_ref()) {
+                tracing::error!(id = %record.info.id, "cannot keep the calibration: {e}");
+            }
+        }
+    }
+
+    /// Removes the fits `ids` from disk.
+    fn unstore(&self, ids: &[Uuid]) {
+        let Some(store) = &self.store else {
+            return;
+        };
+        for id in ids {
+            if let Err(e) = store.remove(*id) {
+                tracing::error!(%id, "cannot remove the stored calibration: {e}");
+            }
         }
     }
 
@@ -311,7 +367,15 @@ impl Calibrations {
                 tracing::info!(%id, "cancelled calibration stopped");
             }
         }
-        forget_oldest(&mut inner.entries, self.limits.kept_bytes);
+        let forgotten = forget_oldest(&mut inner.entries, self.limits.kept_bytes);
+        let ended = inner.entries.get(&id).map(|entry| CalibrationRecord {
+            info: entry.info.clone(),
+            result: entry.result.clone(),
+        });
+        // Written under the lock, so that a DELETE that follows the status a client sees
+        // finds the file to remove.
+        self.keep(ended);
+        self.unstore(&forgotten);
     }
 
     /// DELETE: cancels a running fit (its thread stops within a cycle of its run under way
@@ -327,6 +391,7 @@ impl Calibrations {
             return Some(CalibrationDeletion::Cancelled(entry.info.clone()));
         }
         inner.entries.remove(&id);
+        self.unstore(&[id]);
         tracing::info!(%id, "ended calibration removed");
         Some(CalibrationDeletion::Removed)
     }
@@ -339,8 +404,9 @@ fn result_text(fit: &crate::calibration::Fit) -> serde_json::Result<String> {
     serde_json::to_string(&serde_json::to_value(fit)?)
 }
 
-/// Forgets the oldest ended fits beyond [`MAX_KEPT`] of them or `kept_bytes` of results.
-fn forget_oldest(entries: &mut HashMap<Uuid, Entry>, kept_bytes: usize) {
+/// Forgets the oldest ended fits beyond [`MAX_KEPT`] of them or `kept_bytes` of results;
+/// their ids.
+fn forget_oldest(entries: &mut HashMap<Uuid, Entry>, kept_bytes: usize) -> Vec<Uuid> {
     let mut ended: Vec<(OffsetDateTime, Uuid, usize)> = entries
         .values()
         .filter(|e| e.info.status != CalibrationStatus::Running)
@@ -349,14 +415,17 @@ fn forget_oldest(entries: &mut HashMap<Uuid, Entry>, kept_bytes: usize) {
     ended.sort();
     let mut bytes: usize = ended.iter().map(|(_, _, b)| b).sum();
     let mut count = ended.len();
+    let mut forgotten = Vec::new();
     for (_, id, size) in ended {
         if count <= MAX_KEPT && bytes <= kept_bytes {
             break;
         }
         entries.remove(&id);
+        forgotten.push(id);
         count -= 1;
         bytes -= size;
     }
+    forgotten
 }
 
 #[cfg(test)]
@@ -391,7 +460,8 @@ mod tests {
         let running = entry(-1, CalibrationStatus::Running, 1000);
         let running_id = running.info.id;
         entries.insert(running_id, running);
-        forget_oldest(&mut entries, 250);
+        let forgotten = forget_oldest(&mut entries, 250);
+        assert_eq!(forgotten, ids[..3].to_vec());
         let mut kept: Vec<Uuid> = entries.keys().copied().collect();
         kept.sort();
         let mut want = vec![ids[3], ids[4], running_id];
