@@ -92,3 +92,42 @@ impl CalibrationStore {
         Ok(fits)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use time::OffsetDateTime;
+
+    use super::*;
+    use crate::calibration::FitKind;
+    use crate::service::calibrations::registry::CalibrationStatus;
+
+    #[test]
+    fn a_kept_fit_reads_back_whole_and_a_stray_file_is_quarantined() {
+        let data = std::env::temp_dir().join(format!("tribosim-fits-{}", Uuid::new_v4()));
+        let store = CalibrationStore::open(&data).expect("a store");
+        let info = CalibrationInfo {
+            id: Uuid::new_v4(),
+            kind: FitKind::Tafel,
+            status: CalibrationStatus::Succeeded,
+            created_at: OffsetDateTime::UNIX_EPOCH,
+            finished_at: Some(OffsetDateTime::UNIX_EPOCH),
+            error: None,
+        };
+        let result = FitResult::from_text(r#"{"b_c": 0.56, "points": [1, 2.5e-7]}"#);
+        store.save(&info, Some(&result)).expect("saved");
+        std::fs::write(data.join("calibrations/stray.json"), b"{\"not\": 1}").expect("written");
+        let loaded = store.load().expect("read");
+        assert_eq!(loaded.len(), 1);
+        assert_eq!(loaded[0].0, info);
+        assert_eq!(
+            loaded[0].1.as_ref().map(FitResult::text),
+            Some(result.text())
+        );
+        let quarantined = std::fs::read_dir(data.join("quarantine")).expect("a quarantine");
+        assert_eq!(quarantined.count(), 1);
+        store.remove(info.id).expect("removed");
+        store.remove(info.id).expect("removing twice is no error");
+        assert!(store.load().expect("read").is_empty());
+        std::fs::remove_dir_all(&data).expect("cleaned up");
+    }
+}
