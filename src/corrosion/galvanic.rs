@@ -105,9 +105,7 @@ impl Balance {
     /// its film's current less the cathodic reaction's, A: negative (cathodic) below E_corr.
     pub fn passive_current_a(model: &CorrosionModel, cathode_m2: f64, applied_v: f64) -> f64 {
         let i_0 = model.line_corrosion_current_density_a_m2();
-        let decades = (model.corrosion_potential_v + model.tafel_a_c_v - applied_v)
-            / model.tafel_b_c_v_per_decade;
-        cathode_m2 * (i_0 - 10f64.powf(decades) * 1e4)
+        cathode_m2 * (i_0 - model.cathodic_current_density_a_m2(applied_v))
     }
 
     /// The bare metal's net anodic current density at `anode_v`, A/m^2.

@@ -104,6 +104,14 @@ impl CorrosionModel {
         Ok(self.exposed_area_m2 - anodic_area_m2)
     }
 
+    /// The cathodic Tafel line's current density at `potential_v`, A/m^2: the inverse of
+    /// [`Self::tafel_potential_v`].
+    pub fn cathodic_current_density_a_m2(&self, potential_v: f64) -> f64 {
+        let decades = (self.corrosion_potential_v + self.tafel_a_c_v - potential_v)
+            / self.tafel_b_c_v_per_decade;
+        10f64.powf(decades) * A_M2_PER_A_CM2
+    }
+
     /// Eq. 18 as printed, E_c = E_corr + a_c - b_c log10(i_a A_a / A_c), V, for an anodic
     /// area > 0: above E_corr when the coupled current density is below the line's own
     /// current at E_corr (see [`Self::potential_v`]).
@@ -161,9 +169,7 @@ impl CorrosionModel {
         if potential_v >= self.corrosion_potential_v {
             return 0.0;
         }
-        let decades = (self.corrosion_potential_v + self.tafel_a_c_v - potential_v)
-            / self.tafel_b_c_v_per_decade;
-        let cathodic_density_a_m2 = 10f64.powf(decades) * A_M2_PER_A_CM2;
+        let cathodic_density_a_m2 = self.cathodic_current_density_a_m2(potential_v);
         // A_a / A_c = i_c / i_a and A_c = exposed - A_a.
         let ratio = cathodic_density_a_m2 / self.anodic_current_density_a_m2;
         ratio * self.exposed_area_m2 / (1.0 + ratio)

@@ -328,11 +328,15 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let in_contact: Vec<bool> = solution.pressure.iter().map(|&p| p > 0.0).collect();
         let grid = &self.grid;
         let spots = cell.settings().spots().map(|kind| {
-            let mask: Vec<bool> = match kind {
-                Spots::Capped => solution.pressure.iter().map(|&p| p >= cap).collect(),
-                Spots::InContact => in_contact.clone(),
-            };
-            SpotRows::of(&mask, grid.nx, grid.dx, grid.dy, grid.y(0))
+            let of = |mask: &[bool]| SpotRows::of(mask, grid.nx, grid.dx, grid.dy, grid.y(0));
+            match kind {
+                Spots::Capped => of(&solution
+                    .pressure
+                    .iter()
+                    .map(|&p| p >= cap)
+                    .collect::<Vec<_>>()),
+                Spots::InContact => of(&in_contact),
+            }
         });
         let surface = Surface {
             spots,
