@@ -396,7 +396,7 @@ fn a_potentiostat_below_the_bare_metals_potential_stops_the_wac() {
         assert_eq!(record.potential_v, Some(-0.9));
         assert_eq!(record.wac_volume_mm3, Some(0.0));
     }
-    // At -0.2 V the bare spots pass i_a (1 - 10^(-0.4 / 0.56)) = 0.8071 of i_a.
+    // At -0.2 V the bare spots pass i_a (1 - 10^(-0.4 / 0.56)) = 0.8069 of i_a.
     let anodic = held(-0.2);
     let last = anodic.cycles.last().expect("records");
     let area_cm2 = last.anodic_area_mm2.expect("an area") * 1e-2;
