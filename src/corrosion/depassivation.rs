@@ -16,6 +16,8 @@
 //! A_a = A_r (1 + v tau W_c / A_s). The band form strips a band of fixed width W instead,
 //! A_a = A_r + W v tau.
 
+use super::spots::SpotRows;
+
 /// The solved contact as the wake sees it: its area and the width it sweeps.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactGeometry {
@@ -28,21 +30,12 @@ pub struct ContactGeometry {
 
 impl ContactGeometry {
     /// The geometry of the cells `in_contact`, rows of `nx` cells along the sliding
-    /// direction, each `dx` long and `dy` wide.
+    /// direction, each `dx` long and `dy` wide: the chords [`SpotRows`] finds in them.
     pub fn of(in_contact: &[bool], nx: usize, dx: f64, dy: f64) -> Self {
-        let mut cells = 0usize;
-        let mut chords = 0usize;
-        for row in in_contact.chunks_exact(nx) {
-            let mut previous = false;
-            for &touching in row {
-                cells += usize::from(touching);
-                chords += usize::from(touching && !previous);
-                previous = touching;
-            }
-        }
+        let rows = SpotRows::of(in_contact, nx, dx, dy, 0.0);
         Self {
-            area_m2: cells as f64 * dx * dy,
-            swept_width_m: chords as f64 * dy,
+            area_m2: rows.area_m2(),
+            swept_width_m: rows.chords() as f64 * dy,
         }
     }
 
