@@ -257,6 +257,61 @@ async fn each_format_is_read_listed_and_deleted_and_bad_maps_are_named() {
 }
 
 /// `small_scene` on the surface `id`, without the plastic cap (docs/scene.md's rough example).
+/// A map of white noise (a linear congruential generator, Knuth's MMIX constants), 64
+/// pixels a side, 0.1 um high, as a matrix in m.
+fn noise_matrix() -> String {
+    let mut state = 7_u64;
+    let rows: Vec<String> = (0..64)
+        .map(|_| {
+            let cells: Vec<String> = (0..64)
+                .map(|_| {
+                    state = state
+                        .wrapping_mul(6_364_136_223_846_793_005)
+                        .wrapping_add(1_442_695_040_888_963_407);
+                    format!(
+                        "{:e}",
+                        ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 1e-7
+                    )
+                })
+                .collect();
+            cells.join(" ")
+        })
+        .collect();
+    rows.join("\n")
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_map_of_noise_is_kept_with_a_warning_that_names_its_hurst_exponent() {
+    let dir = TempDir::new("surfaces-noise");
+    let client = reqwest::Client::new();
+    let server = ServerProcess::start(dir.path());
+    let (status, answer) = upload(
+        &client,
+        &server.base,
+        "?pixel_um=2",
+        "application/octet-stream",
+        noise_matrix().into(),
+    )
+    .await;
+    assert_eq!(status, 201, "{answer}");
+    let hurst = answer["statistics"]["hurst"].as_f64().expect("hurst");
+    assert!(hurst < 0.0, "white noise: {answer}");
+    let warnings = answer["warnings"].as_array().expect("warnings");
+    assert!(
+        warnings.len() == 1
+            && warnings[0]
+                .as_str()
+                .is_some_and(|w| w.starts_with("statistics.hurst")),
+        "{answer}"
+    );
+    let id = answer["id"].as_str().expect("id");
+    let listed = get_json(&client, &format!("{}/api/v1/surfaces/{id}", server.base)).await;
+    assert_eq!(
+        listed["warnings"], answer["warnings"],
+        "kept with the record"
+    );
+}
+
 fn measured_scene(id: &str, cycles: u64) -> Value {
     let mut scene = small_scene(cycles);
     scene["overrides"]["disc"] = json!({"surface": {"kind": "measured", "id": id}});

@@ -40,6 +40,10 @@ pub struct Statistics {
     pub fit_wavelengths_um: [f64; 2],
 }
 
+/// The Hurst exponents of self-affine surfaces (Persson et al., J. Phys. Condens. Matter
+/// 17 (2005) R1: 0 < H < 1, polished metals near 0.8).
+const SELF_AFFINE_HURST: (f64, f64) = (0.0, 1.0);
+
 impl Statistics {
     /// The statistics of `map`, its spectrum fitted over the band where it has power
     /// between the wavelengths `long_m` and `short_m`.
@@ -57,6 +61,31 @@ impl Statistics {
             hurst: -slope / 2.0 - 1.0,
             fit_wavelengths_um: [long * 1e6, short * 1e6],
         }
+    }
+
+    /// What a lab should check before trusting the map, in words: a Hurst exponent outside
+    /// 0 to 1, the range of a self-affine surface, means the spectrum fitted is not a
+    /// rough surface's (white noise reads -1, a smooth form above 1; a tilt is levelled
+    /// before the fit).
+    pub fn caveats(&self) -> Vec<String> {
+        let why = if self.hurst < SELF_AFFINE_HURST.0 {
+            "flatter than a rough surface's: noise dominates its short wavelengths (filter \
+             it, or crop to the measured area)"
+        } else if self.hurst > SELF_AFFINE_HURST.1 {
+            "steeper than a rough surface's: a smooth form or a smoothing filter dominates \
+             it (remove its form, or measure with less filtering)"
+        } else {
+            return Vec::new();
+        };
+        vec![format!(
+            "statistics.hurst: {:.3} lies outside {} to {}, the range of a self-affine \
+             surface, over the wavelengths {:.3} to {:.3} um; the spectrum is {why}",
+            self.hurst,
+            SELF_AFFINE_HURST.0,
+            SELF_AFFINE_HURST.1,
+            self.fit_wavelengths_um[0],
+            self.fit_wavelengths_um[1]
+        )]
     }
 
     /// The statistics of a measured map, fitted over [`measured_fit_range`].
@@ -399,5 +428,37 @@ mod tests {
         assert!((rms_height(&map) / (a / 2f64.sqrt()) - 1.0).abs() < 1e-12);
         let want = a * 2.0 / d * (std::f64::consts::PI * d / l).sin() / 2f64.sqrt();
         assert!((rms_slope(&map) / want - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_map_of_noise_or_of_a_form_says_its_hurst_exponent_is_not_a_rough_surfaces() {
+        let rough = Statistics::of_measured(&generated(128, 4e-6, 1, false));
+        assert!(rough.caveats().is_empty(), "{rough:?}");
+        let n = 128;
+        let mut state = 12345_u64;
+        let mut noise = generated(n, 4e-6, 1, false);
+        for h in &mut noise.heights_m {
+            // A linear congruential generator (Knuth's MMIX constants): white noise.
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            *h = ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 1e-7;
+        }
+        let white = Statistics::of_measured(&noise);
+        let caveats = white.caveats();
+        assert!(white.hurst < 0.0, "{white:?}");
+        assert!(
+            caveats.len() == 1 && caveats[0].contains("noise"),
+            "{caveats:?}"
+        );
+        // A spectrum steeper than a self-affine one, as a smooth form gives over a band
+        // where it has power (a smoothing filter's cut band is left out of the fit).
+        let steep = Statistics {
+            psd_slope: -4.8,
+            hurst: 1.4,
+            ..white
+        }
+        .caveats();
+        assert!(steep.len() == 1 && steep[0].contains("form"), "{steep:?}");
     }
 }

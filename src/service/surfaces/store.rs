@@ -50,6 +50,10 @@ pub struct SurfaceRecord {
     pub pixel_y_um: f64,
     /// The map's statistics as read (before any tilt removal a scene asks for).
     pub statistics: Statistics,
+    /// What to check before trusting the map ([`Statistics::caveats`]); none in records
+    /// stored before they were given.
+    #[serde(default)]
+    pub warnings: Vec<String>,
     /// When it was uploaded.
     #[serde(with = "time::serde::rfc3339")]
     pub created_at: OffsetDateTime,
@@ -241,6 +245,7 @@ impl Surfaces {
             ny: map.ny,
             pixel_x_um: map.dx_m * 1e6,
             pixel_y_um: map.dy_m * 1e6,
+            warnings: statistics.caveats(),
             statistics,
             created_at: OffsetDateTime::now_utc(),
         };

@@ -94,6 +94,8 @@ class Surface(Record):
     pixel_x_um: float
     pixel_y_um: float
     statistics: dict[str, Any]
+    #: What to check before trusting the map, e.g. a Hurst exponent outside 0 to 1.
+    warnings: list[str]
     created_at: str
 
     def disc_surface(self, remove_tilt: bool = False) -> dict[str, Any]:
