@@ -1,27 +1,25 @@
-//! The report's figures as inline SVG: line figures drawn by plotters into a string (its
-//! SVG backend estimates text sizes, so no font is loaded), and the pressure maps as a
-//! heat map of rectangles.
+//! The report's line figures as inline SVG, drawn by plotters into a string (its SVG
+//! backend estimates text sizes, so no font is loaded): lines, markers with error bars,
+//! a grey reference and rings that flag points, every series in its own colour and with a
+//! legend sample drawn as the series is.
 
-use std::fmt::Write;
+use std::ops::Range;
 
+use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged};
 use plotters::prelude::*;
 use thiserror::Error;
 
-use super::html::{escape, number};
+use super::html::escape;
+use super::palette::series_colours;
+use super::ticks::Ticks;
 
 /// The figures' drawing size, px: a 1.73 aspect that, scaled to the 180 mm of A4's
 /// printable width, is 104 mm tall, so two fit a page with their captions.
 const SIZE: (u32, u32) = (760, 440);
 
-/// The series' colours, distinct in print and to the colour-blind (Okabe and Ito).
-const COLOURS: [RGBColor; 6] = [
-    RGBColor(0, 114, 178),
-    RGBColor(213, 94, 0),
-    RGBColor(0, 158, 115),
-    RGBColor(204, 121, 167),
-    RGBColor(86, 180, 233),
-    RGBColor(230, 159, 0),
-];
+/// The reference lines' grey, the grid's and the flags' black.
+const GREY: RGBColor = RGBColor(90, 90, 90);
+const GRID: RGBColor = RGBColor(225, 225, 225);
 
 /// Why a figure could not be drawn.
 #[derive(Debug, Error)]
@@ -38,10 +36,17 @@ pub struct FigureError {
 pub enum Style {
     /// A line through the points.
     Line,
-    /// A grey line, for a reference (the ball, E_corr).
+    /// A line through the points with a dot on each: a few discrete values (a study's
+    /// members), where a lone point would otherwise draw nothing.
+    Joined,
+    /// A dashed grey line, for a reference (the ball, E_corr).
     Reference,
-    /// A marker at each point (measured values).
+    /// A marker at each point (measured values), with its spread as an error bar; each
+    /// marker series of a figure has its own shape as well as its own colour, so points
+    /// that coincide stay apart.
     Markers,
+    /// A black ring around each point: points whose numbers carry a caveat.
+    Flagged,
 }
 
 /// One series of a line figure.
@@ -51,6 +56,8 @@ pub struct Series {
     pub name: String,
     /// The points, in drawing order.
     pub points: Vec<(f64, f64)>,
+    /// Each point's spread (half the error bar), 0 for none; as long as `points`.
+    pub spread: Vec<f64>,
     /// How it is drawn.
     pub style: Style,
 }
@@ -58,15 +65,39 @@ pub struct Series {
 impl Series {
     /// A series of `points` named `name`, drawn in `style`, its non-finite points left out.
     pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>, style: Style) -> Self {
-        let points = points
+        Self::measured(
+            name,
+            points.into_iter().map(|(x, y)| (x, y, None)).collect(),
+        )
+        .with_style(style)
+    }
+
+    /// Measured points `(x, y, spread)`, drawn as markers with error bars where a spread
+    /// is given; non-finite points are left out, and a non-finite spread counts as none.
+    pub fn measured(name: impl Into<String>, points: Vec<(f64, f64, Option<f64>)>) -> Self {
+        let (points, spread) = points
             .into_iter()
-            .filter(|(x, y)| x.is_finite() && y.is_finite())
-            .collect();
+            .filter(|(x, y, _)| x.is_finite() && y.is_finite())
+            .map(|(x, y, s)| ((x, y), s.filter(|s| s.is_finite()).map_or(0.0, f64::abs)))
+            .unzip();
         Self {
             name: name.into(),
             points,
-            style,
+            spread,
+            style: Style::Markers,
         }
+    }
+
+    fn with_style(self, style: Style) -> Self {
+        Self { style, ..self }
+    }
+
+    /// The points' extent with their error bars: `(x, low y, high y)`.
+    fn extent(&self) -> impl Iterator<Item = (f64, f64, f64)> + '_ {
+        self.points
+            .iter()
+            .zip(&self.spread)
+            .map(|(&(x, y), &s)| (x, y - s, y + s))
     }
 }
 
@@ -75,9 +106,9 @@ impl Series {
 pub struct LineFigure {
     /// The caption under the figure.
     pub title: String,
-    /// The horizontal axis, with its unit.
+    /// The horizontal axis in words, with its unit.
     pub x_label: String,
-    /// The vertical axis, with its unit.
+    /// The vertical axis in words, with its unit.
     pub y_label: String,
     /// The series; those without points are left out.
     pub series: Vec<Series>,
@@ -100,20 +131,58 @@ fn range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
     Some((low - spare, high + spare))
 }
 
-/// A tick's label: [`number`], with 0 for a value that is zero but for rounding (below a
-/// billionth of the axis's range, e.g. 5.6e-17 for the tick at 0).
-fn tick(value: f64, range: (f64, f64)) -> String {
-    if value.abs() < 1e-9 * (range.1 - range.0).abs() {
-        return "0".to_owned();
-    }
-    number(value)
+/// A linear axis whose key points are its [`Ticks`]: plotters' own numeric axis picks
+/// ticks that the labels' shared decimals cannot be matched to, and light lines between
+/// them that drown the data in print.
+#[derive(Debug, Clone)]
+struct Axis {
+    low: f64,
+    high: f64,
+    ticks: Ticks,
 }
+
+impl Axis {
+    fn of((low, high): (f64, f64)) -> Self {
+        Self {
+            low,
+            high,
+            ticks: Ticks::of(low, high),
+        }
+    }
+}
+
+impl Ranged for Axis {
+    type FormatOption = DefaultFormatting;
+    type ValueType = f64;
+
+    fn map(&self, value: &f64, limit: (i32, i32)) -> i32 {
+        let f = (value - self.low) / (self.high - self.low);
+        limit.0 + (f * f64::from(limit.1 - limit.0)).round() as i32
+    }
+
+    fn key_points<Hint: KeyPointHint>(&self, hint: Hint) -> Vec<f64> {
+        if hint.weight().allow_light_points() {
+            return Vec::new();
+        }
+        self.ticks.values.clone()
+    }
+
+    fn range(&self) -> Range<f64> {
+        self.low..self.high
+    }
+}
+
+/// The chart the series are drawn on.
+type Chart<'a> = ChartContext<'a, SVGBackend<'a>, Cartesian2d<Axis, Axis>>;
+type Drawn = Result<(), DrawingAreaErrorKind<std::io::Error>>;
 
 impl LineFigure {
     /// The figure as an SVG element, or `None` when it has no point to draw.
     pub fn svg(&self) -> Result<Option<String>, FigureError> {
-        let all = || self.series.iter().flat_map(|s| s.points.iter());
-        let (Some(x), Some(y)) = (range(all().map(|p| p.0)), range(all().map(|p| p.1))) else {
+        let all = || self.series.iter().flat_map(Series::extent);
+        let x = range(all().map(|p| p.0));
+        let y = range(all().flat_map(|p| [p.1, p.2]));
+        let (Some(x), Some(y)) = (x, y) else {
             return Ok(None);
         };
         let mut svg = String::new();
@@ -126,53 +195,52 @@ impl LineFigure {
 
     /// Draws the figure into `svg`; the error is the SVG backend's, whose own error is an
     /// [`std::io::Error`].
-    fn draw(
-        &self,
-        svg: &mut String,
-        x: (f64, f64),
-        y: (f64, f64),
-    ) -> Result<(), DrawingAreaErrorKind<std::io::Error>> {
+    fn draw(&self, svg: &mut String, x: (f64, f64), y: (f64, f64)) -> Drawn {
         let root = SVGBackend::with_string(svg, SIZE).into_drawing_area();
         root.fill(&WHITE)?;
+        let (x_axis, y_axis) = (Axis::of(x), Axis::of(y));
+        let (x_ticks, y_ticks) = (x_axis.ticks.clone(), y_axis.ticks.clone());
         let mut chart = ChartBuilder::on(&root)
             .margin(14)
             .x_label_area_size(44)
             .y_label_area_size(78)
-            .build_cartesian_2d(x.0..x.1, y.0..y.1)?;
+            .build_cartesian_2d(x_axis, y_axis)?;
         chart
             .configure_mesh()
             .x_desc(&self.x_label)
             .y_desc(&self.y_label)
-            .x_label_formatter(&|v| tick(*v, x))
-            .y_label_formatter(&|v| tick(*v, y))
+            .x_label_formatter(&|v| x_ticks.label(*v))
+            .y_label_formatter(&|v| y_ticks.label(*v))
+            .bold_line_style(GRID)
             .label_style(("sans-serif", 15))
             .axis_desc_style(("sans-serif", 16))
             .draw()?;
-        for (i, series) in self
+        let drawn: Vec<&Series> = self
             .series
             .iter()
             .filter(|s| !s.points.is_empty())
-            .enumerate()
-        {
-            let colour = COLOURS[i % COLOURS.len()];
-            let points = series.points.iter().copied();
-            let drawn = match series.style {
-                Style::Line => chart.draw_series(LineSeries::new(points, colour.stroke_width(2))),
-                Style::Reference => chart.draw_series(LineSeries::new(
-                    points,
-                    RGBColor(90, 90, 90).stroke_width(1),
-                )),
-                Style::Markers => {
-                    chart.draw_series(points.map(|p| Circle::new(p, 5, colour.stroke_width(2))))
+            .collect();
+        let coloured = drawn
+            .iter()
+            .filter(|s| matches!(s.style, Style::Line | Style::Joined | Style::Markers))
+            .count();
+        let mut colours = series_colours(coloured).into_iter();
+        let mut shapes = 0..;
+        for series in drawn {
+            match series.style {
+                Style::Line | Style::Joined | Style::Markers => {
+                    let (r, g, b) = colours.next().unwrap_or_default();
+                    let colour = RGBColor(r, g, b);
+                    match series.style {
+                        Style::Markers => {
+                            markers(&mut chart, series, colour, shapes.next().unwrap_or(0))?;
+                        }
+                        style => line(&mut chart, series, colour, style == Style::Joined)?,
+                    }
                 }
-            }?;
-            let legend = match series.style {
-                Style::Reference => RGBColor(90, 90, 90),
-                _ => colour,
-            };
-            drawn.label(&series.name).legend(move |(x, y)| {
-                Rectangle::new([(x, y - 4), (x + 14, y + 4)], legend.filled())
-            });
+                Style::Reference => reference(&mut chart, series)?,
+                Style::Flagged => flags(&mut chart, series)?,
+            }
         }
         chart
             .configure_series_labels()
@@ -183,6 +251,87 @@ impl LineFigure {
             .draw()?;
         root.present()
     }
+}
+
+/// A solid line, with a dot on each point when `dotted`; its legend sample a short
+/// stretch of it.
+fn line<'a>(chart: &mut Chart<'a>, series: &Series, colour: RGBColor, dotted: bool) -> Drawn {
+    let style = colour.stroke_width(2);
+    let drawn = chart.draw_series(LineSeries::new(series.points.iter().copied(), style))?;
+    if dotted {
+        drawn.label(&series.name).legend(move |(x, y)| {
+            EmptyElement::at((x, y))
+                + PathElement::new(vec![(0, 0), (18, 0)], style)
+                + Circle::new((9, 0), 3, colour.filled())
+        });
+        chart.draw_series(
+            series
+                .points
+                .iter()
+                .map(|&p| Circle::new(p, 3, colour.filled())),
+        )?;
+    } else {
+        drawn
+            .label(&series.name)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
+    }
+    Ok(())
+}
+
+/// A dashed grey line, its legend sample two dashes.
+fn reference<'a>(chart: &mut Chart<'a>, series: &Series) -> Drawn {
+    let style = GREY.stroke_width(1);
+    chart
+        .draw_series(DashedLineSeries::new(series.points.clone(), 6, 4, style))?
+        .label(&series.name)
+        .legend(move |(x, y)| {
+            EmptyElement::at((x, y))
+                + PathElement::new(vec![(0, 0), (7, 0)], style)
+                + PathElement::new(vec![(11, 0), (18, 0)], style)
+        });
+    Ok(())
+}
+
+/// Hollow markers of the `shape`th shape, over error bars where the points have a spread;
+/// the legend's sample is the marker.
+fn markers<'a>(chart: &mut Chart<'a>, series: &Series, colour: RGBColor, shape: usize) -> Drawn {
+    let style = colour.stroke_width(2);
+    let bars = series
+        .points
+        .iter()
+        .zip(&series.spread)
+        .filter(|(_, s)| **s > 0.0)
+        .map(|(&(x, y), &s)| {
+            ErrorBar::new_vertical(x, y - s, y, y + s, colour.stroke_width(1), 10)
+        });
+    chart.draw_series(bars)?;
+    let points = series.points.iter().copied();
+    let drawn = match shape % 4 {
+        0 => chart.draw_series(points.map(|p| Circle::new(p, 5, style)))?,
+        1 => chart.draw_series(
+            points.map(|p| EmptyElement::at(p) + Rectangle::new([(-4, -4), (4, 4)], style)),
+        )?,
+        2 => chart.draw_series(points.map(|p| TriangleMarker::new(p, 6, style)))?,
+        _ => chart.draw_series(points.map(|p| Cross::new(p, 5, style)))?,
+    };
+    let label = drawn.label(&series.name);
+    match shape % 4 {
+        0 => label.legend(move |(x, y)| Circle::new((x + 9, y), 5, style)),
+        1 => label.legend(move |(x, y)| Rectangle::new([(x + 5, y - 4), (x + 13, y + 4)], style)),
+        2 => label.legend(move |(x, y)| TriangleMarker::new((x + 9, y), 6, style)),
+        _ => label.legend(move |(x, y)| Cross::new((x + 9, y), 5, style)),
+    };
+    Ok(())
+}
+
+/// A black ring around each point, drawn over the series it flags.
+fn flags<'a>(chart: &mut Chart<'a>, series: &Series) -> Drawn {
+    let style = BLACK.stroke_width(2);
+    chart
+        .draw_series(series.points.iter().map(|&p| Circle::new(p, 9, style)))?
+        .label(&series.name)
+        .legend(move |(x, y)| Circle::new((x + 9, y), 7, style));
+    Ok(())
 }
 
 /// A figure element: the SVG and its caption, or the caption and why nothing is drawn.
@@ -197,141 +346,6 @@ pub fn figure(svg: Option<&str>, caption: &str, empty: &str) -> String {
             escape(caption),
             escape(empty)
         ),
-    }
-}
-
-/// One pressure map: cell centres and pressures `[iy][ix]`, MPa.
-#[derive(Debug, Clone, Copy)]
-pub struct Map<'a> {
-    /// The map's cycle.
-    pub cycle: u64,
-    /// Cell centres along the sliding direction, um.
-    pub x_um: &'a [f64],
-    /// Cell centres across the track, um.
-    pub y_um: &'a [f64],
-    /// Pressures, MPa.
-    pub pressure_mpa: &'a [Vec<f64>],
-}
-
-/// The viridis scale sampled at ten points (perceptually ordered, readable in grey).
-const VIRIDIS: [(u8, u8, u8); 10] = [
-    (68, 1, 84),
-    (72, 40, 120),
-    (62, 74, 137),
-    (49, 104, 142),
-    (38, 130, 142),
-    (31, 158, 137),
-    (53, 183, 121),
-    (109, 205, 89),
-    (180, 222, 44),
-    (253, 231, 37),
-];
-
-/// The colour of the fraction `f` of the scale, interpolated; white for no contact.
-fn colour(f: f64) -> String {
-    if f <= 0.0 {
-        return "#fff".to_owned();
-    }
-    let at = f.min(1.0) * (VIRIDIS.len() - 1) as f64;
-    let i = (at.floor() as usize).min(VIRIDIS.len() - 2);
-    let u = at - i as f64;
-    let (a, b) = (VIRIDIS[i], VIRIDIS[i + 1]);
-    let mix = |p: u8, q: u8| (f64::from(p) + (f64::from(q) - f64::from(p)) * u).round() as u8;
-    format!(
-        "#{:02x}{:02x}{:02x}",
-        mix(a.0, b.0),
-        mix(a.1, b.1),
-        mix(a.2, b.2)
-    )
-}
-
-/// The maps side by side at one length scale and one colour scale (0 to the largest
-/// pressure of all), as an SVG element, and the scales in words for its caption; `None`
-/// without a loaded cell.
-pub fn pressure_svg(maps: &[Map<'_>]) -> Option<(String, String)> {
-    let p_max = maps
-        .iter()
-        .flat_map(|m| m.pressure_mpa.iter().flatten())
-        .fold(0.0_f64, |a, &p| a.max(p));
-    let cells = maps.iter().map(|m| m.x_um.len()).max()?;
-    if p_max <= 0.0 || cells == 0 {
-        return None;
-    }
-    let (side, gap, top, bottom) = (300.0, 40.0, 30.0, 10.0);
-    let width = maps.len() as f64 * (side + gap) + gap;
-    let height = top + side + bottom;
-    let mut svg = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {width} {height}\" \
-         width=\"{width}\" height=\"{height}\" font-family=\"sans-serif\" font-size=\"14\">"
-    );
-    let extent = |v: &[f64]| v.last().zip(v.first()).map_or(0.0, |(l, f)| l - f);
-    let span = maps
-        .iter()
-        .map(|m| extent(m.x_um).max(extent(m.y_um)))
-        .fold(0.0_f64, f64::max)
-        .max(1e-9);
-    for (k, map) in maps.iter().enumerate() {
-        let left = gap + k as f64 * (side + gap);
-        draw_map(&mut svg, map, (left, top), side / span, p_max);
-        let _ = write!(
-            svg,
-            "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">cycle {}</text>",
-            left + side / 2.0,
-            top - 10.0,
-            map.cycle
-        );
-    }
-    svg.push_str("</svg>");
-    let scales = format!(
-        "x along the sliding direction, y across the track, {} um across each square; \
-         colour: the pressure from 0 (dark) to {} MPa (yellow), white where there is no \
-         contact",
-        number(span),
-        number(p_max)
-    );
-    Some((svg, scales))
-}
-
-/// One map's cells at `scale` px per um, its corner at `origin`.
-/// Cells per side a map is drawn with at most: its square is 300 px wide, so finer cells
-/// cannot be seen, and a 2048-cell map would write millions of rectangles (about 90 bytes
-/// each) into a report the service builds in memory.
-const MAX_DRAWN_CELLS: usize = 150;
-
-fn draw_map(svg: &mut String, map: &Map<'_>, origin: (f64, f64), scale: f64, p_max: f64) {
-    let cells = map.x_um.len().max(map.y_um.len());
-    let stride = cells.div_ceil(MAX_DRAWN_CELLS).max(1);
-    let step = |v: &[f64]| if v.len() > 1 { v[1] - v[0] } else { 1.0 };
-    let (dx, dy) = (
-        step(map.x_um) * scale * stride as f64,
-        step(map.y_um) * scale * stride as f64,
-    );
-    let (x0, y0) = (
-        map.x_um.first().copied().unwrap_or(0.0),
-        map.y_um.first().copied().unwrap_or(0.0),
-    );
-    let _ = write!(
-        svg,
-        "<rect x=\"{}\" y=\"{}\" width=\"300\" height=\"300\" fill=\"none\" stroke=\"#999\"/>",
-        origin.0, origin.1
-    );
-    for (iy, row) in map.pressure_mpa.iter().enumerate().step_by(stride) {
-        for (ix, &p) in row
-            .iter()
-            .enumerate()
-            .step_by(stride)
-            .filter(|(_, p)| **p > 0.0)
-        {
-            let x = origin.0 + (map.x_um[ix] - x0) * scale;
-            let y = origin.1 + (map.y_um[iy] - y0) * scale;
-            let _ = write!(
-                svg,
-                "<rect x=\"{x:.2}\" y=\"{y:.2}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"{}\"/>",
-                dx + 0.05,
-                dy + 0.05,
-                colour(p / p_max)
-            );
-        }
     }
 }
 
@@ -373,41 +387,103 @@ mod tests {
         assert!(empty.svg().expect("nothing to fail").is_none());
     }
 
-    #[test]
-    fn the_colour_scale_runs_from_no_contact_to_the_largest_pressure() {
-        assert_eq!(colour(0.0), "#fff");
-        assert_eq!(colour(1e-9), "#440154");
-        assert_eq!(colour(1.0), "#fde725");
-        let row = vec![0.0, 500.0, 1000.0];
-        let map = Map {
-            cycle: 1,
-            x_um: &[0.0, 10.0, 20.0],
-            y_um: &[0.0],
-            pressure_mpa: std::slice::from_ref(&row),
-        };
-        let (svg, scales) = pressure_svg(&[map]).expect("loaded");
-        assert_eq!(
-            svg.matches("<rect").count(),
-            3,
-            "a frame and two loaded cells"
-        );
-        assert!(scales.contains("1000 MPa"), "{scales}");
+    /// The distinct stroke colours of the figure's polylines (its series' lines), less the
+    /// legend box's black frame.
+    fn line_colours(svg: &str) -> Vec<String> {
+        let mut colours: Vec<String> = svg
+            .split("<polyline")
+            .skip(1)
+            .filter_map(|tag| {
+                let at = tag.find("stroke=\"")? + 8;
+                Some(tag[at..at + 7].to_owned())
+            })
+            .collect();
+        colours.retain(|c| c != "#000000");
+        colours.sort_unstable();
+        colours.dedup();
+        colours
     }
 
     #[test]
-    fn a_fine_map_is_drawn_with_at_most_the_cells_its_square_can_show() {
-        let n = 2048;
-        let axis: Vec<f64> = (0..n).map(|i| i as f64 * 0.125).collect();
-        let pressure = vec![vec![500.0; n]; n];
-        let map = Map {
-            cycle: 1,
-            x_um: &axis,
-            y_um: &axis,
-            pressure_mpa: &pressure,
+    fn twelve_series_are_drawn_in_twelve_colours() {
+        let series = (0..12)
+            .map(|k| {
+                let points = (0..5).map(|i| (f64::from(i), f64::from(i * k))).collect();
+                Series::new(format!("series {k}"), points, Style::Line)
+            })
+            .collect();
+        let figure = LineFigure {
+            title: "many".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            series,
         };
-        let (svg, _) = pressure_svg(&[map]).expect("drawn");
-        // 2048 cells at a stride of 14: 147 per side, plus the frame.
-        let rects = svg.matches("<rect").count();
-        assert_eq!(rects, 147 * 147 + 1);
+        let svg = figure.svg().expect("draws").expect("has points");
+        // Each series' line and its legend sample share a colour, none another's.
+        assert_eq!(line_colours(&svg).len(), 12, "{:?}", line_colours(&svg));
+    }
+
+    #[test]
+    fn a_spread_is_an_error_bar_inside_the_axes() {
+        let figure = LineFigure {
+            title: "volume".into(),
+            x_label: "cycles".into(),
+            y_label: "volume".into(),
+            series: vec![Series::measured(
+                "measured",
+                vec![
+                    (1.0, 1.0, Some(0.5)),
+                    (2.0, 2.0, None),
+                    (3.0, f64::NAN, Some(1.0)),
+                ],
+            )],
+        };
+        assert_eq!(figure.series[0].spread, [0.5, 0.0]);
+        let all: Vec<_> = figure.series[0].extent().collect();
+        assert_eq!(all, [(1.0, 0.5, 1.5), (2.0, 2.0, 2.0)]);
+        let svg = figure.svg().expect("draws").expect("has points");
+        // One bar: its stem and two caps, in the series' colour, as lines.
+        let bars = svg.matches("<line").count();
+        let grid = svg
+            .matches(&format!(
+                "stroke=\"#{:02X}{:02X}{:02X}\"",
+                GRID.0, GRID.1, GRID.2
+            ))
+            .count();
+        assert_eq!(bars - grid, 3, "{svg}");
+    }
+
+    #[test]
+    fn the_grid_has_a_line_at_each_tick_and_none_between() {
+        let figure = LineFigure {
+            title: "depth".into(),
+            x_label: "cycles".into(),
+            y_label: "depth (um)".into(),
+            series: vec![Series::new(
+                "depth",
+                vec![(0.0, 0.0), (3600.0, 3.4)],
+                Style::Line,
+            )],
+        };
+        let svg = figure.svg().expect("draws").expect("has points");
+        let (x, y) = (
+            range([0.0, 3600.0].into_iter()),
+            range([0.0, 3.4].into_iter()),
+        );
+        let ticks = |r: Option<(f64, f64)>| {
+            let (low, high) = r.expect("a range");
+            Ticks::of(low, high).values.len()
+        };
+        let grid = svg
+            .matches(&format!(
+                "stroke=\"#{:02X}{:02X}{:02X}\"",
+                GRID.0, GRID.1, GRID.2
+            ))
+            .count();
+        assert_eq!(grid, ticks(x) + ticks(y));
+        // plotters writes each label on a line of its own inside its <text>.
+        for label in ["0.0", "0.5", "3.0", "3000"] {
+            assert!(svg.contains(&format!("\n{label}\n")), "{label}");
+        }
     }
 }

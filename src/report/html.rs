@@ -21,6 +21,8 @@ table { width: 100%; max-width: 100%; border-collapse: collapse; table-layout: f
 th, td { border: 1px solid #bbb; padding: 0.8mm 1.5mm; text-align: left; vertical-align: top; overflow-wrap: anywhere; word-break: break-word; }
 th { background: #eee; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; }
+table.dense { font-size: 7.5pt; }
+table.dense th, table.dense td { padding: 0.5mm 0.8mm; }
 tr { break-inside: avoid; page-break-inside: avoid; }
 thead { display: table-header-group; }
 figure { margin: 3mm 0; break-inside: avoid; page-break-inside: avoid; }
@@ -92,9 +94,17 @@ pub fn table(caption: &str, header: &[&str], rows: &[Vec<Cell>]) -> String {
     sized_table(caption, header, rows, &[])
 }
 
+/// Columns past which a table is set dense: at 9 pt, ten columns leave 18 mm each, and a
+/// number such as "4.444e-5" no longer fits on one line of a cell.
+const DENSE_AFTER_COLUMNS: usize = 8;
+
 /// A [`table`] whose columns take `widths`, percent of the page's width (equal when empty).
 pub fn sized_table(caption: &str, header: &[&str], rows: &[Vec<Cell>], widths: &[u8]) -> String {
-    let mut out = String::from("<table>");
+    let mut out = String::from(if header.len() > DENSE_AFTER_COLUMNS {
+        "<table class=\"dense\">"
+    } else {
+        "<table>"
+    });
     if !caption.is_empty() {
         let _ = write!(
             out,

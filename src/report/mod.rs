@@ -7,11 +7,14 @@ mod compare;
 mod figure;
 mod html;
 mod methods;
+mod palette;
+mod pressure_map;
 mod residuals;
 mod run;
 mod run_figures;
 mod scene;
 mod study;
+mod ticks;
 
 pub use compare::{Labelled, comparison_report};
 pub use figure::FigureError;

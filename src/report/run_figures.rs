@@ -5,7 +5,8 @@
 use crate::scene::PAPER_TABLE3;
 use crate::simulation::SimulationResult;
 
-use super::figure::{FigureError, LineFigure, Map, Series, Style, figure, pressure_svg};
+use super::figure::{FigureError, LineFigure, Series, Style, figure};
+use super::pressure_map::{Map, pressure_svg};
 use super::residuals::{Measured, column};
 use super::scene::flatten;
 
@@ -118,23 +119,19 @@ fn volume(result: &SimulationResult, measured: &Measured) -> LineFigure {
                 (
                     r.time_s as f64 * cycles_per_s(result),
                     r.wear_volume_mm3 * 1e3,
+                    Some(r.spread_mm3 * 1e3),
                 )
             })
-            .filter(|(n, _)| *n <= last);
-        series.push(Series::new(
-            "Table 3, measured",
+            .filter(|(n, _, _)| *n <= last);
+        series.push(Series::measured(
+            "Table 3, measured (mean and spread)",
             points.collect(),
-            Style::Markers,
         ));
     }
     let attached = measured_volumes(result, measured)
         .into_iter()
-        .map(|(n, v, _)| (n, v * 1e3));
-    series.push(Series::new(
-        "attached measurement",
-        attached.collect(),
-        Style::Markers,
-    ));
+        .map(|(n, v, spread)| (n, v * 1e3, spread.map(|s| s * 1e3)));
+    series.push(Series::measured("attached measurement", attached.collect()));
     LineFigure {
         title: "Wear volume against cycles".into(),
         x_label: CYCLES.into(),

@@ -9,7 +9,7 @@ use crate::simulation::Summary;
 use crate::study::{MemberRow, StudySummary};
 
 use super::figure::{FigureError, LineFigure, Series, Style, figure};
-use super::html::{Cell, heading, page, paragraph, table};
+use super::html::{Cell, heading, page, paragraph, sized_table};
 use super::methods::{PAPER, build_table, report_provenance};
 
 /// A summary quantity: its name, its unit and where in a summary it is.
@@ -69,16 +69,25 @@ fn members_table(study: &StudySummary) -> String {
         .iter()
         .map(|(name, unit, _)| format!("{name} ({unit})"))
         .collect();
+    let axes: Vec<String> = study.axes.iter().map(|a| axis_words(a)).collect();
     let mut header: Vec<&str> = vec!["member"];
-    header.extend(study.axes.iter().map(String::as_str));
+    header.extend(axes.iter().map(String::as_str));
     header.extend(units.iter().map(String::as_str));
     header.push("error, or the run's warnings");
-    table(
+    // The warnings column takes a quarter of the page: a warning is a sentence, and at an
+    // equal share it wraps to a word per line.
+    let numbers = header.len() - 2;
+    let each = u8::try_from(67 / numbers.max(1)).unwrap_or(1);
+    let mut widths = vec![8];
+    widths.extend(std::iter::repeat_n(each, numbers));
+    widths.push(25);
+    sized_table(
         "One row per member; a member whose run warned (a potential capped at E_corr, one \
          outside the Tafel domain, ...) says so in the last column, and its points in the \
          figures carry the same caveat",
         &header,
         &rows,
+        &widths,
     )
 }
 
@@ -112,7 +121,7 @@ fn others(study: &StudySummary, member: &MemberRow, axis: &str) -> String {
         .axes
         .iter()
         .filter(|a| a.as_str() != axis)
-        .map(|a| format!("{a} = {}", plain(member.values.get(a))))
+        .map(|a| format!("{} = {}", axis_words(a), plain(member.values.get(a))))
         .collect();
     if parts.is_empty() {
         "members".to_owned()
@@ -133,16 +142,27 @@ fn figures(study: &StudySummary) -> Result<String, FigureError> {
             continue;
         };
         for (name, unit, of) in QUANTITIES {
-            let series = groups
+            let mut series: Vec<Series> = groups
                 .iter()
                 .map(|(label, points)| {
                     let points = points
                         .iter()
                         .filter_map(|(x, s)| Some((*x, of(s)?)))
                         .collect();
-                    Series::new(label.clone(), points, Style::Line)
+                    Series::new(label.clone(), points, Style::Joined)
                 })
                 .collect();
+            let warned = groups
+                .values()
+                .flatten()
+                .filter(|(_, s)| !s.warnings.is_empty())
+                .filter_map(|(x, s)| Some((*x, of(s)?)))
+                .collect();
+            series.push(Series::new(
+                "the run warned: see the table",
+                warned,
+                Style::Flagged,
+            ));
             let words = axis_words(axis);
             let f = LineFigure {
                 title: format!("{name} against {words}"),

@@ -60,6 +60,50 @@ const inkInRightMargin = (page, png, fraction) => page.evaluate(async ([data, f]
   return ink;
 }, [png.toString("base64"), fraction]);
 
+// What makes each figure readable, read from the SVGs as the print page lays them out:
+// per figure, the tick labels of each axis (labels sharing a baseline, or a right edge)
+// with their decimals, the distinct colours of its series' lines, the grid lines and the
+// tick labels counted, and the texts of the pressure maps' axes and colour bar.
+const figureFacts = (page) => page.evaluate(() => [...document.querySelectorAll("figure svg")].map((svg) => {
+  const numeric = [...svg.querySelectorAll("text")]
+    .map((t) => ({ text: t.textContent.trim(), box: t.getBoundingClientRect() }))
+    .filter((t) => /^-?\d+(\.\d+)?(e-?\d+)?$/.test(t.text));
+  // An axis's labels share their top (the x axis's) or their right edge (the y axis's).
+  const axes = {};
+  for (const t of numeric) {
+    for (const key of [`top ${Math.round(t.box.top)}`, `right ${Math.round(t.box.right)}`]) (axes[key] ||= []).push(t.text);
+  }
+  const strokes = [...svg.querySelectorAll("polyline")].map((l) => (l.getAttribute("stroke") || "").toUpperCase())
+    .filter((c) => c && c !== "#000000" && c !== "#5A5A5A");
+  return {
+    labels: numeric.map((t) => t.text),
+    baselines: Object.values(axes).filter((g) => g.length > 1),
+    colours: new Set(strokes).size,
+    lines: svg.querySelectorAll("polyline").length,
+    grid: svg.querySelectorAll('line[stroke="#E1E1E1"]').length,
+    words: [...svg.querySelectorAll("text")].map((t) => t.textContent.trim()),
+  };
+}));
+
+const decimals = (label) => (/\.(\d+)/.exec(label.split("e")[0]) || ["", ""])[1].length;
+
+function assertReadable(facts) {
+  for (const [i, f] of facts.entries()) {
+    for (const row of f.baselines) {
+      const widths = new Set(row.map(decimals));
+      assert.equal(widths.size, 1, `figure ${i + 1}: the ticks ${row.join(", ")} differ in their decimals`);
+    }
+    assert.ok(f.grid <= f.labels.length, `figure ${i + 1}: ${f.grid} grid lines for ${f.labels.length} tick labels (a minor grid)`);
+  }
+  const profiles = facts.find((f) => f.words.some((w) => w.startsWith("-D at cycle")));
+  const cycles = profiles.words.filter((w) => w.startsWith("-D at cycle")).length;
+  assert.ok(cycles > 6, `the profiles figure has ${cycles} profiles: too few to test the palette`);
+  assert.equal(profiles.colours, cycles, `${cycles} profiles drawn in ${profiles.colours} colours`);
+  const maps = facts.find((f) => f.words.includes("pressure (MPa)"));
+  assert.ok(maps, "the pressure maps have no colour bar");
+  for (const title of ["x along the sliding (um)", "y across the track (um)"]) assert.ok(maps.words.includes(title), `the maps lack "${title}"`);
+}
+
 async function printed(page, html, dir, paper) {
   const printable = (paper.widthMm - 2 * MARGIN_MM) * PX_PER_MM;
   await page.setViewportSize({ width: Math.floor(printable), height: 1000 });
@@ -73,6 +117,9 @@ async function printed(page, html, dir, paper) {
   const pngs = fs.readdirSync(dir).filter((f) => f.startsWith(`${paper.format}-`) && f.endsWith(".png")).sort();
   assert.equal(pngs.length, pages, `${paper.format}: ${pngs.length} PNGs of ${pages} pages`);
   const text = words(execFileSync("pdftotext", [pdf, "-"], { encoding: "utf8" }));
+  for (const title of ["pressure (MPa)", "x along the sliding (um)", "Table 3, measured (mean and spread)"]) {
+    assert.ok(text.includes(title), `${paper.format}: "${title}" is not in the PDF's text`);
+  }
   for (const caption of captions(html)) {
     assert.ok(text.includes(words(caption).slice(0, 40)), `${paper.format}: the figure "${caption}" is not in the PDF`);
   }
@@ -102,6 +149,7 @@ export async function report(page) {
     await print.route("**/*", (route) => { fetched.push(route.request().url()); return route.abort(); });
     await print.setContent(html, { waitUntil: "load" });
     await print.emulateMedia({ media: "print" });
+    assertReadable(await figureFacts(print));
     for (const paper of PAPERS) await printed(print, html, dir, paper);
     assert.deepEqual(fetched, [], "the report fetched something");
   } finally {
