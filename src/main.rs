@@ -49,8 +49,10 @@ Examples:
   tribosim report quick.json --wear-volume docs/calibration/table3_wear.csv -o report.html
   tribosim study scenes/study-load-speed.json -o study.json
 
-Each verb's --help has an example. The guides are the docs/ folder of tribosim's source \
-(README.md lists them); the HTTP API is described at /api/v1/openapi.yaml of a running server."
+Each verb's --help has an example and names its guide. A running server serves the guides \
+at http://127.0.0.1:8080/docs/<name>: scene.md, result.md, study.md, report.md, calibration.md, \
+accuracy.md, operations.md and the others of the docs/ folder of tribosim's source; the HTTP \
+API is described at http://127.0.0.1:8080/api/v1/openapi.yaml."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -95,14 +97,16 @@ enum Command {
     /// Serve the HTTP API and the web page (the default).
     #[command(
         after_help = "Example:\n  tribosim serve --data-dir data --workers 2\n  \
-        (then open http://127.0.0.1:8080; docs/operations.md of the source explains the limits)"
+        (then open http://127.0.0.1:8080; the limits: http://127.0.0.1:8080/docs/operations.md)"
     )]
     Serve(tribosim::service::ServeArgs),
     /// Run one scene offline and write the result JSON.
     #[command(
         after_help = "Examples:\n  tribosim run scenes/quick.json -o quick.json\n  \
         echo '{\"preset\": \"dalmau2018-316l\", \"overrides\": {\"test\": {\"cycles\": 60}}}' \
-        | tribosim run - -o sixty.json"
+        | tribosim run - -o sixty.json\n\
+        The scene's fields: http://127.0.0.1:8080/docs/scene.md; the result's: \
+        http://127.0.0.1:8080/docs/result.md (on a running server)"
     )]
     Run {
         /// The scene (JSON; may be {"preset": ..., "overrides": ...}); `-` reads standard
@@ -116,7 +120,10 @@ enum Command {
         surface: SurfaceArgs,
     },
     /// Solve the first cycle's contact alone and print it as JSON.
-    #[command(after_help = "Example:\n  tribosim contact scenes/quick.json > contact.json")]
+    #[command(
+        after_help = "Example:\n  tribosim contact scenes/quick.json > contact.json\n\
+        The scene's fields: http://127.0.0.1:8080/docs/scene.md (on a running server)"
+    )]
     Contact {
         /// The scene (JSON); `-` reads standard input.
         scene: PathBuf,
@@ -126,7 +133,7 @@ enum Command {
     /// Print the built-in scenes as JSON.
     #[command(after_help = "Example:\n  tribosim presets > presets.json")]
     Presets,
-    /// Write a printable HTML report (`docs/report.md`): of one result, of several results
+    /// Write a printable HTML report (guide: /docs/report.md of a running server): of one result, of several results
     /// compared, or of a study's summary.
     #[command(after_help = "Examples:\n  \
         tribosim report quick.json --wear-volume docs/calibration/table3_wear.csv -o report.html\n  \
@@ -156,7 +163,8 @@ enum Command {
         output: Option<PathBuf>,
     },
     /// Fit the model's parameters to a measurement table (CSV or JSON, units in the column
-    /// names) and write the fit, with the scene filled in, as JSON.
+    /// names) and write the fit, with the scene filled in, as JSON (guide:
+    /// /docs/calibration.md of a running server).
     #[command(after_help = "Examples:\n  \
         tribosim calibrate hardness docs/calibration/table3_hardness.csv -o hardness.json\n  \
         tribosim calibrate archard docs/calibration/table3_wear.csv --regime-change auto")]
@@ -202,8 +210,9 @@ enum Command {
         #[arg(long, value_name = "CYCLE|auto")]
         regime_change: Option<ChangeCycle>,
     },
-    /// Run a study (a base scene and axes, `docs/study.md`) and write its summary JSON; or
-    /// write it as a Slurm job array (`--slurm DIR`) and `collect` it (`docs/cluster.md`).
+    /// Run a study (a base scene and axes; guide: /docs/study.md of a running server) and
+    /// write its summary JSON; or write it as a Slurm job array (`--slurm DIR`) and `collect`
+    /// it (/docs/cluster.md).
     #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
     #[command(after_help = "Examples:\n  \
         tribosim study scenes/study-load-speed.json -o study.json --csv study.csv\n  \
@@ -230,7 +239,7 @@ enum Command {
         #[command(flatten)]
         slurm: SlurmCli,
     },
-    /// Print the speed-against-error tables.
+    /// Print the speed-against-error tables (guide: /docs/accuracy.md of a running server).
     #[command(after_help = "Example:\n  tribosim bench contact --json > contact.jsonl")]
     Bench {
         /// Which tables.

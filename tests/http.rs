@@ -501,6 +501,12 @@ async fn the_page_is_served_from_any_directory_and_static_dir_overrides_it() {
             .any(|(path, _)| path == "vendor/uplot/uPlot.iife.min.js")
     );
     no_page_file(&client, built_in.url("/static/js/nope.js")).await;
+    // The guides the command line's help points at, as docs/ has them.
+    let guide = page_file(&client, built_in.url("/docs/scene.md"), "text/markdown").await;
+    let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
+    assert!(guide == std::fs::read(docs.join("scene.md")).expect("docs/scene.md"));
+    no_page_file(&client, built_in.url("/docs/nope.md")).await;
+    no_page_file(&client, built_in.url("/docs/..%2FREADME.md")).await;
     drop(built_in);
 
     let draft = elsewhere.path().join("draft");

@@ -78,7 +78,7 @@ const INDEX: &str = "index.html";
 /// a page edited under `--static-dir` shows on reload. The cost is every file again on each
 /// load: about 70 kB gzip-compressed for the page, its styles, modules and uPlot (`gzip -c`
 /// of each file).
-const CACHE_CONTROL: &str = "no-cache";
+pub(super) const CACHE_CONTROL: &str = "no-cache";
 
 /// The page's routes: the page itself and its files.
 pub(crate) fn endpoints() -> Vec<Endpoint<AppState>> {

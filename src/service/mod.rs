@@ -28,6 +28,7 @@ mod blocking;
 mod budget;
 mod calibrations;
 mod cursor;
+mod docs;
 mod error;
 mod extract;
 mod files;

@@ -19,7 +19,7 @@ use super::error::ApiError;
 use super::origin::{self, Guard};
 use super::route::{Endpoint, Route};
 use super::state::AppState;
-use super::{assets, calibrations, jobs, measurements, meta, reports, studies, surfaces};
+use super::{assets, calibrations, docs, jobs, measurements, meta, reports, studies, surfaces};
 
 /// Largest request body accepted: a scene is a few kilobytes, a measured table some tens
 /// (a profilometer trace of a few thousand points). A height map's route takes more.
@@ -34,6 +34,7 @@ pub const MAX_URI_BYTES: usize = 8 * 1024;
 fn endpoints() -> Vec<Endpoint<AppState>> {
     [
         assets::endpoints(),
+        docs::endpoints(),
         meta::endpoints(),
         jobs::endpoints(),
         measurements::endpoints(),
