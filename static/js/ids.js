@@ -99,6 +99,7 @@ export const MEASURE = Object.freeze({
   text: "measure-text",
   attach: "measure-attach",
   errors: "measure-errors",
+  read: "measure-read",
   list: "measure-list",
 });
 

@@ -20,7 +20,14 @@ export function forget() {
   jobId = null;
   tables = null;
   $(MEASURE.box).hidden = true;
+  $(MEASURE.read).textContent = "";
 }
+
+// How the server read a table's headers under the documented names, in words; "" when
+// every header was a documented name already.
+const readAs = (renamed) => (renamed && renamed.length
+  ? `Read ${renamed.map((r) => `“${r.header}” as ${r.column}`).join(", ")}.`
+  : "");
 
 // The longest column of a table.
 const rowCount = (table) => Math.max(0, ...Object.values(table).map((c) => (Array.isArray(c) ? c.length : 0)));
@@ -53,6 +60,7 @@ async function attach(event) {
   const file = $(MEASURE.file).files[0];
   const text = file ? await file.text() : $(MEASURE.text).value;
   $(MEASURE.errors).textContent = "";
+  $(MEASURE.read).textContent = "";
   if (!text.trim()) { $(MEASURE.errors).textContent = "Choose a CSV file or paste a table first."; return; }
   const json = /^\s*[[{]/.test(text);
   const r = await api(`/api/v1/jobs/${id}/measurements/${kind}`, {
@@ -64,6 +72,7 @@ async function attach(event) {
   }
   $(MEASURE.file).value = "";
   $(MEASURE.text).value = "";
+  $(MEASURE.read).textContent = readAs(r.body.renamed);
   await load(id);
 }
 

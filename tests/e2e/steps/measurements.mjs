@@ -24,9 +24,16 @@ export async function measurements(page) {
   await attachedOn(page, RUN_PLOT.volume, 3);
   await attach("profile", "y_mm,depth_um\n-0.1,0.4\n0,3.1\n0.1,0.4\n", false);
   await attachedOn(page, RUN_PLOT.profile, 3);
-  await attach("ocp", "time_s,potential_v\n100,-0.30\n1000,-0.35\n", false);
+  assert.equal(await page.textContent(sel(MEASURE.read)), "", "documented names need no note");
+  // A potentiostat's export: its headers with units in brackets, read under the documented
+  // names, and the page says how.
+  await attach("ocp", "Time (s)\tEwe [V]\n100\t-0.30\n1000\t-0.35\n", false);
   await attachedOn(page, RUN_PLOT.potential, 2);
   assert.equal(await page.textContent(sel(MEASURE.errors)), "");
+  const read = await page.textContent(sel(MEASURE.read));
+  console.log(`   ${read}`);
+  assert.match(read, /“Time \(s\)” as time_s/);
+  assert.match(read, /as potential_v/);
   const figures = [RUN_PLOT.volume, RUN_PLOT.profile, RUN_PLOT.potential];
   const drawn = await page.evaluate((ids) => ids.map((id) => {
     const u = e2e.plots.chart(id);
