@@ -23,7 +23,7 @@ pub use super::threads::ThreadRow;
 use crate::contact::{
     ContactProblem, DcFft, Grid, Kernel, Preconditioning, SolverOptions, coarse_start, solve,
 };
-use crate::scene::{DEFAULT_TOLERANCE, Scene};
+use crate::scene::{DEFAULT_TOLERANCE, Scene, Tolerance};
 use crate::simulation::{Plan, RunOptions, Setup, SimulationError, SimulationResult, run_setup};
 
 /// The scene default's tolerance before it was set by what the error needs.
@@ -187,7 +187,7 @@ fn warm_run(
     (tolerance, preconditioning): (f64, Preconditioning),
 ) -> Result<SimulationResult, BenchError> {
     let mut scene = Scene::default();
-    scene.numerics.tolerance = tolerance;
+    scene.numerics.tolerance = Tolerance::Relative(tolerance);
     let plan = Plan::new(scene).map_err(SimulationError::from)?;
     let mut setup = Setup::new(&plan, &RunOptions::default())?;
     setup.options.preconditioning = preconditioning;

@@ -10,7 +10,8 @@ use serde::Serialize;
 use crate::contact::Grid;
 use crate::scene::PAPER_TABLE3;
 use crate::scene::{
-    CycleStep, DALMAU2018_316L, DomainSize, GridSize, Scene, TestConditions, dalmau2018_316l,
+    CycleStep, DALMAU2018_316L, DomainSize, GridSize, Scene, TestConditions, Tolerance,
+    dalmau2018_316l,
 };
 use crate::simulation::{
     MAX_STEP, Plan, RunOptions, STEP_CHANGE_BOUND, Setup, SimulationError, SimulationResult, run,
@@ -272,7 +273,7 @@ fn tolerance_rows() -> Result<Vec<WearRow>, SimulationError> {
         .map(|t| {
             simulate_with(|s| {
                 s.numerics.grid = GridSize::Cells(QUICK_GRID);
-                s.numerics.tolerance = t;
+                s.numerics.tolerance = Tolerance::Relative(t);
             })
             .map(|r| (t, r))
         })

@@ -1,5 +1,6 @@
 //! The settings that take `"auto"` or a number (`numerics.grid`, `numerics.domain_um`,
-//! `numerics.cycle_step`, `numerics.threads`) and their one JSON shape.
+//! `numerics.tolerance`, `numerics.cycle_step`, `numerics.threads`) and their one JSON
+//! shape.
 
 use serde::de::{DeserializeOwned, Error as _};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -23,6 +24,16 @@ pub enum DomainSize {
     Auto,
     /// This many micrometres per side.
     Micrometres(f64),
+}
+
+/// The contact solves' relative residual: `"auto"` or a number.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(from = "AutoOr<f64>", into = "AutoOr<f64>")]
+pub enum Tolerance {
+    /// Chosen by the disc: smooth or rough (`Numerics::solve_tolerance`).
+    Auto,
+    /// This relative residual.
+    Relative(f64),
 }
 
 /// Which cycles are solved: `1` (every one) or `"auto"`.
@@ -116,6 +127,24 @@ impl From<SolverThreads> for AutoOr<usize> {
     }
 }
 
+impl From<AutoOr<f64>> for Tolerance {
+    fn from(value: AutoOr<f64>) -> Self {
+        match value {
+            AutoOr::Auto => Self::Auto,
+            AutoOr::Value(relative) => Self::Relative(relative),
+        }
+    }
+}
+
+impl From<Tolerance> for AutoOr<f64> {
+    fn from(value: Tolerance) -> Self {
+        match value {
+            Tolerance::Auto => Self::Auto,
+            Tolerance::Relative(relative) => Self::Value(relative),
+        }
+    }
+}
+
 impl From<AutoOr<f64>> for DomainSize {
     fn from(value: AutoOr<f64>) -> Self {
         match value {
@@ -160,5 +189,30 @@ impl From<CycleStep> for AutoOr<u64> {
             CycleStep::Auto => Self::Auto,
             CycleStep::EveryCycle => Self::Value(1),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Tolerance;
+    use crate::scene::{DEFAULT_TOLERANCE, Numerics};
+
+    #[test]
+    fn an_auto_tolerance_is_the_smooth_or_the_rough_discs_and_a_number_is_kept() {
+        let auto: Numerics = serde_json::from_str(r#"{"tolerance": "auto"}"#).expect("auto");
+        assert_eq!(auto.tolerance, Tolerance::Auto);
+        assert_eq!(auto.solve_tolerance(false), DEFAULT_TOLERANCE);
+        assert_eq!(auto.solve_tolerance(true), 1e-5);
+        assert_eq!(Numerics::default().tolerance, Tolerance::Auto);
+        let given: Numerics = serde_json::from_str(r#"{"tolerance": 1e-7}"#).expect("a number");
+        assert_eq!(given.solve_tolerance(true), 1e-7);
+        assert_eq!(
+            serde_json::to_value(given).expect("JSON")["tolerance"],
+            serde_json::json!(1e-7)
+        );
+        assert_eq!(
+            serde_json::to_value(auto).expect("JSON")["tolerance"],
+            serde_json::json!("auto")
+        );
     }
 }

@@ -29,6 +29,8 @@ pub enum Range {
     AutoOrWhole(u64, u64),
     /// `"auto"` or a number > 0 and <= the bound.
     AutoOrUpTo(f64),
+    /// `"auto"` or a number in `[lo, hi]`.
+    AutoOrClosed(f64, f64),
     /// `"auto"` or 1.
     AutoOrOne,
     /// One of these names.
@@ -48,7 +50,9 @@ impl Range {
         match self {
             Self::Finite => value.is_finite(),
             Self::Positive => value > 0.0 && value.is_finite(),
-            Self::Closed(lo, hi) => (lo..=hi).contains(&value) && value.is_finite(),
+            Self::Closed(lo, hi) | Self::AutoOrClosed(lo, hi) => {
+                (lo..=hi).contains(&value) && value.is_finite()
+            }
             Self::AtLeast(lo) => value >= lo && value.is_finite(),
             Self::Open(lo, hi) => value > lo && value < hi,
             Self::AutoOrUpTo(hi) => value > 0.0 && value <= hi,
@@ -106,6 +110,7 @@ impl Range {
             Self::Whole(lo, hi) => format!("a whole number{of} in {lo}..={hi}"),
             Self::AutoOrWhole(lo, hi) => format!("\"auto\" or a whole number{of} in {lo}..={hi}"),
             Self::AutoOrUpTo(hi) => format!("\"auto\" or > 0{u} and <= {}{u}", num(hi)),
+            Self::AutoOrClosed(lo, hi) => format!("\"auto\" or in [{}, {}]{u}", num(lo), num(hi)),
             Self::AutoOrOne => {
                 "1 (every cycle solved) or \"auto\" (steps chosen under an error bound)".to_owned()
             }

@@ -397,10 +397,11 @@ pub(super) const DOMAIN: Field = Field {
 pub(super) const TOLERANCE: Field = Field {
     path: "numerics.tolerance",
     unit: "",
-    range: Range::Closed(1e-10, 1e-2),
+    range: Range::AutoOrClosed(1e-10, 1e-2),
     why: "below 1e-10 the residual's round-off floor stalls long runs; above 1e-2 the \
           pressures are too rough to wear with",
-    meaning: "Relative residual at which the contact solver stops.",
+    meaning: "Relative residual at which the contact solver stops; `auto` is 1e-6 on a \
+              smooth disc and 1e-5 on a rough one (`docs/accuracy.md`).",
     feeds: "the bounded solve of eqs. 10-12",
 };
 

@@ -35,7 +35,7 @@ use crate::hardness::{HardnessError, HardnessLaw};
 use crate::wear::WearLaw;
 
 pub use crate::wear::ArchardRegimeChange;
-pub use auto_or::{CycleStep, DomainSize, FixedStrideError, GridSize, SolverThreads};
+pub use auto_or::{CycleStep, DomainSize, FixedStrideError, GridSize, SolverThreads, Tolerance};
 pub use corrosion::{
     AnodicArea, Control, Corrosion, GalvanicCell, PAPER_CORROSION_POTENTIAL_V,
     PAPER_REPASSIVATION_TIME_S, SPOT_REPASSIVATION_TIME_S, Spots, TAFEL_OVERPOTENTIAL_RANGE_V,

@@ -20,7 +20,7 @@ use super::format::num;
 use super::surface::SurfaceKind;
 use super::{
     Control, Corrosion, DomainSize, FieldError, GridSize, MAX_RECORD_CYCLES, RecordCycles, Scene,
-    SolverThreads,
+    SolverThreads, Tolerance,
 };
 use crate::text::TextError;
 
@@ -270,7 +270,9 @@ fn check_numerics(c: &mut Checks, scene: &Scene) {
     if let DomainSize::Micrometres(um) = numerics.domain_um {
         c.number(&DOMAIN, um);
     }
-    c.number(&TOLERANCE, numerics.tolerance);
+    if let Tolerance::Relative(relative) = numerics.tolerance {
+        c.number(&TOLERANCE, relative);
+    }
     c.number(&CYCLE_STEP_BOUND, numerics.cycle_step_bound);
     if let SolverThreads::Count(threads) = numerics.threads {
         c.whole(&THREADS, threads as u64);
@@ -473,7 +475,7 @@ mod tests {
         scene.test.load_n = f64::INFINITY;
         scene.ball.poisson_ratio = f64::NAN;
         scene.test.friction_coefficient = f64::NAN;
-        scene.numerics.tolerance = f64::NEG_INFINITY;
+        scene.numerics.tolerance = Tolerance::Relative(f64::NEG_INFINITY);
         scene.corrosion = Some(Corrosion {
             tafel_a_c_v: f64::NAN,
             ..Corrosion::default()
@@ -498,7 +500,7 @@ mod tests {
         scene.test.friction_coefficient = 2.0;
         scene.test.cycles = MAX_CYCLES;
         scene.numerics.grid = GridSize::Cells(2048);
-        scene.numerics.tolerance = 1e-10;
+        scene.numerics.tolerance = Tolerance::Relative(1e-10);
         scene.numerics.cycle_step_bound = 0.1;
         scene.numerics.domain_um = DomainSize::Micrometres(100_000.0);
         scene.numerics.threads = SolverThreads::Count(64);
@@ -508,7 +510,7 @@ mod tests {
         scene.test.friction_coefficient = 2.01;
         scene.test.cycles = MAX_CYCLES + 1;
         scene.numerics.grid = GridSize::Cells(7);
-        scene.numerics.tolerance = 0.99e-10;
+        scene.numerics.tolerance = Tolerance::Relative(0.99e-10);
         scene.numerics.cycle_step_bound = 0.11;
         scene.numerics.domain_um = DomainSize::Micrometres(0.0);
         scene.numerics.threads = SolverThreads::Count(0);

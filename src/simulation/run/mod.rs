@@ -25,7 +25,7 @@ use crate::contact::{
 use crate::corrosion::ContactGeometry;
 use crate::corrosion::spots::SpotRows;
 use crate::hardness::pass_strain;
-use crate::scene::{DomainSize, Spots};
+use crate::scene::{DomainSize, Spots, Tolerance};
 use crate::surface::count_islands;
 use crate::wear::Groove;
 
@@ -543,6 +543,13 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             numerics.cycle_step_bound * 100.0
         );
         if setup.surface.is_some() {
+            if numerics.tolerance == Tolerance::Auto {
+                stepping.push_str(&format!(
+                    "; a rough disc's contacts solved to {:.0e} (`numerics.tolerance: auto`; \
+                     `docs/accuracy.md`, the default by speed against error)",
+                    numerics.solve_tolerance(true)
+                ));
+            }
             stepping.push_str(
                 "; each solve includes the wear of the last step's passes (the implicit update: \
                  on a rough disc the paper's explicit one oscillates at the scale of the cells, \
