@@ -201,11 +201,13 @@ mod tests {
     fn an_auto_tolerance_is_the_smooth_or_the_rough_discs_and_a_number_is_kept() {
         let auto: Numerics = serde_json::from_str(r#"{"tolerance": "auto"}"#).expect("auto");
         assert_eq!(auto.tolerance, Tolerance::Auto);
-        assert_eq!(auto.solve_tolerance(false), DEFAULT_TOLERANCE);
-        assert_eq!(auto.solve_tolerance(true), 1e-5);
+        // The very constants, bit for bit.
+        let bits = |tolerance: f64| tolerance.to_bits();
+        assert_eq!(bits(auto.solve_tolerance(false)), bits(DEFAULT_TOLERANCE));
+        assert_eq!(bits(auto.solve_tolerance(true)), bits(1e-5));
         assert_eq!(Numerics::default().tolerance, Tolerance::Auto);
         let given: Numerics = serde_json::from_str(r#"{"tolerance": 1e-7}"#).expect("a number");
-        assert_eq!(given.solve_tolerance(true), 1e-7);
+        assert_eq!(bits(given.solve_tolerance(true)), bits(1e-7));
         assert_eq!(
             serde_json::to_value(given).expect("JSON")["tolerance"],
             serde_json::json!(1e-7)
