@@ -165,7 +165,8 @@ fn a_comparison_and_a_study_have_their_own_reports() {
     assert_eq!(html.matches("<svg").count(), 10);
     assert!(html.contains("total volume lost against speed (rpm)"));
     assert!(html.contains("wear-accelerated corrosion volume against load (N)"));
-    assert!(html.contains("<th>test.load_n</th><th>test.speed_rpm</th>"));
+    // The members table names its axes in words too.
+    assert!(html.contains("<th>load (N)</th><th>speed (rpm)</th>"));
 }
 
 /// GET `path` and expect 200 with an HTML download saved as `filename`; the body.

@@ -118,7 +118,7 @@ mod tests {
         "faraday": "316l_g102",
         "molar_mass_g_mol": 55.85, "valence": 2.0, "density_g_cm3": 7.9
       },
-      "numerics": { "grid": "auto", "domain_um": "auto", "tolerance": 1e-6,
+      "numerics": { "grid": "auto", "domain_um": "auto", "tolerance": "auto",
                     "cycle_step": "auto", "coupling": "auto" }
     }"#;
 
