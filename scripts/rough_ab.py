@@ -41,10 +41,13 @@ def main():
             print(json.dumps({"cpu_s": pair, "b/a": pair["b"] / pair["a"]}), flush=True)
     a, b = runs["a"], runs["b"]
     print(f"B / A CPU: median {statistics.median(ratios):.3f} of {[round(r, 3) for r in ratios]}")
-    print(f"iterations: A {a['iterations']} in {a['solves']} solves, "
-          f"B {b['iterations']} in {b['solves']} solves")
+    print(
+        f"iterations: A {a['iterations']} in {a['solves']} solves, "
+        f"B {b['iterations']} in {b['solves']} solves"
+    )
     for key, name, _ in OUTPUTS:
-        print(f"{name}: A {a[key]:.6e}, B {b[key]:.6e}, relative {(b[key] - a[key]) / abs(a[key]):+.1e}")
+        change = (b[key] - a[key]) / abs(a[key])
+        print(f"{name}: A {a[key]:.6e}, B {b[key]:.6e}, relative {change:+.1e}")
 
 
 if __name__ == "__main__":

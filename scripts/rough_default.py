@@ -75,8 +75,12 @@ def timed_run(binary, the_scene, workdir):
         json.dump(the_scene, f)
     out = path + ".out"
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    subprocess.run([binary, "run", path, "-o", out], check=True, stdout=subprocess.DEVNULL,
-                   stderr=subprocess.DEVNULL)
+    subprocess.run(
+        [binary, "run", path, "-o", out],
+        check=True,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     with open(out) as f:
@@ -102,10 +106,16 @@ def measure(binary, label, numerics, reference, workdir):
         cpus.append((smooth_cpu, rough_cpu))
     s = result["summary"]
     window = next(m["reason"] for m in result["models"] if m["name"] == "solve_window")
-    fallbacks = int(re.search(r"fell back to the whole grid in (\d+) of", window).group(1)) \
-        if "fell back" in window else 0
-    restarts = int(re.search(r"uniform pressure in (\d+) of", window).group(1)) \
-        if "uniform pressure in" in window else 0
+    fallbacks = (
+        int(re.search(r"fell back to the whole grid in (\d+) of", window).group(1))
+        if "fell back" in window
+        else 0
+    )
+    restarts = (
+        int(re.search(r"uniform pressure in (\d+) of", window).group(1))
+        if "uniform pressure in" in window
+        else 0
+    )
     row = {
         "label": label,
         "numerics": numerics,
@@ -139,14 +149,17 @@ def table(rows):
     lines = [head, "|" + "---|" * (head.count("|") - 1)]
     for row in rows:
         e = row["errors"]
-        cells = [f"{e[name]:+.1e}" if kind == "relative" else f"{e[name]:+.2f} mV"
-                 for _, name, kind in OUTPUTS]
+        cells = [
+            f"{e[name]:+.1e}" if kind == "relative" else f"{e[name]:+.2f} mV"
+            for _, name, kind in OUTPUTS
+        ]
         lines.append(
             f"| {row['label']} | {row['solves']} | {row['iterations'] / row['solves']:.2f} | "
             f"{row['fallbacks']} / {row['restarts']} | "
             f"{row['ratio']:.1f} ({', '.join(f'{r:.1f}' for r in row['ratios'])}) | "
             f"{', '.join(f'{r:.1f} ({m:.2f})' for m, r in row.get('cpu_s') or [])} | "
-            + " | ".join(cells) + f" | {verdict(row)} |"
+            + " | ".join(cells)
+            + f" | {verdict(row)} |"
         )
     return "\n".join(lines)
 
@@ -159,7 +172,7 @@ def write_section(path, text):
         doc = doc.rstrip("\n") + "\n\n" + text
     else:
         end = doc.find("\n## ", start + len(HEADING))
-        doc = doc[:start] + text + (doc[end + 1:] if end >= 0 else "")
+        doc = doc[:start] + text + (doc[end + 1 :] if end >= 0 else "")
     with open(path, "w") as f:
         f.write(doc)
 
@@ -167,12 +180,17 @@ def write_section(path, text):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--bin", default="target/release/tribosim")
-    parser.add_argument("--reference", default="docs/accuracy/rough-4um-600-reference.json",
-                        help="the every-cycle 1e-8 run's summary, written the first time")
+    parser.add_argument(
+        "--reference",
+        default="docs/accuracy/rough-4um-600-reference.json",
+        help="the every-cycle 1e-8 run's summary, written the first time",
+    )
     parser.add_argument("--markdown")
     parser.add_argument("--only", nargs="*", help="candidates' labels to run (all if absent)")
-    parser.add_argument("--rows", help="write the table from these rows (the JSON lines a "
-                        "run printed) instead of running")
+    parser.add_argument(
+        "--rows",
+        help="write the table from these rows (the JSON lines a run printed) instead of running",
+    )
     args = parser.parse_args()
     if args.rows:
         with open(args.rows) as f:
@@ -188,9 +206,11 @@ def main():
             reference = {"scene": result["scene"], "summary": result["summary"], "cpu_s": cpu}
             with open(args.reference, "w") as f:
                 json.dump(reference, f, indent=1)
-        rows = [measure(args.bin, label, numerics, reference, workdir)
-                for label, numerics in CANDIDATES
-                if not args.only or label in args.only]
+        rows = [
+            measure(args.bin, label, numerics, reference, workdir)
+            for label, numerics in CANDIDATES
+            if not args.only or label in args.only
+        ]
     finish(args, rows)
 
 
@@ -202,19 +222,19 @@ def choice(rows):
     fewest = min(within, key=lambda r: r["iterations"])
     e = chosen["errors"]
     return (
-        f"The rough disc's default is \"{chosen['label'].split(' (')[0]}\": "
+        f'The rough disc\'s default is "{chosen["label"].split(" (")[0]}": '
         f"`numerics.tolerance: auto` is 1e-5 on a rough disc (1e-6 on a smooth one), and "
         f"`cycle_step` stays `auto`. It took {chosen['iterations']} iterations against "
         f"{before['iterations']} at the smooth disc's numerics, and its errors ({e['volume']:+.1e} "
         f"in volume, {e['WAC']:+.1e} in the WAC, {e['E']:+.2f} mV in E) sit at the floor "
         f"the WAC and E have (a load change of 2e-5 moves E by 2 mV and the WAC by 1e-3) and far "
-        f"below the grid's own error, 2 to 5% (\"Rough wear: grid and cut-off\"). Iterations "
+        f'below the grid\'s own error, 2 to 5% ("Rough wear: grid and cut-off"). Iterations '
         f"are the measure that does not move with the machine: the CPU ratios spread by tens of "
         f"percent between pairs, as each pair's ratio in brackets shows. Of the candidates "
         f"within the error targets, the one with the fewest iterations is "
-        f"\"{fewest['label']}\" ({fewest['iterations']}). No candidate meets the time target: a "
+        f'"{fewest["label"]}" ({fewest["iterations"]}). No candidate meets the time target: a '
         f"rough solve costs several smooth ones, since its cells are four times smaller and its "
-        f"contact churns at the cap (\"fallbacks / restarts\" counts the solves whose "
+        f'contact churns at the cap ("fallbacks / restarts" counts the solves whose '
         f"free-set preconditioner stalled and whose warm start began again from the uniform "
         f"pressure).\n"
     )
@@ -231,7 +251,9 @@ def finish(args, rows):
         f"ratio in brackets). Targets: at most {MOST_TIMES_SMOOTH:g} times the smooth disc; "
         f"errors within {TARGETS['volume']:g} in volume and deepest point, "
         f"{TARGETS['WAC']:g} in the WAC, {TARGETS['E']:g} mV in E.\n\n"
-        + table(rows) + "\n\n" + choice(rows)
+        + table(rows)
+        + "\n\n"
+        + choice(rows)
     )
     print(text)
     if args.markdown:
