@@ -28,6 +28,7 @@ def test_page(client: tribosim.Client) -> None:
     assert "<html" in client.page().lower()
     assert b"import" in client.page_file("js/main.js")
     assert b"body" in client.page_file("page.css")
+    assert client.guide("scene.md").startswith("# ")
 
 
 def test_an_id_that_is_not_a_uuid_is_refused_as_a_request(client: tribosim.Client) -> None:

@@ -22,6 +22,7 @@ DEFAULT_TIMEOUT_S = 30.0
 
 _PAGE = route("GET", "/")
 _PAGE_FILE = route("GET", "/static/{path}")
+_GUIDE = route("GET", "/docs/{name}")
 _HEALTH = route("GET", "/healthz")
 _OPENAPI = route("GET", "/api/v1/openapi.yaml")
 _PRESETS = route("GET", "/api/v1/presets")
@@ -92,6 +93,12 @@ class Client:
         """One of the page's files by its path under the page's folder (``js/main.js``):
         its styles, modules and the vendored uPlot."""
         return self._http.send(_PAGE_FILE, path=path).content
+
+    @_GUIDE.implements
+    def guide(self, name: str) -> str:
+        """One of the guides, as the server's binary holds them (``scene.md``, ``result.md``,
+        ...): Markdown text."""
+        return self._http.send(_GUIDE, name=name).text
 
 
 def _token(token: str | None, token_file: str | os.PathLike[str] | None) -> str | None:
