@@ -53,7 +53,8 @@ pub use reference::{FIELDS_BEGIN, FIELDS_END, field_table};
 pub use sections::{
     ANNEALED_316L_PROOF_STRESS_MPA, ArchardCalibration, Ball, DEFAULT_TOLERANCE, Disc, Numerics,
     PAPER_ARCHARD_CALIBRATION, PAPER_BULK_HARDNESS_SPREAD_MPA, PAPER_CYCLES, PAPER_HARDNESS_TABLE,
-    PAPER_TABLE3, STEP_CHANGE_BOUND, Switch, Table3Row, TestConditions, Wear, YieldCapLaw,
+    PAPER_TABLE3, ROUGH_TOLERANCE, STEP_CHANGE_BOUND, Switch, Table3Row, TestConditions, Wear,
+    YieldCapLaw,
 };
 pub use slips::{
     HardnessSlip, REFUSE_HARD_MPA, REFUSE_HARDNESS_MPA, WARN_HARD_MPA, WARN_HARDNESS_MPA,
