@@ -172,7 +172,8 @@ def write_section(path, text):
         doc = doc.rstrip("\n") + "\n\n" + text
     else:
         end = doc.find("\n## ", start + len(HEADING))
-        doc = doc[:start] + text + (doc[end + 1 :] if end >= 0 else "")
+        rest = "\n" + doc[end + 1 :] if end >= 0 else ""
+        doc = doc[:start] + text.rstrip("\n") + "\n" + rest
     with open(path, "w") as f:
         f.write(doc)
 
