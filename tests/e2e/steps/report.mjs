@@ -79,7 +79,6 @@ const figureFacts = (page) => page.evaluate(() => [...document.querySelectorAll(
     labels: numeric.map((t) => t.text),
     baselines: Object.values(axes).filter((g) => g.length > 1),
     colours: new Set(strokes).size,
-    lines: svg.querySelectorAll("polyline").length,
     grid: svg.querySelectorAll('line[stroke="#E1E1E1"]').length,
     words: [...svg.querySelectorAll("text")].map((t) => t.textContent.trim()),
   };
