@@ -11,6 +11,7 @@ use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
 use serde_json::{Map, Value, json};
+use tribosim::scene::materials::{MATERIALS_BEGIN, MATERIALS_END, materials_table};
 use tribosim::scene::{FIELDS, FIELDS_BEGIN, FIELDS_END, Range, field_table, parse_scene};
 use tribosim::simulation::{self, first_contact, run};
 
@@ -51,6 +52,29 @@ fn scene_tables_are_the_generated_ones() {
     }
     panic!(
         "docs/scene.md's field tables differ from src/scene/fields.rs; regenerate them with\n  \
+         {REGENERATE}\n--- generated ---\n{generated}"
+    );
+}
+
+#[test]
+fn materials_tables_are_the_generated_ones() {
+    let text = read_doc("materials.md");
+    let generated = materials_table();
+    let committed = match (text.find(MATERIALS_BEGIN), text.find(MATERIALS_END)) {
+        (Some(begin), Some(end)) => Some((begin, (end + MATERIALS_END.len() + 1).min(text.len()))),
+        _ => None,
+    };
+    if committed.is_some_and(|(begin, end)| text[begin..end] == generated) {
+        return;
+    }
+    if std::env::var_os("TRIBOSIM_WRITE_DOCS").is_some() {
+        let (head, tail) = committed.map_or((text.as_str(), ""), |(b, e)| (&text[..b], &text[e..]));
+        std::fs::write(doc_path("materials.md"), format!("{head}{generated}{tail}"))
+            .expect("docs/materials.md is writable");
+        return;
+    }
+    panic!(
+        "docs/materials.md's tables differ from src/scene/materials; regenerate them with\n  \
          {REGENERATE}\n--- generated ---\n{generated}"
     );
 }

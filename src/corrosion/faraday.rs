@@ -9,66 +9,13 @@
 
 use serde::{Deserialize, Serialize};
 
-/// One element of an alloy, as ASTM G102 counts it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Element {
-    /// Chemical symbol.
-    pub symbol: &'static str,
-    /// Mass fraction, 0 to 1.
-    pub mass_fraction: f64,
-    /// Charge number of its dissolution (the lowest stable ion, as G102 takes it).
-    pub valence: f64,
-    /// Standard atomic weight, g/mol (IUPAC 2013, to the digits G102 uses).
-    pub atomic_mass_g_mol: f64,
-}
-
-/// Nominal 316L: Cr 17, Ni 12, Mo 2.5 wt%, Fe the balance (68.5); Mn, Si and C, each 2 wt%
-/// or less, are left out as G102 leaves out elements at or below 1 wt% of its nominal
-/// compositions. The paper's 316L (Section 2.1) is within these grades' ranges.
-pub const STAINLESS_316L: [Element; 4] = [
-    Element {
-        symbol: "Fe",
-        mass_fraction: 0.685,
-        valence: 2.0,
-        atomic_mass_g_mol: 55.845,
-    },
-    Element {
-        symbol: "Cr",
-        mass_fraction: 0.17,
-        valence: 3.0,
-        atomic_mass_g_mol: 51.996,
-    },
-    Element {
-        symbol: "Ni",
-        mass_fraction: 0.12,
-        valence: 2.0,
-        atomic_mass_g_mol: 58.693,
-    },
-    Element {
-        symbol: "Mo",
-        mass_fraction: 0.025,
-        valence: 3.0,
-        atomic_mass_g_mol: 95.95,
-    },
-];
-
-/// 316's density, g/cm^3 (ASTM G102 Table X1.2; 7.98 in steel makers' sheets too).
-pub const STAINLESS_316L_DENSITY_G_CM3: f64 = 7.98;
+use super::alloys::{self, Alloy, STAINLESS_316L};
 
 /// Iron's standard atomic weight, g/mol (IUPAC 2013).
 pub const IRON_ATOMIC_MASS_G_MOL: f64 = 55.845;
 
 /// Iron's density at 20 C, g/cm^3 (CRC Handbook of Chemistry and Physics: 7.874).
 pub const IRON_DENSITY_G_CM3: f64 = 7.874;
-
-/// ASTM G102's equivalent weight of an alloy, 1 / sum(n_i f_i / W_i), g per mole of
-/// electrons.
-pub fn equivalent_weight_g_per_eq(elements: &[Element]) -> f64 {
-    1.0 / elements
-        .iter()
-        .map(|e| e.valence * e.mass_fraction / e.atomic_mass_g_mol)
-        .sum::<f64>()
-}
 
 /// What dissolves, named in the scene as `corrosion.faraday`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -77,6 +24,18 @@ pub enum FaradayBasis {
     #[default]
     #[serde(rename = "316l_g102")]
     Stainless316lG102,
+    /// 304 by G102's rule ([`alloys::STAINLESS_304`]).
+    #[serde(rename = "304_g102")]
+    Stainless304G102,
+    /// Ti-6Al-4V by G102's rule ([`alloys::TI_6AL_4V`]).
+    #[serde(rename = "ti6al4v_g102")]
+    Ti6Al4VG102,
+    /// Commercially pure titanium ([`alloys::CP_TITANIUM`]).
+    #[serde(rename = "cp_ti_g102")]
+    CpTitaniumG102,
+    /// CoCrMo by G102's rule ([`alloys::COCRMO`]).
+    #[serde(rename = "cocrmo_g102")]
+    CoCrMoG102,
     /// Pure iron, Fe -> Fe2+.
     #[serde(rename = "pure_iron")]
     PureIron,
@@ -102,19 +61,24 @@ impl FaradayBasis {
     pub fn dissolving(self, molar_mass_g_mol: f64, valence: f64, density_g_cm3: f64) -> Dissolving {
         match self {
             Self::Stainless316lG102 => {
-                let ew = equivalent_weight_g_per_eq(&STAINLESS_316L);
+                let ew = STAINLESS_316L.equivalent_weight_g_per_eq();
+                let density = STAINLESS_316L.density_g_cm3;
                 Dissolving {
                     equivalent_weight_g_per_eq: ew,
-                    density_g_cm3: STAINLESS_316L_DENSITY_G_CM3,
+                    density_g_cm3: density,
                     reason: format!(
                         "316l_g102: 316L dissolving congruently, Fe 68.5 / Cr 17 / Ni 12 / Mo \
                          2.5 wt% at valences 2 / 3 / 2 / 3, EW {ew:.2} g/eq (ASTM G102 Table \
-                         X1.2: 25.50), density {STAINLESS_316L_DENSITY_G_CM3} g/cm^3; the \
-                         paper's disc is 316L, and pure iron's 27.92 g/eq at 7.874 g/cm^3 \
-                         would dissolve 11% more volume per coulomb"
+                         X1.2: 25.50), density {density} g/cm^3; the paper's disc is 316L, \
+                         and pure iron's 27.92 g/eq at 7.874 g/cm^3 would dissolve 11% more \
+                         volume per coulomb"
                     ),
                 }
             }
+            Self::Stainless304G102 => alloy_dissolving(&alloys::STAINLESS_304),
+            Self::Ti6Al4VG102 => alloy_dissolving(&alloys::TI_6AL_4V),
+            Self::CpTitaniumG102 => alloy_dissolving(&alloys::CP_TITANIUM),
+            Self::CoCrMoG102 => alloy_dissolving(&alloys::COCRMO),
             Self::PureIron => Dissolving {
                 equivalent_weight_g_per_eq: IRON_ATOMIC_MASS_G_MOL / 2.0,
                 density_g_cm3: IRON_DENSITY_G_CM3,
@@ -138,18 +102,42 @@ impl FaradayBasis {
     }
 }
 
+/// What `alloy` dissolves by G102's rule, with its composition in the words.
+fn alloy_dissolving(alloy: &Alloy) -> Dissolving {
+    let ew = alloy.equivalent_weight_g_per_eq();
+    let composition = alloy
+        .elements
+        .iter()
+        .map(|e| {
+            format!(
+                "{} {} wt% as {}+",
+                e.symbol,
+                e.mass_fraction * 100.0,
+                e.valence
+            )
+        })
+        .collect::<Vec<_>>()
+        .join(", ");
+    Dissolving {
+        equivalent_weight_g_per_eq: ew,
+        density_g_cm3: alloy.density_g_cm3,
+        reason: format!(
+            "{}: {} dissolving congruently, {composition}, EW {ew:.2} g/eq by ASTM G102's \
+             formula, density {} g/cm^3 ({})",
+            alloy.basis, alloy.label, alloy.density_g_cm3, alloy.source
+        ),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn the_316l_equivalent_weight_is_astm_g102s() {
-        let ew = equivalent_weight_g_per_eq(&STAINLESS_316L);
+        let ew = STAINLESS_316L.equivalent_weight_g_per_eq();
         // G102 prints 25.50 to two decimals: within half a unit of the last digit.
         assert!((ew - 25.50).abs() <= 0.005, "{ew}");
-        let fractions: f64 = STAINLESS_316L.iter().map(|e| e.mass_fraction).sum();
-        // The four fractions add up to the whole (Fe is the balance), to round-off.
-        assert!((fractions - 1.0).abs() < 1e-12, "{fractions}");
     }
 
     #[test]

@@ -9,6 +9,7 @@
 //! argument of log10 is converted to A/cm^2 there and nowhere else. Potentials are against
 //! whichever electrode E_corr is given against: eq. 18 only adds differences to it.
 
+pub mod alloys;
 pub mod depassivation;
 pub mod faraday;
 pub mod galvanic;

@@ -114,11 +114,15 @@ mod tests {
             .filter(|d| d.path.starts_with("corrosion."))
             .collect();
         assert!(!corrosion.is_empty() && corrosion.iter().all(|d| d.run.is_none()));
-        assert!(
-            found
-                .iter()
-                .all(|d| d.path == "test.load_n" || d.path.starts_with("corrosion."))
+        // The run writes the removed section as `null`, which the preset has not.
+        let section = found.iter().find(|d| d.path == "corrosion").expect("null");
+        assert_eq!(
+            (section.preset.as_ref(), section.run.as_ref()),
+            (None, Some(&Value::Null))
         );
+        assert!(found.iter().all(|d| d.path == "test.load_n"
+            || d.path == "corrosion"
+            || d.path.starts_with("corrosion.")));
     }
 
     #[test]

@@ -6,6 +6,7 @@
 //! `fields/corrosion.rs`, listed in [`FIELDS`] here.
 
 mod corrosion;
+mod material;
 mod surface;
 
 pub(super) use corrosion::{
@@ -15,6 +16,8 @@ pub(super) use corrosion::{
     REPASSIVATION_KINETICS, REPASSIVATION_TIME, TAFEL_A, TAFEL_B, TAFEL_ETA_MAX, TAFEL_ETA_MIN,
     VALENCE,
 };
+
+pub(super) use material::{BALL_MATERIAL, DISC_MATERIAL};
 
 pub(super) use surface::{
     SURFACE, SURFACE_HURST, SURFACE_ID, SURFACE_KIND, SURFACE_LONG_CUTOFF, SURFACE_REMOVE_TILT,
@@ -483,10 +486,12 @@ const fn section(path: &'static str, meaning: &'static str, range: Range) -> Fie
 pub const FIELDS: &[Field] = &[
     NAME,
     section("ball", "The counter body.", Range::Object),
+    BALL_MATERIAL,
     BALL_RADIUS,
     BALL_MODULUS,
     BALL_POISSON,
     section("disc", "The worn disc.", Range::Object),
+    DISC_MATERIAL,
     DISC_MODULUS,
     DISC_POISSON,
     DISC_HARDNESS,

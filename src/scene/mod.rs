@@ -17,6 +17,7 @@ mod field;
 mod fields;
 pub(crate) mod format;
 mod located;
+pub mod materials;
 mod parse;
 mod preset;
 mod record;
@@ -76,8 +77,8 @@ pub struct Scene {
     pub test: TestConditions,
     /// Wear law settings.
     pub wear: Wear,
-    /// Electrochemistry; `null` means no corrosion estimate.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// Electrochemistry; `null` means no corrosion estimate. Written as `null` when absent,
+    /// since a scene without the key gets the default cell.
     pub corrosion: Option<Corrosion>,
     /// Discretisation and solver settings.
     pub numerics: Numerics,
@@ -201,9 +202,7 @@ mod tests {
         assert!(relative_error(model.anodic_current_density_a_m2, 100.0) < 1e-15);
         assert!(relative_error(model.exposed_area_m2, 2.56e-4) < 1e-15);
         // 316L by default: G102's equivalent weight (one more rounding) and 7.98 g/cm^3.
-        let steel = crate::corrosion::faraday::equivalent_weight_g_per_eq(
-            &crate::corrosion::faraday::STAINLESS_316L,
-        );
+        let steel = crate::corrosion::alloys::STAINLESS_316L.equivalent_weight_g_per_eq();
         assert!(relative_error(model.equivalent_weight_kg_mol, steel * 1e-3) < 1e-15);
         assert!(relative_error(model.density_kg_m3, 7980.0) < 1e-15);
     }

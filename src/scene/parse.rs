@@ -50,8 +50,11 @@ pub fn parse_scene_with<T>(
     json: &Value,
     further: impl FnOnce(Scene) -> Result<T, Vec<FieldError>>,
 ) -> Result<T, SceneErrors> {
-    let (document, prefix) = preset::resolve(json)?;
-    let mut errors = Vec::new();
+    let preset::Resolved {
+        document,
+        prefix,
+        mut errors,
+    } = preset::resolve(json)?;
     if let Some(mut scene) = deserialize_located(&document, &mut errors) {
         if scene.wear.archard_k.is_none() && scene.wear.archard_calibration.is_none() {
             scene.wear.archard_calibration = Some(PAPER_ARCHARD_CALIBRATION);

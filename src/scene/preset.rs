@@ -4,6 +4,7 @@ use serde::Serialize;
 use serde_json::{Map, Value};
 
 use super::corrosion::{follow_area, follow_faraday, follow_reference};
+use super::materials::expand::expand;
 use super::surface::{SurfaceKind, SurfaceSpec};
 use super::{
     AnodicArea, Corrosion, FieldError, GalvanicCell, PAPER_TABLE3, SPOT_REPASSIVATION_TIME_S,
@@ -96,15 +97,34 @@ pub fn dalmau2018_316l() -> Scene {
     }
 }
 
-/// The document to parse: `json` itself, or a preset's scene with the overrides merged in.
-/// The second value is the path prefix that locates errors in the user's document.
-pub(super) fn resolve(json: &Value) -> Result<(Value, &'static str), SceneErrors> {
+/// The document to parse, and where the user's text is in it.
+pub(super) struct Resolved {
+    /// `json` itself, or a preset's scene with the overrides merged in, with the named
+    /// materials' values filled in.
+    pub document: Value,
+    /// The path prefix that locates errors in the user's document.
+    pub prefix: &'static str,
+    /// What the named materials lack and the scene needs, located in the user's text.
+    pub errors: Vec<FieldError>,
+}
+
+/// The document to parse ([`Resolved`]).
+pub(super) fn resolve(json: &Value) -> Result<Resolved, SceneErrors> {
     let Some(object) = json.as_object().filter(|o| o.contains_key("preset")) else {
         let mut document = json.clone();
-        follow_reference(&mut document, json.get("corrosion"), &Corrosion::default());
-        follow_faraday(&mut document, json.get("corrosion"));
-        follow_area(&mut document, json.get("corrosion"));
-        return Ok((document, ""));
+        let errors = match document.as_object_mut() {
+            Some(user) => expand(user, &Value::Null),
+            None => Vec::new(),
+        };
+        let given = document.get("corrosion").cloned();
+        follow_reference(&mut document, given.as_ref(), &Corrosion::default());
+        follow_faraday(&mut document, given.as_ref());
+        follow_area(&mut document, given.as_ref());
+        return Ok(Resolved {
+            document,
+            prefix: "",
+            errors,
+        });
     };
     let mut errors: Vec<FieldError> = object
         .keys()
@@ -157,20 +177,25 @@ pub(super) fn resolve(json: &Value) -> Result<(Value, &'static str), SceneErrors
         }
     };
     match (preset, overrides) {
-        (Some(preset), Some(overrides)) if errors.is_empty() => {
+        (Some(preset), Some(mut overrides)) if errors.is_empty() => {
             let mut document = serde_json::to_value(&preset.scene).map_err(|e| {
                 SceneErrors(vec![FieldError::new(
                     "preset",
                     format!("internal error serialising the preset: {e}"),
                 )])
             })?;
+            let errors = expand(&mut overrides, &document);
             merge(&mut document, &Value::Object(overrides.clone()));
             keep_one_archard_setting(&mut document, &overrides);
             let base = preset.scene.corrosion.clone().unwrap_or_default();
             follow_reference(&mut document, overrides.get("corrosion"), &base);
             follow_faraday(&mut document, overrides.get("corrosion"));
             follow_area(&mut document, overrides.get("corrosion"));
-            Ok((document, "overrides"))
+            Ok(Resolved {
+                document,
+                prefix: "overrides",
+                errors,
+            })
         }
         _ => Err(SceneErrors(errors)),
     }

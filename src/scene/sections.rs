@@ -5,6 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::auto_or::{CycleStep, DomainSize, GridSize, SolverThreads, Tolerance};
+use super::materials::{BallMaterialName, DiscMaterialName};
 use super::record::RecordCycles;
 use super::surface::SurfaceSpec;
 use crate::hardness::{HardnessError, HardnessLaw, YieldCap};
@@ -117,6 +118,9 @@ pub const ROUGH_TOLERANCE: f64 = 1e-5;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Ball {
+    /// The library's ball whose values fill the fields not given; `None`: as given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<BallMaterialName>,
     /// Ball radius, mm.
     pub radius_mm: f64,
     /// Young's modulus, GPa.
@@ -128,6 +132,7 @@ pub struct Ball {
 impl Default for Ball {
     fn default() -> Self {
         Self {
+            material: None,
             radius_mm: 3.0,
             youngs_modulus_gpa: 300.0,
             poisson_ratio: 0.21,
@@ -146,6 +151,9 @@ impl Ball {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Disc {
+    /// The library's disc whose values fill the fields not given; `None`: as given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<DiscMaterialName>,
     /// Young's modulus, GPa. (The paper prints "205 MPa", a typo for GPa.)
     pub youngs_modulus_gpa: f64,
     /// Poisson's ratio.
@@ -172,6 +180,7 @@ pub struct Disc {
 impl Default for Disc {
     fn default() -> Self {
         Self {
+            material: None,
             youngs_modulus_gpa: 205.0,
             poisson_ratio: 0.28,
             hardness_mpa: 2473.0,

@@ -113,6 +113,8 @@ pub enum Model {
     Faraday,
     /// The disc's initial roughness and how the grid resolves it.
     Surface,
+    /// The library's materials the scene names, and the values it gave instead.
+    Materials,
 }
 
 impl Model {
@@ -437,6 +439,7 @@ mod tests {
             (Model::Corrosion, "corrosion"),
             (Model::Faraday, "faraday"),
             (Model::Surface, "surface"),
+            (Model::Materials, "materials"),
         ];
         for (model, name) in names {
             let json = serde_json::to_value(model).expect("serialises");

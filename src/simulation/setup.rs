@@ -159,6 +159,9 @@ impl Setup {
         }
         let (hardening, far_off) = work_hardening_report(&scene.disc, plan.hardness());
         models.push(hardening);
+        if let Some(reason) = crate::scene::materials::describe(scene) {
+            models.push(choice(Model::Materials, true, reason));
+        }
         let warnings = plan.warnings().iter().cloned().chain(far_off).collect();
         Ok(Self {
             plan: plan.clone(),

@@ -285,12 +285,22 @@ pub(in crate::scene) const ANODIC_AREA_FACTOR: Field = Field {
 pub(in crate::scene) const FARADAY: Field = Field {
     path: "corrosion.faraday",
     unit: "",
-    range: Range::OneOf(&["316l_g102", "pure_iron", "given"]),
+    range: Range::OneOf(&[
+        "316l_g102",
+        "304_g102",
+        "ti6al4v_g102",
+        "cp_ti_g102",
+        "cocrmo_g102",
+        "pure_iron",
+        "given",
+    ]),
     why: "",
     meaning: "What Faraday's law dissolves, as its equivalent weight EW = M / z and density \
               (V_WAC = Q EW / (F rho)). `316l_g102` (the default): 316L dissolving \
               congruently, ASTM G102's EW = 1 / sum(n_i f_i / W_i) over Fe 68.5, Cr 17, Ni \
               12, Mo 2.5 wt% at valences 2, 3, 2, 3, 25.50 g/eq, at 7.98 g/cm^3; \
+              `304_g102`, `ti6al4v_g102`, `cp_ti_g102`, `cocrmo_g102`: the library's discs by \
+              the same rule (`docs/materials.md`), which `disc.material` sets; \
               `pure_iron`: Fe -> Fe2+, 27.92 g/eq at 7.874 g/cm^3, 11% more volume per \
               coulomb; `given`: `molar_mass_g_mol / valence` at `density_g_cm3`. Before \
               this field, every run dissolved iron (55.85 g/mol, z 2, 7.9 g/cm^3): the \
@@ -306,7 +316,8 @@ pub(in crate::scene) const MOLAR_MASS: Field = Field {
     unit: "g/mol",
     range: Range::Positive,
     why: "",
-    meaning: "Molar mass M of the dissolving metal, read with `faraday` `given` (default:               iron's).",
+    meaning: "Molar mass M of the dissolving metal, read with `faraday` `given` (default: \
+              iron's).",
     feeds: FARADAY_FEEDS,
 };
 
@@ -316,7 +327,8 @@ pub(in crate::scene) const VALENCE: Field = Field {
     unit: "",
     range: Range::Positive,
     why: "",
-    meaning: "Charge number z of the dissolution reaction, read with `faraday` `given`               (default: Fe -> Fe2+ + 2e-).",
+    meaning: "Charge number z of the dissolution reaction, read with `faraday` `given` \
+              (default: Fe -> Fe2+ + 2e-).",
     feeds: FARADAY_FEEDS,
 };
 
