@@ -12,6 +12,7 @@ use clap::{Args, Parser, Subcommand};
 
 use tribosim::bench::{self, BenchTarget};
 use tribosim::calibration::{ChangeCycle, CommandOptions, FitKind, calibrate_files};
+use tribosim::scene::materials::library;
 use tribosim::scene::presets;
 use tribosim::service::MeasurementKind;
 use tribosim::study::command::StudyArgs;
@@ -130,9 +131,15 @@ enum Command {
         #[command(flatten)]
         surface: SurfaceArgs,
     },
-    /// Print the built-in scenes as JSON.
-    #[command(after_help = "Example:\n  tribosim presets > presets.json")]
-    Presets,
+    /// Print the built-in scenes as JSON, or with --materials the materials library (guide:
+    /// /docs/materials.md of a running server).
+    #[command(after_help = "Examples:\n  tribosim presets > presets.json\n  \
+        tribosim presets --materials > materials.json")]
+    Presets {
+        /// Print the materials library (discs, balls and their sources) instead.
+        #[arg(long)]
+        materials: bool,
+    },
     /// Write a printable HTML report (guide: /docs/report.md of a running server): of one result, of several results
     /// compared, or of a study's summary.
     #[command(after_help = "Examples:\n  \
@@ -393,7 +400,8 @@ fn main() -> ExitCode {
             surface,
         } => run_scene(&scene, output.as_deref(), surface.file().as_ref()),
         Command::Contact { scene, surface } => contact_scene(&scene, surface.file().as_ref()),
-        Command::Presets => write_json(&presets(), &Destination::Stdout),
+        Command::Presets { materials: false } => write_json(&presets(), &Destination::Stdout),
+        Command::Presets { materials: true } => write_json(&library(), &Destination::Stdout),
         Command::Report {
             inputs,
             measurements,

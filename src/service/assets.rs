@@ -51,6 +51,7 @@ const ASSETS: &[Asset] = assets![
     "js/jobs.js",
     "js/labels.js",
     "js/main.js",
+    "js/materials.js",
     "js/measurements.js",
     "js/plots.js",
     "js/pressure.js",

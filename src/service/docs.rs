@@ -32,6 +32,7 @@ const GUIDES: &[(&str, &str)] = guides![
     "calibration.md",
     "cluster.md",
     "corrosion.md",
+    "materials.md",
     "notebook.md",
     "operations.md",
     "paper.md",

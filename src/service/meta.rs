@@ -1,5 +1,5 @@
-//! The routes about the service itself: its health, its description and the built-in
-//! scenes.
+//! The routes about the service itself: its health, its description, the built-in scenes
+//! and the materials library.
 
 use std::io::Write;
 use std::path::Path;
@@ -15,6 +15,7 @@ use uuid::Uuid;
 
 use super::error::os_reason;
 use super::route::{Endpoint, Verb};
+use crate::scene::materials::library;
 use crate::scene::presets;
 
 /// The OpenAPI description, served as is.
@@ -34,6 +35,7 @@ where
         Endpoint::public(Verb::Get, "/healthz", |f| on(f, healthz)),
         Endpoint::public(Verb::Get, "/api/v1/openapi.yaml", |f| on(f, openapi)),
         Endpoint::api(Verb::Get, "/api/v1/presets", |f| on(f, list_presets)),
+        Endpoint::api(Verb::Get, "/api/v1/materials", |f| on(f, list_materials)),
     ]
 }
 
@@ -70,4 +72,8 @@ async fn openapi() -> impl IntoResponse {
 
 async fn list_presets() -> impl IntoResponse {
     Json(presets())
+}
+
+async fn list_materials() -> impl IntoResponse {
+    Json(library())
 }

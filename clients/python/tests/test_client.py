@@ -1,4 +1,5 @@
-"""The client's own calls: health, presets, the page; and errors that no route has."""
+"""The client's own calls: health, presets, materials, the page; and errors that no route
+has."""
 
 from __future__ import annotations
 
@@ -22,6 +23,18 @@ def test_presets(client: tribosim.Client) -> None:
     # Table 3 (Dalmau et al. 2018): the wear volume at 3600 s, 11.72e-3 mm^3.
     assert [row["time_s"] for row in paper.measured] == [10, 60, 300, 1800, 3600]
     assert paper.measured[-1]["wear_volume_mm3"] == 11.72e-3
+
+
+def test_materials(client: tribosim.Client) -> None:
+    library = client.materials()
+    titanium = next(d for d in library["discs"] if d["name"] == "ti6al4v")
+    # MatWeb MTP644's modulus, as docs/materials.md lists it.
+    assert titanium["youngs_modulus_gpa"]["value"] == 114.0
+    assert titanium["electrochemistry"] is None
+    keys = {r["key"] for r in library["references"]}
+    assert titanium["youngs_modulus_gpa"]["source"] in keys
+    silicon_nitride = next(b for b in library["balls"] if b["name"] == "si3n4")
+    assert silicon_nitride["poisson_ratio"]["value"] is None
 
 
 def test_page(client: tribosim.Client) -> None:

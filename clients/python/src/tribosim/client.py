@@ -26,6 +26,7 @@ _GUIDE = route("GET", "/docs/{name}")
 _HEALTH = route("GET", "/healthz")
 _OPENAPI = route("GET", "/api/v1/openapi.yaml")
 _PRESETS = route("GET", "/api/v1/presets")
+_MATERIALS = route("GET", "/api/v1/materials")
 
 
 class Client:
@@ -77,6 +78,13 @@ class Client:
     def presets(self) -> list[Preset]:
         """The built-in scenes."""
         return [Preset.from_json(raw) for raw in self._http.json(_PRESETS)]
+
+    @_MATERIALS.implements
+    def materials(self) -> dict[str, Any]:
+        """The materials library a scene names in ``disc.material`` and ``ball.material``:
+        ``discs``, ``balls`` (each value with its source key, or ``None`` and why) and the
+        ``references`` they cite (docs/materials.md)."""
+        return self._http.json(_MATERIALS)
 
     @_OPENAPI.implements
     def openapi(self) -> str:
