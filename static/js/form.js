@@ -4,6 +4,7 @@
 import { api, postJson } from "./api.js";
 import { $ } from "./dom.js";
 import { FORM, fieldId } from "./ids.js";
+import { applyMaterials, discHardness, loadMaterials, lockMaterials, showMaterials } from "./materials.js";
 import * as run from "./run.js";
 import { allPresets, closestPreset, loadPresets as readPresets, presetNamed, withOverrides } from "./scenes.js";
 import { describe, differingPaths, flatten, getPath, setPath } from "./words.js";
@@ -56,7 +57,20 @@ function fillFromPreset() {
   $(FORM.base).textContent = "";
   $(FORM.presetDescription).textContent = preset.description;
   showValues(preset.scene);
+  showMaterials(preset.scene);
   nameEdited = false;
+  followFields();
+}
+
+// A disc chosen from the library: the hardness field shows its value (empty where it has
+// none, so the server names the field), not the preset's 316L; back to the preset's disc,
+// the preset's.
+function materialChanged(discChanged) {
+  if (discChanged) {
+    const library = discHardness();
+    const hardness = library === undefined ? getPath(currentPreset().scene, "disc.hardness_mpa") : library;
+    $(fieldId("disc.hardness_mpa")).value = hardness == null ? "" : String(+hardness.toFixed(1));
+  }
   followFields();
 }
 
@@ -110,6 +124,7 @@ export function sceneFromFields() {
     const value = fieldValue(input);
     if (value !== "") setPath(overrides, input.dataset.path, value);
   }
+  applyMaterials(overrides);
   if (surface) {
     setPath(overrides, "disc.surface", { kind: "measured", id: surface.id, remove_tilt: $(FORM.surfaceTilt).checked });
   }
@@ -163,6 +178,7 @@ function setJsonMode() {
   const on = isJsonMode();
   for (const input of [...mainInputs(), $(FORM.name)]) input.readOnly = on;
   $(FORM.preset).disabled = on;
+  lockMaterials(on);
   $(FORM.fieldsToJson).disabled = on;
   if (on) fieldsFromJson();
   else followFields();
@@ -257,7 +273,7 @@ function editAgain(scene) {
   $(FORM.useJson).checked = false;
   $(FORM.preset).value = preset.name;
   $(FORM.presetDescription).textContent = preset.description;
-  const inForm = new Set(FIELDS.map((f) => f[0]));
+  const inForm = new Set([...FIELDS.map((f) => f[0]), "disc.material", "ball.material"]);
   const overrides = {};
   for (const path of differingPaths([scene, preset.scene])) {
     const v = getPath(scene, path);
@@ -266,6 +282,7 @@ function editAgain(scene) {
   const kept = Object.keys(flatten(overrides));
   formExtra = kept.length ? { from: scene.name, overrides } : null;
   showValues(scene);
+  showMaterials(scene);
   nameEdited = false;
   setJsonMode();
   $(FORM.base).textContent = kept.length
@@ -278,6 +295,7 @@ function editAgain(scene) {
 /** Reads the presets into the preset list and fills the form from the first; marks the page ready. */
 export async function loadPresets() {
   if (!(await readPresets())) return;
+  await loadMaterials(materialChanged);
   $(FORM.preset).replaceChildren(...allPresets().map((p) => new Option(p.name, p.name)));
   fillFromPreset();
   document.body.dataset.ready = "true";

@@ -28,6 +28,14 @@ export const FORM = Object.freeze({
   submit: "submit",
 });
 
+/** The new-run form's materials. */
+export const MATERIALS = Object.freeze({
+  disc: "disc-material",
+  ball: "ball-material",
+  wearOnly: "wear-only",
+  note: "material-note",
+});
+
 /** A main field's input, by its scene path: "test.load_n" is "f-test-load_n". */
 export const fieldId = (path) => "f-" + path.replace(/\./g, "-");
 

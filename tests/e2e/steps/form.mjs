@@ -4,7 +4,7 @@ import fs from "node:fs";
 import path from "node:path";
 
 import * as ids from "../../../static/js/ids.js";
-import { FORM, COMPARE_X, fieldId } from "../../../static/js/ids.js";
+import { FORM, COMPARE_X, MATERIALS, fieldId } from "../../../static/js/ids.js";
 import { openPage, sel, shots, step } from "../lib.mjs";
 
 const TYPES = { ".js": "text/javascript", ".css": "text/css" };
@@ -58,4 +58,24 @@ export async function form(page) {
   await page.uncheck(sel(FORM.useJson));
   assert.equal(await page.$eval(speed, (el) => el.readOnly), false);
   await page.fill(speed, "60");
+
+  step("a disc from the library: its hardness, the wear alone, and the pair's own k asked for");
+  const hardness = sel(fieldId("disc.hardness_mpa"));
+  await page.selectOption(sel(MATERIALS.disc), "ti6al4v");
+  // docs/materials.md: HV1 349 x 9.80665 = 3422.5 MPa.
+  assert.equal(await page.inputValue(hardness), "3422.5");
+  assert.equal(await page.isChecked(sel(MATERIALS.wearOnly)), true);
+  const chosen = await page.textContent(sel(MATERIALS.note));
+  assert.match(chosen, /Ti-6Al-4V.*electrochemical.*Archard k/s);
+  await page.click(sel(FORM.fieldsToJson));
+  const sent = JSON.parse(await page.inputValue(sel(FORM.sceneJson)));
+  assert.equal(sent.overrides.disc.material, "ti6al4v");
+  assert.equal(sent.overrides.corrosion, null);
+  await page.click(sel(FORM.submit));
+  const kError = page.locator('.field[data-path="wear.archard_k"] .error');
+  await kError.filter({ hasText: /\S/ }).waitFor();
+  console.log(`   k error: ${await kError.textContent()}`);
+  await page.selectOption(sel(MATERIALS.disc), "");
+  await page.uncheck(sel(MATERIALS.wearOnly));
+  assert.equal(await page.inputValue(hardness), "2473");
 }
