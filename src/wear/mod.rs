@@ -13,6 +13,7 @@ mod groove;
 mod law;
 mod regime;
 mod report;
+mod stroke;
 
 pub use archard::{
     Archard, ArchardK, MeasuredPoint, archard_k_from_measurement, archard_volume,
@@ -23,3 +24,4 @@ pub use groove::{EDGE_DEPTH_FRACTION, Groove};
 pub use law::WearLaw;
 pub use regime::ArchardRegimeChange;
 pub use report::{LawChoice, WearSummary};
+pub use stroke::{Stroke, VelocityLaw, WearMap};
