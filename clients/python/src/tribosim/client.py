@@ -84,7 +84,8 @@ class Client:
         """The materials library a scene names in ``disc.material`` and ``ball.material``:
         ``discs``, ``balls`` (each value with its source key, or ``None`` and why) and the
         ``references`` they cite (docs/materials.md)."""
-        return self._http.json(_MATERIALS)
+        library: dict[str, Any] = self._http.json(_MATERIALS)
+        return library
 
     @_OPENAPI.implements
     def openapi(self) -> str:
