@@ -15,6 +15,7 @@ mod ocp_trace;
 mod plan;
 mod plausibility;
 mod provenance;
+mod reciprocating;
 mod result;
 mod roughness;
 mod run;
@@ -41,6 +42,7 @@ pub use loaded::disc_share;
 pub use plan::{Plan, parse_scene, parse_scene_str};
 pub use plausibility::{RULES_BEGIN, RULES_END, check_map, rules_table};
 pub use provenance::{Build, GIT_COMMIT, Provenance, scene_sha256};
+pub use reciprocating::{REUSE_FRACTION_OF_APPROACH, StrokeWear, reciprocate, reciprocate_keeping};
 pub use result::{
     CycleRecord, Model, ModelChoice, OcpPhase, OcpSample, PressureMap, Profile, SimulationResult,
     Summary, SurfaceReport,

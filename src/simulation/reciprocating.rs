@@ -1,0 +1,257 @@
+//! Reciprocating sliding on a smooth flat: the ball solved at positions along its stroke on
+//! the flat as its wear has left it, the groove yielding pushes in (eq. 13) and Archard's
+//! wear of the passes (eqs. 15-16) kept on a map along and across the stroke
+//! ([`WearMap`]).
+//!
+//! Each cycle the ball's centre visits positions a cell apart from one end of the stroke to
+//! the other. A position whose flat under the contact is the last solved position's,
+//! shifted by the ball's move, keeps its pressure without a solve: in the middle of a long
+//! stroke the track is uniform along it, and the contact is solved again only where its
+//! depth changes along the stroke, near the ends. The forward and the return pass press
+//! alike (the normal contact: the friction coupling, whose sign turns with the sliding
+//! direction, is left out); each sweep's wear is on the flat before the next sweep is solved.
+
+use std::ops::Range;
+
+use crate::contact::{ContactProblem, ContactSolution, ContactSolver, Grid};
+use crate::wear::{Stroke, WearMap};
+
+use super::{Setup, SimulationError};
+
+/// How far the flat under the loaded cells may differ from the last solve's, as a fraction
+/// of Hertz's elastic approach, for a position to keep the last solve's pressure. The
+/// pressure moves by about the contact's stiffness times the change, so by about this
+/// fraction of itself, and the wear with it. Measured by `tests/reciprocating.rs` (10
+/// cycles of a 2 mm stroke, the middle against the disc's groove, error of the deepest
+/// point; contact solves in the 10th cycle, of 1070 positions) at 1e-4 / 1e-5 / 1e-6:
+/// elastic 2.9e-5 / 2.4e-6 / 2.6e-7 with 106 / 148 / 178 solves; yielding (the paper's
+/// bulk hardness) 9.3e-5 / 6.3e-6 / 7.2e-7 with 228 / 286 / 332. 1e-5 errs far below the
+/// grid (2-5%, `docs/accuracy.md`) for a quarter more solves than 1e-4.
+pub const REUSE_FRACTION_OF_APPROACH: f64 = 1e-5;
+
+/// What a run of reciprocating cycles left.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StrokeWear {
+    /// The flat's depth below its original surface, m, along and across the stroke.
+    pub map: WearMap,
+    /// The worn volume after each cycle, m^3.
+    pub volume_m3: Vec<f64>,
+    /// Contact solves per cycle (the other positions kept the last solve's pressure).
+    pub solves: Vec<usize>,
+}
+
+/// The last solve, the flat under the contact it was made on, the gap it left, and its
+/// capped cells that interpenetrate the flat: `(column, row, depth)` on the contact grid.
+struct Kept {
+    depth: Vec<f64>,
+    gap: Vec<f64>,
+    solution: ContactSolution,
+    pressed_in: Vec<(usize, usize, f64)>,
+}
+
+impl Kept {
+    /// Whether this solve's pressure stands for a position whose flat under the contact is
+    /// `depth`: no cell's flat differs by more than `reuse_m`, but for open cells that stay
+    /// open (a flat away from the contact, as near the end of a worn track, changes nothing
+    /// the solve decided while it does not reach the ball).
+    fn stands_for(&self, depth: &[f64], reuse_m: f64) -> bool {
+        self.depth
+            .iter()
+            .zip(depth)
+            .zip(self.solution.pressure.iter().zip(&self.gap))
+            .all(|((old, new), (&p, gap))| {
+                let change = new - old;
+                change.abs() <= reuse_m || (p == 0.0 && gap + change > 0.0)
+            })
+    }
+}
+
+/// The flat under the contact grid `grid` with the ball's centre at `ball_x_m`: the map's
+/// depth interpolated along the stroke (linear between column centres; unworn beyond).
+fn depth_under(map: &WearMap, grid: &Grid, ball_x_m: f64) -> Vec<f64> {
+    let mut out = vec![0.0; grid.len()];
+    for c in 0..grid.nx {
+        let position = (ball_x_m + grid.x(c)) / map.dx + map.nx as f64 / 2.0 - 0.5;
+        let left = position.floor();
+        let weight = position - left;
+        let column = |i: f64| (0.0..map.nx as f64).contains(&i).then_some(i as usize);
+        let (a, b) = (column(left), column(left + 1.0));
+        for iy in 0..grid.ny {
+            let at = |i: Option<usize>| i.map_or(0.0, |i| map.depth[iy * map.nx + i]);
+            out[iy * grid.nx + c] = (1.0 - weight) * at(a) + weight * at(b);
+        }
+    }
+    out
+}
+
+/// The capped cells of `solution` that interpenetrate the flat, with how far: where the
+/// flat yields to the ball's deformed surface (eq. 13).
+fn pressed_in(
+    grid: &Grid,
+    solution: &ContactSolution,
+    separation: &[f64],
+    cap_pa: f64,
+) -> Vec<(usize, usize, f64)> {
+    solution
+        .pressure
+        .iter()
+        .enumerate()
+        .filter_map(|(i, &p)| {
+            let gap = solution.displacement[i] + separation[i] - solution.approach_m;
+            (p >= cap_pa && gap < 0.0).then_some((i % grid.nx, i / grid.nx, -gap))
+        })
+        .collect()
+}
+
+/// Runs `cycles` of `stroke` on the smooth flat of `setup` (its ball, load, hardness law,
+/// cap and wear law; its grid centred on the ball), keeping a solve's pressure within
+/// [`REUSE_FRACTION_OF_APPROACH`]. The positions are `n + 1` points a little less than a
+/// cell apart covering the stroke, each pressing the stretch of the stroke nearest to it.
+pub fn reciprocate(
+    setup: &Setup,
+    stroke: Stroke,
+    cycles: Range<u64>,
+) -> Result<StrokeWear, SimulationError> {
+    reciprocate_keeping(setup, stroke, cycles, REUSE_FRACTION_OF_APPROACH)
+}
+
+/// [`reciprocate`], keeping a solve's pressure while the loaded flat moves by at most
+/// `reuse_fraction` of Hertz's approach; 0 keeps it only for a flat equal to the solved
+/// one (the unworn flat of the first sweep), and solves every other position.
+pub fn reciprocate_keeping(
+    setup: &Setup,
+    stroke: Stroke,
+    cycles: Range<u64>,
+    reuse_fraction: f64,
+) -> Result<StrokeWear, SimulationError> {
+    let mut sweeps = Sweeps::new(setup, stroke, reuse_fraction);
+    let mut map = WearMap::new(&sweeps.grid, stroke.length_m);
+    let (mut volume_m3, mut solves) = (Vec::new(), Vec::new());
+    for cycle in cycles {
+        // Forward, then back: a sweep is solved on the flat as the last one left it, and
+        // its yielding and wear are added after it, as a pass of the disc is (the groove
+        // that yielding pushes in is each cell's deepest interpenetration in the sweep:
+        // in the middle of the track, a row's deepest, the disc's rule).
+        let forward = sweeps.sweep(&mut map, cycle, false)?;
+        let back = sweeps.sweep(&mut map, cycle, true)?;
+        volume_m3.push(map.depth.iter().sum::<f64>() * map.dx * sweeps.grid.dy);
+        solves.push(forward + back);
+    }
+    Ok(StrokeWear {
+        map,
+        volume_m3,
+        solves,
+    })
+}
+
+/// What every sweep of a run shares: the normal contact's solver on the setup's grid, the
+/// ball, the positions along the stroke and the last solve.
+struct Sweeps {
+    setup: Setup,
+    grid: Grid,
+    solver: Box<dyn ContactSolver>,
+    ball: Vec<f64>,
+    reuse_m: f64,
+    length_m: f64,
+    steps: usize,
+    last: Option<Kept>,
+}
+
+impl Sweeps {
+    fn new(setup: &Setup, stroke: Stroke, reuse_fraction: f64) -> Self {
+        let setup = Setup {
+            coupling: false,
+            ..setup.clone()
+        };
+        let grid = setup.grid;
+        Self {
+            solver: setup.solver(&grid),
+            ball: setup.ball_height(&grid),
+            reuse_m: reuse_fraction * setup.plan.hertz().approach_m(),
+            length_m: stroke.length_m,
+            steps: (stroke.length_m / grid.dx).ceil().max(1.0) as usize,
+            grid,
+            setup,
+            last: None,
+        }
+    }
+
+    /// One sweep of `cycle` over `map`, backward or not, its yielding and wear added after
+    /// it; the count of contact solves.
+    fn sweep(
+        &mut self,
+        map: &mut WearMap,
+        cycle: u64,
+        backward: bool,
+    ) -> Result<usize, SimulationError> {
+        let cap = self.setup.yield_pressure_pa(cycle as f64, 0.0);
+        let plan = &self.setup.plan;
+        let scale = plan.wear().depth_scale(cycle..cycle + 1, plan.hardness());
+        let (grid, half) = (self.grid, self.length_m / 2.0);
+        let step_m = self.length_m / self.steps as f64;
+        let mut pressed = WearMap::new(&grid, self.length_m);
+        let mut yielded = vec![0.0_f64; map.depth.len()];
+        let mut solves = 0;
+        for k in 0..=self.steps {
+            let j = if backward { self.steps - k } else { k };
+            let x = -half + j as f64 * step_m;
+            solves += usize::from(self.solve_unless_kept(map, x, cycle, cap)?);
+            let kept = self.last.as_ref().expect("solved or kept");
+            let (from, to) = ((x - step_m / 2.0).max(-half), (x + step_m / 2.0).min(half));
+            pressed.add_pass(&grid, &kept.solution.pressure, from, to);
+            for &(c, iy, depth_m) in &kept.pressed_in {
+                let column = ((x + grid.x(c)) / map.dx + map.nx as f64 / 2.0).floor();
+                if (0.0..map.nx as f64).contains(&column) {
+                    let cell = &mut yielded[iy * map.nx + column as usize];
+                    *cell = cell.max(depth_m);
+                }
+            }
+        }
+        for ((d, p), y) in map.depth.iter_mut().zip(&pressed.depth).zip(&yielded) {
+            *d += y + scale * p;
+        }
+        Ok(solves)
+    }
+
+    /// Solves the contact with the ball's centre at `x_m` on `map`, unless the last solve
+    /// stands for it; whether it solved.
+    fn solve_unless_kept(
+        &mut self,
+        map: &WearMap,
+        x_m: f64,
+        cycle: u64,
+        cap: f64,
+    ) -> Result<bool, SimulationError> {
+        let depth = depth_under(map, &self.grid, x_m);
+        if self
+            .last
+            .as_ref()
+            .is_some_and(|kept| kept.stands_for(&depth, self.reuse_m))
+        {
+            return Ok(false);
+        }
+        let separation: Vec<f64> = self.ball.iter().zip(&depth).map(|(b, d)| b + d).collect();
+        let problem = ContactProblem {
+            grid: self.grid,
+            separation: &separation,
+            load_n: self.setup.scene().load_n(),
+            yield_pressure_pa: cap,
+            pass_wear_per_pa: 0.0,
+        };
+        let warm = self
+            .last
+            .as_ref()
+            .map(|kept| kept.solution.pressure.as_slice());
+        let solution = self
+            .solver
+            .solve(&problem, &self.setup.options, warm)
+            .map_err(|source| SimulationError::Contact { cycle, source })?;
+        self.last = Some(Kept {
+            pressed_in: pressed_in(&self.grid, &solution, &separation, cap),
+            gap: solution.gap_m(&separation),
+            depth,
+            solution,
+        });
+        Ok(true)
+    }
+}
