@@ -141,29 +141,29 @@ impl WearMap {
     /// the wear before `k / H`. A cell of `grid` at `xi` presses the map's column at `x`
     /// while `X` is within `dx / 2` of `x - xi`, so each pair adds its pressure times the
     /// length of that interval inside the stretch: exact for pressures constant over each
-    /// cell, as the contact solution's are.
+    /// cell, as the contact solution's are. Only the columns a cell can reach are visited,
+    /// the stretch's cells and two more per grid column, with nothing allocated: a sweep
+    /// calls this at every position.
     pub fn add_pass(&mut self, grid: &Grid, pressure: &[f64], from_m: f64, to_m: f64) {
         debug_assert_eq!(pressure.len(), grid.len(), "one pressure per cell");
         debug_assert_eq!(grid.ny, self.ny, "the map has the grid's rows");
         let (lo, hi) = (from_m.min(to_m), from_m.max(to_m));
         let half = grid.dx / 2.0;
-        for ix in 0..self.nx {
-            let x = self.x(ix);
-            // The cells whose interval of X, [x - xi - dx/2, x - xi + dx/2], meets [lo, hi].
-            let overlaps: Vec<(usize, f64)> = (0..grid.nx)
-                .filter_map(|c| {
-                    let centre = x - grid.x(c);
-                    let length = (centre + half).min(hi) - (centre - half).max(lo);
-                    (length > 0.0).then_some((c, length))
-                })
-                .collect();
-            if overlaps.is_empty() {
-                continue;
-            }
-            for iy in 0..self.ny {
-                let row = &pressure[iy * grid.nx..(iy + 1) * grid.nx];
-                let added: f64 = overlaps.iter().map(|&(c, length)| row[c] * length).sum();
-                self.depth[iy * self.nx + ix] += added;
+        let column_of = |x: f64| x / self.dx + self.nx as f64 / 2.0 - 0.5;
+        for c in 0..grid.nx {
+            let xi = grid.x(c);
+            // The map columns whose centre x has x - xi - dx/2 < hi and x - xi + dx/2 > lo.
+            let first = column_of(lo + xi - half).floor().max(0.0) as usize;
+            let last = (column_of(hi + xi + half).ceil().max(0.0) as usize).min(self.nx - 1);
+            for ix in first..=last {
+                let centre = self.x(ix) - xi;
+                let length = (centre + half).min(hi) - (centre - half).max(lo);
+                if length <= 0.0 {
+                    continue;
+                }
+                for iy in 0..self.ny {
+                    self.depth[iy * self.nx + ix] += pressure[iy * grid.nx + c] * length;
+                }
             }
         }
     }
