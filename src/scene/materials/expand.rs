@@ -53,7 +53,7 @@ pub(in crate::scene) fn expand(user: &mut Map<String, Value>, base: &Value) -> V
             "wear.archard_k",
             format!(
                 "the default k is the paper's calibration for 316L against its alumina ball; \
-                 a scene that names another pair ({} against {}) needs its own: give \
+                 a scene that names another pair ({}; {}) needs its own: give \
                  `archard_k` ({}) or `archard_calibration` from a test of that pair",
                 disc.map_or("the paper's 316L", |d| d.material().label),
                 ball.map_or("the paper's alumina", |b| b.material().label),
@@ -171,9 +171,9 @@ fn fill_corrosion(
             errors.push(FieldError::new(
                 path.as_str(),
                 format!(
-                    "the materials library has no electrochemical constants of {} in chloride \
-                     (docs/materials.md), and the default is the paper's 316L; give `{key}` \
-                     ({}), or set `corrosion` to null to predict the wear alone",
+                    "the materials library has no electrochemical constants in chloride for \
+                     {} (docs/materials.md), and the default is the paper's 316L; give \
+                     `{key}` ({}), or set `corrosion` to null to predict the wear alone",
                     disc.label,
                     allowed(&path)
                 ),
