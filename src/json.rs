@@ -1,6 +1,7 @@
 //! JSON text to [`Value`], refusing an object that gives a key twice. serde_json keeps the
 //! last of duplicate keys silently, so `{"load_n": 5, "load_n": 50}` would run at 50 N while
-//! the reader of the file sees 5 N first; a scene must say each thing once.
+//! the reader of the file sees 5 N first; a scene must say each thing once. Also the name
+//! serde writes for an enum's unit variant ([`variant_name`]).
 
 use std::cell::RefCell;
 use std::fmt;
@@ -26,6 +27,15 @@ pub enum JsonError {
         /// Column just after the second occurrence's value.
         column: usize,
     },
+}
+
+/// The name serde writes for `value`, a unit variant (`"aisi_316l"`, `"plasticity"`); empty
+/// for anything that does not serialise to a string.
+pub fn variant_name<T: serde::Serialize>(value: T) -> String {
+    serde_json::to_value(value)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_owned))
+        .unwrap_or_default()
 }
 
 /// Parses JSON text to a [`Value`], refusing duplicate keys at any depth.

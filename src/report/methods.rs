@@ -18,12 +18,11 @@ pub const PAPER: &str = "A. Dalmau, A. Roda Buch, A. Rovira, J. Navarro-Laboulai
 pub fn methods(models: &[ModelChoice]) -> String {
     // A model with several entries (a domain growth per growth) is named once.
     let mut active: Vec<String> = Vec::new();
-    for name in models.iter().filter(|m| m.active).map(|m| {
-        serde_json::to_value(m.name)
-            .ok()
-            .and_then(|v| v.as_str().map(str::to_owned))
-            .unwrap_or_default()
-    }) {
+    for name in models
+        .iter()
+        .filter(|m| m.active)
+        .map(|m| crate::json::variant_name(m.name))
+    {
         if !active.contains(&name) {
             active.push(name);
         }

@@ -221,23 +221,21 @@ pub fn library() -> Library {
     }
 }
 
-/// The name serde writes for a unit variant.
-fn serde_name<T: Serialize>(value: T) -> String {
-    serde_json::to_value(value)
-        .ok()
-        .and_then(|v| v.as_str().map(str::to_owned))
-        .unwrap_or_default()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn the_names_lists_are_the_entries_names_in_order() {
-        let discs: Vec<String> = DISCS.iter().map(|d| serde_name(d.name)).collect();
+        let discs: Vec<String> = DISCS
+            .iter()
+            .map(|d| crate::json::variant_name(d.name))
+            .collect();
         assert_eq!(discs, DISC_MATERIAL_NAMES);
-        let balls: Vec<String> = BALLS.iter().map(|b| serde_name(b.name)).collect();
+        let balls: Vec<String> = BALLS
+            .iter()
+            .map(|b| crate::json::variant_name(b.name))
+            .collect();
         assert_eq!(balls, BALL_MATERIAL_NAMES);
     }
 

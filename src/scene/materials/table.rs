@@ -3,7 +3,8 @@
 
 use std::fmt::Write as _;
 
-use super::{BALLS, DISCS, Property, REFERENCES, library, serde_name};
+use super::{BALLS, DISCS, Property, REFERENCES, library};
+use crate::json::variant_name;
 
 /// The line before the generated tables in `docs/materials.md`.
 pub const MATERIALS_BEGIN: &str = "<!-- The tables below are generated from \
@@ -47,7 +48,7 @@ pub fn materials_table() -> String {
         let _ = writeln!(
             out,
             "| `{}` | {} | {} | {} | {} | {law} | {} | {:.2} [{}] | {:.2}, `{}` [{}] |",
-            serde_name(m.name),
+            variant_name(m.name),
             m.label,
             cell(m.youngs_modulus_gpa, None),
             cell(m.poisson_ratio, None),
@@ -70,7 +71,7 @@ pub fn materials_table() -> String {
             Some(e) => writeln!(
                 out,
                 "| `{}` | {} | {} vs {} | {} | {} | {} | [{}] |",
-                serde_name(m.name),
+                variant_name(m.name),
                 e.medium,
                 e.corrosion_potential_v,
                 e.reference_electrode.label(),
@@ -82,7 +83,7 @@ pub fn materials_table() -> String {
             None => writeln!(
                 out,
                 "| `{}` | **not found**: a scene with `corrosion` must give them | | | | | |",
-                serde_name(m.name)
+                variant_name(m.name)
             ),
         };
     }
@@ -95,7 +96,7 @@ pub fn materials_table() -> String {
         let _ = writeln!(
             out,
             "| `{}` | {} | {} | {} | {} | {} [{}] |",
-            serde_name(b.name),
+            variant_name(b.name),
             b.label,
             cell(b.youngs_modulus_gpa, None),
             cell(b.poisson_ratio, None),
