@@ -66,10 +66,10 @@ impl Kept {
     }
 }
 
-/// The flat under the contact grid `grid` with the ball's centre at `ball_x_m`: the map's
-/// depth interpolated along the stroke (linear between column centres; unworn beyond).
-fn depth_under(map: &WearMap, grid: &Grid, ball_x_m: f64) -> Vec<f64> {
-    let mut out = vec![0.0; grid.len()];
+/// Writes into `out` the flat under the contact grid `grid` with the ball's centre at
+/// `ball_x_m`: the map's depth interpolated along the stroke (linear between column
+/// centres; unworn beyond).
+fn depth_under(map: &WearMap, grid: &Grid, ball_x_m: f64, out: &mut [f64]) {
     for c in 0..grid.nx {
         let position = (ball_x_m + grid.x(c)) / map.dx + map.nx as f64 / 2.0 - 0.5;
         let left = position.floor();
@@ -81,7 +81,6 @@ fn depth_under(map: &WearMap, grid: &Grid, ball_x_m: f64) -> Vec<f64> {
             out[iy * grid.nx + c] = (1.0 - weight) * at(a) + weight * at(b);
         }
     }
-    out
 }
 
 /// The capped cells of `solution` that interpenetrate the flat, with how far: where the
@@ -104,8 +103,10 @@ fn pressed_in(
 }
 
 /// Runs `cycles` of `stroke` on the smooth flat of `setup` (its ball, load, hardness law,
-/// cap and wear law; its grid centred on the ball), keeping a solve's pressure within
-/// [`REUSE_FRACTION_OF_APPROACH`]. The positions are `n + 1` points a little less than a
+/// cap and wear law; its grid centred on the ball). The cap is the hardness law's at no
+/// plastic strain: the map does not yet carry the strain a `strain_hardening` cap rises
+/// with, so that cap stays at the initial yield strength here. A solve's pressure is kept
+/// within [`REUSE_FRACTION_OF_APPROACH`]. The positions are `n + 1` points a little less than a
 /// cell apart covering the stroke, each pressing the stretch of the stroke nearest to it.
 pub fn reciprocate(
     setup: &Setup,
@@ -153,6 +154,7 @@ struct Sweeps {
     ball: Vec<f64>,
     reuse_m: f64,
     length_m: f64,
+    depth: Vec<f64>,
     steps: usize,
     last: Option<Kept>,
 }
@@ -170,6 +172,7 @@ impl Sweeps {
             reuse_m: reuse_fraction * setup.plan.hertz().approach_m(),
             length_m: stroke.length_m,
             steps: (stroke.length_m / grid.dx).ceil().max(1.0) as usize,
+            depth: vec![0.0; grid.len()],
             grid,
             setup,
             last: None,
@@ -222,14 +225,17 @@ impl Sweeps {
         cycle: u64,
         cap: f64,
     ) -> Result<bool, SimulationError> {
-        let depth = depth_under(map, &self.grid, x_m);
+        // Most positions keep the last solve, so the flat is read into a buffer kept
+        // between positions, and handed to the solve's record only when one is made.
+        depth_under(map, &self.grid, x_m, &mut self.depth);
         if self
             .last
             .as_ref()
-            .is_some_and(|kept| kept.stands_for(&depth, self.reuse_m))
+            .is_some_and(|kept| kept.stands_for(&self.depth, self.reuse_m))
         {
             return Ok(false);
         }
+        let depth = std::mem::replace(&mut self.depth, vec![0.0; self.grid.len()]);
         let separation: Vec<f64> = self.ball.iter().zip(&depth).map(|(b, d)| b + d).collect();
         let problem = ContactProblem {
             grid: self.grid,
