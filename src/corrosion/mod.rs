@@ -17,6 +17,7 @@ pub mod kinetics;
 pub mod plausible;
 pub mod reference;
 pub mod spots;
+pub mod stroke;
 
 use thiserror::Error;
 

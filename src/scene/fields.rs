@@ -2,11 +2,12 @@
 //! allowed range. The range checks (`validate.rs`, `located.rs`) word their messages from
 //! these, and `docs/scene.md`'s table is rendered from them (`reference.rs`); a test walks
 //! the parser's accepted keys and fails on any key without a descriptor here. The
-//! descriptors of `disc.surface` and of `corrosion` are in `fields/surface.rs` and
-//! `fields/corrosion.rs`, listed in [`FIELDS`] here.
+//! descriptors of `disc.surface`, `test.reciprocating` and `corrosion` are in their own files
+//! under `fields/`, listed in [`FIELDS`] here.
 
 mod corrosion;
 mod material;
+mod reciprocating;
 mod surface;
 
 pub(super) use corrosion::{
@@ -18,6 +19,8 @@ pub(super) use corrosion::{
 };
 
 pub(super) use material::{BALL_MATERIAL, DISC_MATERIAL};
+
+pub(super) use reciprocating::{FREQUENCY, RECIPROCATING, STROKE, VELOCITY_LAW};
 
 pub(super) use surface::{
     SURFACE, SURFACE_HURST, SURFACE_ID, SURFACE_KIND, SURFACE_LONG_CUTOFF, SURFACE_REMOVE_TILT,
@@ -313,7 +316,9 @@ pub(super) const CALIBRATION_LOAD: Field = condition(
 pub(super) const CALIBRATION_SPEED: Field = condition(
     "wear.archard_calibration.speed_rpm",
     "rpm",
-    "Rotation speed of the measured test; absent, the scene's `test.speed_rpm`.",
+    "Rotation speed of the measured test; absent, the scene's `test.speed_rpm`. Given (or \
+     `track_radius_mm` given), the point was measured on a disc, even for a reciprocating \
+     scene; neither given, on the scene's own rig (a stroke's 2 L f).",
 );
 
 /// `wear.archard_calibration.track_radius_mm`.
@@ -522,6 +527,10 @@ pub const FIELDS: &[Field] = &[
     CYCLES,
     OCP_BEFORE,
     OCP_AFTER,
+    RECIPROCATING,
+    STROKE,
+    FREQUENCY,
+    VELOCITY_LAW,
     section("wear", "The wear law.", Range::Object),
     ARCHARD_K,
     CALIBRATION,

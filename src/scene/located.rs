@@ -16,7 +16,8 @@ use serde_json::{Map, Value};
 use super::fields::{CYCLES, GRID};
 use super::suggest::did_you_mean_field;
 use super::{
-    Ball, Corrosion, Disc, FieldError, MAX_LISTED_PROBLEMS, Numerics, Scene, TestConditions, Wear,
+    Ball, Corrosion, Disc, FieldError, MAX_LISTED_PROBLEMS, Numerics, Reciprocating, Scene,
+    TestConditions, Wear,
 };
 
 /// The top-level fields of a scene, in the order of `docs/scene.md`.
@@ -181,10 +182,15 @@ fn by_field<T: DeserializeOwned>(
             }
             Err(e) => {
                 let field_path = format!("{path}.{key}");
-                let refined = if field_path == "disc.hardness_table" {
-                    table_errors(&field_path, field)
-                } else {
-                    Vec::new()
+                let refined = match field_path.as_str() {
+                    "disc.hardness_table" => table_errors(&field_path, field),
+                    // A section within a section: each of its fields located in turn.
+                    "test.reciprocating" if field.is_object() => {
+                        let mut inner = Vec::new();
+                        by_field::<Reciprocating>(&field_path, field, &mut inner, unchecked);
+                        inner
+                    }
+                    _ => Vec::new(),
                 };
                 if refined.is_empty() {
                     let message = e.to_string();

@@ -20,6 +20,7 @@ mod located;
 pub mod materials;
 mod parse;
 mod preset;
+mod reciprocating;
 mod record;
 mod reference;
 mod sections;
@@ -49,6 +50,7 @@ pub use preset::{
     DALMAU2018_316L, DALMAU2018_316L_ASPERITIES, Preset, dalmau2018_316l,
     dalmau2018_316l_asperities, paper_surface, presets,
 };
+pub use reciprocating::{Reciprocating, VELOCITY_LAW_NAMES};
 pub use record::{MAX_RECORD_CYCLES, RecordCycles, TABLE3_TIMES_S};
 pub use reference::{FIELDS_BEGIN, FIELDS_END, field_table};
 pub use sections::{
@@ -124,9 +126,17 @@ impl Scene {
         self.test.sliding_speed_m_s()
     }
 
-    /// Duration of one cycle, 60 / rpm, s.
+    /// Duration of one cycle, s: 60 / rpm on the disc, 1 / f on the reciprocating rig.
     pub fn cycle_period_s(&self) -> f64 {
-        60.0 / self.test.speed_rpm
+        match &self.test.reciprocating {
+            Some(rig) => 1.0 / rig.frequency_hz,
+            None => 60.0 / self.test.speed_rpm,
+        }
+    }
+
+    /// The reciprocating rig's stroke in SI units; `None` on the rotating disc.
+    pub fn stroke(&self) -> Option<crate::wear::Stroke> {
+        self.test.reciprocating.as_ref().map(Reciprocating::stroke)
     }
 
     /// Cycles completed after `time_s` of rubbing (fractional).
@@ -138,7 +148,7 @@ impl Scene {
     pub fn record_cycles(&self) -> Vec<u64> {
         self.numerics
             .record_cycles
-            .resolve(self.test.cycles, self.test.speed_rpm)
+            .resolve(self.test.cycles, 60.0 * self.test.cycles_per_second())
     }
 
     /// The disc's hardness law (Pa against cycle count).

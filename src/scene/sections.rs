@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::auto_or::{CycleStep, DomainSize, GridSize, SolverThreads, Tolerance};
 use super::materials::{BallMaterialName, DiscMaterialName};
+use super::reciprocating::Reciprocating;
 use super::record::RecordCycles;
 use super::surface::SurfaceSpec;
 use crate::hardness::{HardnessError, HardnessLaw, YieldCap};
@@ -255,6 +256,9 @@ pub struct TestConditions {
     pub ocp_before_s: f64,
     /// Open-circuit time recorded after the rubbing stops, s.
     pub ocp_after_s: f64,
+    /// The reciprocating rig's stroke; `None` for the ball on a rotating disc.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reciprocating: Option<Reciprocating>,
 }
 
 impl Default for TestConditions {
@@ -267,20 +271,40 @@ impl Default for TestConditions {
             cycles: PAPER_CYCLES,
             ocp_before_s: 0.0,
             ocp_after_s: 0.0,
+            reciprocating: None,
         }
     }
 }
 
 impl TestConditions {
-    /// Sliding speed 2 pi R_c rpm / 60, m/s (18.8 mm/s in the paper).
+    /// The mean sliding speed, m/s: 2 pi R_c rpm / 60 on the disc (18.8 mm/s in the
+    /// paper), 2 L f on the reciprocating rig.
     pub fn sliding_speed_m_s(&self) -> f64 {
-        // The same order of operations as `Scene::track_length_m` times the turns per second.
-        2.0 * std::f64::consts::PI * (self.track_radius_mm * 1e-3) * self.speed_rpm / 60.0
+        match &self.reciprocating {
+            Some(rig) => rig.stroke().mean_speed_m_s(),
+            // The same order of operations as `Scene::track_length_m` times the turns per
+            // second.
+            None => {
+                2.0 * std::f64::consts::PI * (self.track_radius_mm * 1e-3) * self.speed_rpm / 60.0
+            }
+        }
+    }
+
+    /// Cycles per second: rpm / 60 on the disc, the stroke's frequency on the
+    /// reciprocating rig.
+    pub fn cycles_per_second(&self) -> f64 {
+        match &self.reciprocating {
+            Some(rig) => rig.frequency_hz,
+            None => self.speed_rpm / 60.0,
+        }
     }
 
     /// Cycles completed after `time_s` of rubbing (fractional).
     pub fn cycles_at(&self, time_s: f64) -> f64 {
-        time_s * self.speed_rpm / 60.0
+        match &self.reciprocating {
+            Some(rig) => time_s * rig.frequency_hz,
+            None => time_s * self.speed_rpm / 60.0,
+        }
     }
 }
 
@@ -343,10 +367,14 @@ impl Wear {
             .archard_calibration
             .as_ref()
             .unwrap_or(&PAPER_ARCHARD_CALIBRATION);
+        // A point that names a speed or a track radius was measured on a disc, whatever
+        // rig the scene describes; one that names neither, on the scene's own rig.
+        let on_disc = point.speed_rpm.is_some() || point.track_radius_mm.is_some();
         let test = TestConditions {
             load_n: point.load_n.unwrap_or(test.load_n),
             speed_rpm: point.speed_rpm.unwrap_or(test.speed_rpm),
             track_radius_mm: point.track_radius_mm.unwrap_or(test.track_radius_mm),
+            reciprocating: test.reciprocating.clone().filter(|_| !on_disc),
             ..test.clone()
         };
         MeasuredPoint {

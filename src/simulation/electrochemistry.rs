@@ -245,6 +245,38 @@ impl<'a> Cell<'a> {
         })
     }
 
+    /// A reciprocating cycle whose stroke leaves the bare-equivalent area `area_m2` on
+    /// average over a cycle (before `anodic_area_factor`), standing for `duration_s` of
+    /// rubbing; `real_contact_m2` (F / H) and the contact's mean chord `chord_m` for the
+    /// model's reason.
+    pub(super) fn stroke_cycle(
+        &mut self,
+        cycle: u64,
+        area_m2: f64,
+        (real_contact_m2, chord_m): (f64, Option<f64>),
+        duration_s: f64,
+    ) -> Result<Reading, CorrosionError> {
+        let area = area_m2 * self.settings.anodic_area_factor;
+        let (potential, current) = self.couple(area)?;
+        self.charge_c += current * duration_s;
+        self.tally(cycle, area, potential)?;
+        let snapshot = Snapshot {
+            cycle,
+            to_real_contact: area / real_contact_m2,
+            chord_m,
+        };
+        self.first.get_or_insert(snapshot);
+        self.last = Some(snapshot);
+        Ok(Reading {
+            anodic_area_m2: area,
+            potential_v: potential,
+            anodic_current_a: current,
+            contact_chord_m: chord_m,
+            charge_c: self.charge_c,
+            wac_m3: self.model.dissolved_volume_m3(self.charge_c),
+        })
+    }
+
     /// Notes a potential eq. 18 would have put above E_corr, or one outside the Tafel line's
     /// fitted domain; a potentiostat's potential is neither eq. 18's nor the line's.
     fn tally(&mut self, cycle: u64, area: f64, potential: f64) -> Result<(), CorrosionError> {

@@ -5,7 +5,9 @@
 
 use std::f64::consts::PI;
 
-use super::sizing::{LowestYield, auto_cell_m, auto_domain_m, punch_radius_m};
+use super::sizing::{
+    LowestYield, auto_cell_m, auto_domain_m, cells_per_contact_radius, punch_radius_m,
+};
 use crate::contact::{ElasticPair, Grid, Hertz};
 use crate::scene::format::{num, sig};
 use crate::scene::{DomainSize, FieldError, GridSize, Scene, Switch};
@@ -149,7 +151,7 @@ fn check_capacity(errors: &mut Vec<FieldError>, scene: &Scene, lowest: &LowestYi
 fn check_resolution(errors: &mut Vec<FieldError>, scene: &Scene, hertz_m: f64, sizing_m: f64) {
     let domain = scene.numerics.domain_m();
     let side = domain.unwrap_or(auto_domain_m(sizing_m));
-    let auto_cell = auto_cell_m(sizing_m);
+    let auto_cell = auto_cell_m(sizing_m, cells_per_contact_radius(scene));
     let cell = match (scene.numerics.grid, domain) {
         (GridSize::Cells(n), _) => side / n as f64,
         // Auto cells over a fixed domain: as fine as the auto density, unless that needs

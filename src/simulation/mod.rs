@@ -23,6 +23,9 @@ mod score;
 mod setup;
 mod sizing;
 mod stepping;
+mod stroke_checks;
+mod stroke_report;
+mod stroke_run;
 mod warm;
 
 use thiserror::Error;
@@ -42,7 +45,10 @@ pub use loaded::disc_share;
 pub use plan::{Plan, parse_scene, parse_scene_str};
 pub use plausibility::{RULES_BEGIN, RULES_END, check_map, rules_table};
 pub use provenance::{Build, GIT_COMMIT, Provenance, scene_sha256};
-pub use reciprocating::{REUSE_FRACTION_OF_APPROACH, StrokeWear, reciprocate, reciprocate_keeping};
+pub use reciprocating::{
+    REUSE_FRACTION_OF_APPROACH, StrokeCycle, StrokeEngine, StrokeWear, reciprocate,
+    reciprocate_keeping,
+};
 pub use result::{
     CycleRecord, Model, ModelChoice, OcpPhase, OcpSample, PressureMap, Profile, SimulationResult,
     Summary, SurfaceReport,
@@ -56,6 +62,9 @@ pub use score::{
 pub use setup::{COUPLING_SENSITIVITY, RunOptions, Setup};
 pub use sizing::{CELLS_PER_CONTACT_RADIUS, DOMAIN_PER_CONTACT_RADIUS};
 pub use stepping::MAX_STEP;
+pub use stroke_report::{
+    AXIAL_POINTS, AxialProfile, CycleTrace, MAP_COLUMNS, StrokeReport, TRACE_SAMPLES, WearMapReport,
+};
 
 /// Why a run stopped without a result.
 #[derive(Debug, Error)]

@@ -8,7 +8,11 @@ use serde_json::Value;
 use super::estimate::{RunEstimate, estimate};
 use super::feasibility::{Derived, limits, resolution};
 use super::plausibility::judge;
-use super::sizing::{LowestYield, elastic_pair, hertz, lowest_yield, plan_grid, sizing_radius_m};
+use super::sizing::{
+    LowestYield, cells_per_contact_radius, elastic_pair, hertz, lowest_yield, plan_grid,
+    sizing_radius_m,
+};
+use super::stroke_checks::{stroke_limits, stroke_warnings};
 use crate::contact::{ElasticPair, Hertz};
 use crate::hardness::{HardnessLaw, YieldCap};
 use crate::scene::{self, FieldError, FieldWarning, Scene, SceneErrors, Switch};
@@ -140,12 +144,14 @@ fn derive(scene: Scene) -> Result<Plan, Vec<FieldError>> {
         capped,
         sizing_m: sizing_radius_m,
     };
-    let cells = plan_grid(&scene.numerics, sizing_radius_m, None).cells;
+    let density = cells_per_contact_radius(&scene);
+    let cells = plan_grid(&scene.numerics, (sizing_radius_m, density), None).cells;
     let estimate = estimate(&scene, cells);
     let verdict = judge(&scene, &derived, &estimate);
     // A field the limits refuse keeps their message (its bound is exact); plausibility
     // names the slip of the others.
     let mut errors = limits(&scene, &derived);
+    errors.extend(stroke_limits(&scene, sizing_radius_m));
     let refused = |path: &str, errors: &[FieldError]| errors.iter().any(|e| e.path == path);
     for refusal in verdict.refusals {
         if !refused(&refusal.path, &errors) {
@@ -159,6 +165,8 @@ fn derive(scene: Scene) -> Result<Plan, Vec<FieldError>> {
         return Err(errors);
     }
     let wear = scene.wear.law(&scene.test, &hardness);
+    let mut warnings = verdict.warnings;
+    warnings.extend(stroke_warnings(&scene));
     Ok(Plan {
         scene,
         pair,
@@ -169,6 +177,6 @@ fn derive(scene: Scene) -> Result<Plan, Vec<FieldError>> {
         sizing_radius_m,
         wear,
         estimate,
-        warnings: verdict.warnings,
+        warnings,
     })
 }

@@ -16,6 +16,7 @@ use std::ops::Range;
 use crate::contact::{ContactProblem, ContactSolution, ContactSolver, Grid};
 use crate::wear::{Stroke, WearMap};
 
+use super::growth::{near_edges, widen};
 use super::{Setup, SimulationError};
 
 /// How far the flat under the loaded cells may differ from the last solve's, as a fraction
@@ -38,6 +39,27 @@ pub struct StrokeWear {
     pub volume_m3: Vec<f64>,
     /// Contact solves per cycle (the other positions kept the last solve's pressure).
     pub solves: Vec<usize>,
+}
+
+/// One solved cycle of [`StrokeEngine::cycle`]: what it cost, the wear it left and the
+/// contact at the stroke's middle.
+#[derive(Debug, Clone)]
+pub struct StrokeCycle {
+    /// Contact solves in the two sweeps.
+    pub solves: usize,
+    /// Solver iterations of those solves.
+    pub iterations: usize,
+    /// The pressure integral the two sweeps left on the flat, Pa m (before `k / H`): the
+    /// wear of a cycle at this pressure, which the cycles a step skips repeat.
+    pub pressed: WearMap,
+    /// The depth yielding pushed in this cycle, summed over the map's cells, m (times a
+    /// cell's area, a volume).
+    pub yielded_m: f64,
+    /// The contact with the ball at the stroke's middle on the forward sweep, and the cap
+    /// it was solved under, Pa.
+    pub middle: ContactSolution,
+    /// The cap of this cycle, Pa.
+    pub cap_pa: f64,
 }
 
 /// The last solve, the flat under the contact it was made on, the gap it left, and its
@@ -103,11 +125,12 @@ fn pressed_in(
 }
 
 /// Runs `cycles` of `stroke` on the smooth flat of `setup` (its ball, load, hardness law,
-/// cap and wear law; its grid centred on the ball). The cap is the hardness law's at no
-/// plastic strain: the map does not yet carry the strain a `strain_hardening` cap rises
-/// with, so that cap stays at the initial yield strength here. A solve's pressure is kept
-/// within [`REUSE_FRACTION_OF_APPROACH`]. The positions are `n + 1` points a little less than a
-/// cell apart covering the stroke, each pressing the stretch of the stroke nearest to it.
+/// cap and wear law; its grid centred on the ball), solving every cycle. The cap is the
+/// hardness law's at no plastic strain: the map does not carry the strain a
+/// `strain_hardening` cap rises with, so that cap stays at the initial yield strength
+/// here. A solve's pressure is kept within [`REUSE_FRACTION_OF_APPROACH`]. The positions
+/// are `n + 1` points a little less than a cell apart covering the stroke, each pressing
+/// the stretch of the stroke nearest to it.
 pub fn reciprocate(
     setup: &Setup,
     stroke: Stroke,
@@ -125,29 +148,22 @@ pub fn reciprocate_keeping(
     cycles: Range<u64>,
     reuse_fraction: f64,
 ) -> Result<StrokeWear, SimulationError> {
-    let mut sweeps = Sweeps::new(setup, stroke, reuse_fraction);
-    let mut map = WearMap::new(&sweeps.grid, stroke.length_m);
+    let mut engine = StrokeEngine::new(setup, stroke, reuse_fraction);
     let (mut volume_m3, mut solves) = (Vec::new(), Vec::new());
     for cycle in cycles {
-        // Forward, then back: a sweep is solved on the flat as the last one left it, and
-        // its yielding and wear are added after it, as a pass of the disc is (the groove
-        // that yielding pushes in is each cell's deepest interpenetration in the sweep:
-        // in the middle of the track, a row's deepest, the disc's rule).
-        let forward = sweeps.sweep(&mut map, cycle, false)?;
-        let back = sweeps.sweep(&mut map, cycle, true)?;
-        volume_m3.push(map.depth.iter().sum::<f64>() * map.dx * sweeps.grid.dy);
-        solves.push(forward + back);
+        solves.push(engine.cycle(cycle)?.solves);
+        volume_m3.push(engine.volume_m3());
     }
     Ok(StrokeWear {
-        map,
+        map: engine.map,
         volume_m3,
         solves,
     })
 }
 
-/// What every sweep of a run shares: the normal contact's solver on the setup's grid, the
-/// ball, the positions along the stroke and the last solve.
-struct Sweeps {
+/// Reciprocating cycles on a flat: the map, the normal contact's solver on the setup's
+/// grid, the ball, the positions along the stroke and the last solve.
+pub struct StrokeEngine {
     setup: Setup,
     grid: Grid,
     solver: Box<dyn ContactSolver>,
@@ -157,10 +173,15 @@ struct Sweeps {
     depth: Vec<f64>,
     steps: usize,
     last: Option<Kept>,
+    map: WearMap,
+    /// Whether a solve since the last growth came near the grid's edge, along x and y.
+    crowded: (bool, bool),
 }
 
-impl Sweeps {
-    fn new(setup: &Setup, stroke: Stroke, reuse_fraction: f64) -> Self {
+impl StrokeEngine {
+    /// An unworn flat under `stroke`, keeping a solve's pressure within `reuse_fraction`
+    /// of Hertz's approach (see [`reciprocate_keeping`]).
+    pub fn new(setup: &Setup, stroke: Stroke, reuse_fraction: f64) -> Self {
         let setup = Setup {
             coupling: false,
             ..setup.clone()
@@ -173,67 +194,143 @@ impl Sweeps {
             length_m: stroke.length_m,
             steps: (stroke.length_m / grid.dx).ceil().max(1.0) as usize,
             depth: vec![0.0; grid.len()],
+            map: WearMap::new(&grid, stroke.length_m),
             grid,
             setup,
             last: None,
+            crowded: (false, false),
         }
     }
 
-    /// One sweep of `cycle` over `map`, backward or not, its yielding and wear added after
-    /// it; the count of contact solves.
+    /// The flat's depth, m, along and across the stroke.
+    pub fn map(&self) -> &WearMap {
+        &self.map
+    }
+
+    /// The contact grid, centred on the ball.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// The worn volume, m^3.
+    pub fn volume_m3(&self) -> f64 {
+        self.map.depth.iter().sum::<f64>() * self.map.dx * self.grid.dy
+    }
+
+    /// Solves `cycle`: forward, then back. A sweep is solved on the flat as the last one
+    /// left it, and its yielding and wear are added after it, as a pass of the disc is (the
+    /// groove that yielding pushes in is each cell's deepest interpenetration in the
+    /// sweep: in the middle of the track, a row's deepest, the disc's rule).
+    pub fn cycle(&mut self, cycle: u64) -> Result<StrokeCycle, SimulationError> {
+        let mut pressed = WearMap::new(&self.grid, self.length_m);
+        let forward = self.sweep(&mut pressed, cycle, false)?;
+        let back = self.sweep(&mut pressed, cycle, true)?;
+        let (middle, cap_pa) = forward.middle.expect("a forward sweep passes the middle");
+        Ok(StrokeCycle {
+            solves: forward.solves + back.solves,
+            iterations: forward.iterations + back.iterations,
+            pressed,
+            yielded_m: forward.yielded_m + back.yielded_m,
+            middle,
+            cap_pa,
+        })
+    }
+
+    /// The cycles `cycles` worn at the pressure of a solved cycle's `pressed` map, each at
+    /// its own hardness: what a step skips. Call it before the grid grows, on the map of
+    /// the grid the cycle was solved on.
+    pub fn repeat(&mut self, pressed: &WearMap, cycles: Range<u64>) {
+        let plan = &self.setup.plan;
+        let scale = plan.wear().depth_scale(cycles, plan.hardness());
+        debug_assert_eq!(pressed.depth.len(), self.map.depth.len(), "the same grid");
+        for (d, p) in self.map.depth.iter_mut().zip(&pressed.depth) {
+            *d += scale * p;
+        }
+    }
+
+    /// Widens the grid along the axes where a solve since the last growth came near its
+    /// edge ([`near_edges`]), carrying the map over; the new grid, or `None` when every
+    /// contact fitted or the grid is at its largest.
+    pub fn grow_if_crowded(&mut self) -> Option<Grid> {
+        let wider = widen(&self.grid, std::mem::take(&mut self.crowded))?;
+        self.map = self.map.embedded_in(&wider, self.length_m);
+        self.grid = wider;
+        self.solver = self.setup.solver(&wider);
+        self.ball = self.setup.ball_height(&wider);
+        self.depth = vec![0.0; wider.len()];
+        self.last = None;
+        Some(wider)
+    }
+
+    /// One sweep of `cycle`, backward or not, its pressure integral added to `pressed` and
+    /// its yielding and wear to the map after it.
     fn sweep(
         &mut self,
-        map: &mut WearMap,
+        pressed: &mut WearMap,
         cycle: u64,
         backward: bool,
-    ) -> Result<usize, SimulationError> {
+    ) -> Result<Sweep, SimulationError> {
         let cap = self.setup.yield_pressure_pa(cycle as f64, 0.0);
         let plan = &self.setup.plan;
         let scale = plan.wear().depth_scale(cycle..cycle + 1, plan.hardness());
         let (grid, half) = (self.grid, self.length_m / 2.0);
         let step_m = self.length_m / self.steps as f64;
-        let mut pressed = WearMap::new(&grid, self.length_m);
-        let mut yielded = vec![0.0_f64; map.depth.len()];
-        let mut solves = 0;
+        let mut this = WearMap::new(&grid, self.length_m);
+        let mut yielded = vec![0.0_f64; self.map.depth.len()];
+        let mut sweep = Sweep::default();
         for k in 0..=self.steps {
             let j = if backward { self.steps - k } else { k };
             let x = -half + j as f64 * step_m;
-            solves += usize::from(self.solve_unless_kept(map, x, cycle, cap)?);
+            if let Some(iterations) = self.solve_unless_kept(x, cycle, cap)? {
+                sweep.solves += 1;
+                sweep.iterations += iterations;
+            }
             let kept = self.last.as_ref().expect("solved or kept");
+            if !backward && j == self.steps / 2 {
+                sweep.middle = Some((kept.solution.clone(), cap));
+            }
             let (from, to) = ((x - step_m / 2.0).max(-half), (x + step_m / 2.0).min(half));
-            pressed.add_pass(&grid, &kept.solution.pressure, from, to);
+            this.add_pass(&grid, &kept.solution.pressure, from, to);
             for &(c, iy, depth_m) in &kept.pressed_in {
-                let column = ((x + grid.x(c)) / map.dx + map.nx as f64 / 2.0).floor();
-                if (0.0..map.nx as f64).contains(&column) {
-                    let cell = &mut yielded[iy * map.nx + column as usize];
+                let column = ((x + grid.x(c)) / self.map.dx + self.map.nx as f64 / 2.0).floor();
+                if (0.0..self.map.nx as f64).contains(&column) {
+                    let cell = &mut yielded[iy * self.map.nx + column as usize];
                     *cell = cell.max(depth_m);
                 }
             }
         }
-        for ((d, p), y) in map.depth.iter_mut().zip(&pressed.depth).zip(&yielded) {
+        for (((d, p), y), total) in self
+            .map
+            .depth
+            .iter_mut()
+            .zip(&this.depth)
+            .zip(&yielded)
+            .zip(pressed.depth.iter_mut())
+        {
             *d += y + scale * p;
+            *total += p;
         }
-        Ok(solves)
+        sweep.yielded_m = yielded.iter().sum();
+        Ok(sweep)
     }
 
-    /// Solves the contact with the ball's centre at `x_m` on `map`, unless the last solve
-    /// stands for it; whether it solved.
+    /// Solves the contact with the ball's centre at `x_m` on the map, unless the last solve
+    /// stands for it; the solve's iterations when it solved.
     fn solve_unless_kept(
         &mut self,
-        map: &WearMap,
         x_m: f64,
         cycle: u64,
         cap: f64,
-    ) -> Result<bool, SimulationError> {
+    ) -> Result<Option<usize>, SimulationError> {
         // Most positions keep the last solve, so the flat is read into a buffer kept
         // between positions, and handed to the solve's record only when one is made.
-        depth_under(map, &self.grid, x_m, &mut self.depth);
+        depth_under(&self.map, &self.grid, x_m, &mut self.depth);
         if self
             .last
             .as_ref()
             .is_some_and(|kept| kept.stands_for(&self.depth, self.reuse_m))
         {
-            return Ok(false);
+            return Ok(None);
         }
         let depth = std::mem::replace(&mut self.depth, vec![0.0; self.grid.len()]);
         let separation: Vec<f64> = self.ball.iter().zip(&depth).map(|(b, d)| b + d).collect();
@@ -252,12 +349,24 @@ impl Sweeps {
             .solver
             .solve(&problem, &self.setup.options, warm)
             .map_err(|source| SimulationError::Contact { cycle, source })?;
+        let iterations = solution.iterations;
+        let near = near_edges(&self.grid, &solution.pressure);
+        self.crowded = (self.crowded.0 || near.0, self.crowded.1 || near.1);
         self.last = Some(Kept {
             pressed_in: pressed_in(&self.grid, &solution, &separation, cap),
             gap: solution.gap_m(&separation),
             depth,
             solution,
         });
-        Ok(true)
+        Ok(Some(iterations))
     }
+}
+
+/// What one sweep cost and left.
+#[derive(Default)]
+struct Sweep {
+    solves: usize,
+    iterations: usize,
+    yielded_m: f64,
+    middle: Option<(ContactSolution, f64)>,
 }

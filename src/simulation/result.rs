@@ -10,6 +10,7 @@ use crate::surface::Statistics;
 use crate::wear::{Groove, WearLaw, WearSummary};
 
 use super::provenance::Provenance;
+use super::stroke_report::StrokeReport;
 
 /// A whole run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -43,6 +44,10 @@ pub struct SimulationResult {
     /// and after the rubbing (Fig. 6); empty without corrosion.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub ocp_trace: Vec<OcpSample>,
+    /// The reciprocating rig's wear map, axial profile and traces over a cycle; absent on
+    /// the rotating disc.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stroke: Option<StrokeReport>,
     /// Totals.
     pub summary: Summary,
     /// Which build ran the scene, where and when, and the scene's SHA-256; absent from
@@ -115,6 +120,8 @@ pub enum Model {
     Surface,
     /// The library's materials the scene names, and the values it gave instead.
     Materials,
+    /// The reciprocating rig: the positions solved along the stroke.
+    Reciprocating,
 }
 
 impl Model {
@@ -440,6 +447,7 @@ mod tests {
             (Model::Faraday, "faraday"),
             (Model::Surface, "surface"),
             (Model::Materials, "materials"),
+            (Model::Reciprocating, "reciprocating"),
         ];
         for (model, name) in names {
             let json = serde_json::to_value(model).expect("serialises");

@@ -17,7 +17,7 @@ use super::hardening::work_hardening_report;
 use super::plan::Plan;
 use super::result::{CycleRecord, Summary, SurfaceReport};
 use super::roughness::{DiscSurface, build, wanted_cell_m};
-use super::sizing::{GridPlan, LowestYield, plan_grid};
+use super::sizing::{GridPlan, LowestYield, cells_per_contact_radius, plan_grid};
 use super::{Model, ModelChoice, SimulationError};
 
 /// The coupling term changes the pressures by at least 1.2 |mu delta-nu| relative to p0
@@ -143,7 +143,8 @@ impl Setup {
         let radius = plan.sizing_radius_m();
         let spec = scene.disc.surface.as_ref();
         let surface_cell = spec.and_then(|s| wanted_cell_m(s, options.surface));
-        let grid_plan = plan_grid(&scene.numerics, radius, surface_cell);
+        let density = cells_per_contact_radius(scene);
+        let grid_plan = plan_grid(&scene.numerics, (radius, density), surface_cell);
         let grid =
             Grid::square(grid_plan.cells, grid_plan.domain_m).map_err(SimulationError::Setup)?;
         models.push(grid_choice(&grid, &grid_plan, radius));

@@ -25,6 +25,26 @@ pub const DOMAIN_PER_CONTACT_RADIUS: f64 = 3.0;
 /// (approach): `tribosim bench contact`, N = 256.
 pub const CELLS_PER_CONTACT_RADIUS: f64 = 44.0;
 
+/// Auto cell density on the reciprocating rig, where the contact is solved at positions a
+/// cell apart along the stroke, so a run costs about the cube of the density. Measured by
+/// `scripts/stroke_accuracy.py` (20 cycles of a 2 mm stroke against grid 96, 32 per
+/// radius, every cycle solved; `docs/accuracy.md`): at 16 per radius (grid 48) the
+/// deepest point errs by -1.6e-3, the profile across the middle by 5.2e-3 and along the
+/// axis by 1.6e-3 of the deepest point, the volume by -1.2e-3, in 0.13 of the time; at
+/// 10.7 (grid 32) by -2.1e-3, 1.0e-2 and 7.1e-3 in 0.04; at 21 (grid 64) by -4.5e-4,
+/// 3.2e-3 and 1.3e-3 in 0.32. 16 keeps every error below the disc's grid error of a few
+/// percent (`docs/accuracy.md`).
+pub const STROKE_CELLS_PER_CONTACT_RADIUS: f64 = 16.0;
+
+/// The auto cell density of `scene`'s rig, cells per contact radius.
+pub fn cells_per_contact_radius(scene: &Scene) -> f64 {
+    if scene.test.reciprocating.is_some() {
+        STROKE_CELLS_PER_CONTACT_RADIUS
+    } else {
+        CELLS_PER_CONTACT_RADIUS
+    }
+}
+
 /// The ball and the disc of `scene` as the contact core's materials. The scene's own checks
 /// bound E and nu as the core does, so an error here means the two disagree.
 pub fn elastic_pair(scene: &Scene) -> Result<ElasticPair, ContactError> {
@@ -85,9 +105,9 @@ pub fn sizing_radius_m(hertz: &Hertz, lowest_yield_pa: f64, capped: bool) -> f64
     }
 }
 
-/// The auto cell size for a sizing radius, m.
-pub fn auto_cell_m(radius_m: f64) -> f64 {
-    radius_m / CELLS_PER_CONTACT_RADIUS
+/// The auto cell size for a sizing radius at `per_radius` cells per radius, m.
+pub fn auto_cell_m(radius_m: f64, per_radius: f64) -> f64 {
+    radius_m / per_radius
 }
 
 /// The auto domain side for a sizing radius, m (before rounding to whole cells).
@@ -113,15 +133,20 @@ pub struct GridPlan {
 }
 
 /// The grid `numerics` asks for, with what it leaves to the simulation sized by the contact
-/// radius `radius_m` and, on a rough disc, by the finest cell its surface asks for
-/// (`surface_cell_m`, see [`super::roughness::wanted_cell_m`]).
-pub fn plan_grid(numerics: &Numerics, radius_m: f64, surface_cell_m: Option<f64>) -> GridPlan {
-    let contact_cell = auto_cell_m(radius_m);
+/// radius `radius_m` at `per_radius` cells per radius ([`cells_per_contact_radius`]) and,
+/// on a rough disc, by the finest cell its surface asks for (`surface_cell_m`, see
+/// [`super::roughness::wanted_cell_m`]).
+pub fn plan_grid(
+    numerics: &Numerics,
+    (radius_m, per_radius): (f64, f64),
+    surface_cell_m: Option<f64>,
+) -> GridPlan {
+    let contact_cell = auto_cell_m(radius_m, per_radius);
     let cell = surface_cell_m.map_or(contact_cell, |c| c.min(contact_cell));
     let density = if cell < contact_cell {
         "cells auto, the surface's".to_owned()
     } else {
-        format!("cells auto, {CELLS_PER_CONTACT_RADIUS} per contact radius")
+        format!("cells auto, {per_radius} per contact radius")
     };
     let fitted = |side: f64| fitted_cells((side / cell).ceil() as usize);
     let (cells, domain_m, how) = match (numerics.grid, numerics.domain_m()) {
@@ -210,25 +235,27 @@ mod tests {
     #[test]
     fn auto_grids_keep_the_cell_and_round_the_side_up() {
         let radius = 44.2e-6;
-        let plan = plan_grid(&Numerics::default(), radius, None);
+        let disc = (radius, CELLS_PER_CONTACT_RADIUS);
+        let plan = plan_grid(&Numerics::default(), disc, None);
         // 3 radii in cells of radius / 44 is 133 cells, rounded up to 2^4 x 3^2 = 144.
         assert_eq!(plan.cells, 144);
-        assert!((plan.domain_m / (144.0 * auto_cell_m(radius)) - 1.0).abs() < 1e-15);
+        let cell = auto_cell_m(radius, CELLS_PER_CONTACT_RADIUS);
+        assert!((plan.domain_m / (144.0 * cell) - 1.0).abs() < 1e-15);
+        // The reciprocating rig's 16 per radius: 48 cells, 2^4 x 3.
+        let stroke = plan_grid(
+            &Numerics::default(),
+            (radius, STROKE_CELLS_PER_CONTACT_RADIUS),
+            None,
+        );
+        assert_eq!(stroke.cells, 48);
         let huge = Numerics {
             domain_um: crate::scene::DomainSize::Micrometres(100_000.0),
             ..Numerics::default()
         };
-        assert_eq!(
-            plan_grid(&huge, radius, None).cells,
-            Grid::MAX_CELLS_PER_SIDE
-        );
+        assert_eq!(plan_grid(&huge, disc, None).cells, Grid::MAX_CELLS_PER_SIDE);
         // A surface asking for cells four times finer: 3 radii in cells of radius / 176 is
         // 528 cells, rounded up to 2^6 x 3^2 = 576.
-        let rough = plan_grid(
-            &Numerics::default(),
-            radius,
-            Some(auto_cell_m(radius) / 4.0),
-        );
+        let rough = plan_grid(&Numerics::default(), disc, Some(cell / 4.0));
         assert_eq!(rough.cells, 576);
         assert!(rough.domain_m >= auto_domain_m(radius));
     }

@@ -9,12 +9,16 @@
 //! electrochemistry needs), and the wear map of a pass is the overlap sum of
 //! [`WearMap::add_pass`], exact for pressures constant over each cell.
 
+use serde::{Deserialize, Serialize};
+
 use crate::contact::Grid;
 
-/// How the speed varies along the stroke.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// How the speed varies along the stroke, named in the JSON as `sinusoidal` and `constant`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum VelocityLaw {
     /// As a crank drives it: `X(t) = -(L / 2) cos(2 pi f t)`, at rest at both ends.
+    #[default]
     Sinusoidal,
     /// At `2 L f` throughout, turning at once at the ends.
     Constant,
@@ -88,16 +92,22 @@ impl Stroke {
     /// pass. They add up to the period; both are half of it at the middle, and one
     /// vanishes at an end.
     pub fn times_between_passes_s(&self, x_m: f64) -> (f64, f64) {
+        let period = self.period_s();
+        let to_return = period - 2.0 * self.forward_pass_time_s(x_m);
+        (to_return, period - to_return)
+    }
+
+    /// When in the cycle the ball's centre passes `x_m` going forward, s: from 0 at the
+    /// start (`-L / 2`) to half the period at the far end; the return passes at the
+    /// period less this. `x_m` beyond the stroke is taken at its nearer end.
+    pub fn forward_pass_time_s(&self, x_m: f64) -> f64 {
         let half = self.length_m / 2.0;
         let x = x_m.clamp(-half, half);
-        // The phase of the forward pass.
-        let forward = match self.law {
+        let phase = match self.law {
             VelocityLaw::Sinusoidal => (-x / half).acos() / std::f64::consts::TAU,
             VelocityLaw::Constant => (x + half) / (2.0 * self.length_m),
         };
-        let period = self.period_s();
-        let to_return = (1.0 - 2.0 * forward) * period;
-        (to_return, period - to_return)
+        phase * self.period_s()
     }
 }
 
@@ -129,6 +139,33 @@ impl WearMap {
             dx: grid.dx,
             depth: vec![0.0; nx * grid.ny],
         }
+    }
+
+    /// This map on the map of the wider grid `grid` (the same cells, more of them), its
+    /// depths centred in the new one: both counts are even, so the margins are whole cells.
+    pub fn embedded_in(&self, grid: &Grid, length_m: f64) -> Self {
+        let mut wider = Self::new(grid, length_m);
+        let (x0, y0) = ((wider.nx - self.nx) / 2, (wider.ny - self.ny) / 2);
+        for (iy, row) in self.depth.chunks_exact(self.nx).enumerate() {
+            let start = (iy + y0) * wider.nx + x0;
+            wider.depth[start..start + self.nx].copy_from_slice(row);
+        }
+        wider
+    }
+
+    /// The depths along the row nearest the track's centre line, one per column.
+    pub fn centre_row(&self) -> &[f64] {
+        let iy = self.ny / 2;
+        &self.depth[iy * self.nx..(iy + 1) * self.nx]
+    }
+
+    /// The depths across the track at the stroke's middle (the mean of the two middle
+    /// columns, the map being symmetric about it), one per row.
+    pub fn middle_column(&self) -> Vec<f64> {
+        let ix = self.nx / 2;
+        (0..self.ny)
+            .map(|iy| 0.5 * (self.depth[iy * self.nx + ix - 1] + self.depth[iy * self.nx + ix]))
+            .collect()
     }
 
     /// x of the centre of column `ix`, m, from the stroke's middle.

@@ -175,6 +175,7 @@ fn partial(
         profiles: Vec::new(),
         pressure_maps: Vec::new(),
         ocp_trace: Vec::new(),
+        stroke: None,
         summary,
         provenance,
     })

@@ -79,6 +79,9 @@ pub fn run_setup(
     on_cycle: &mut dyn FnMut(&CycleRecord),
     cancel: &AtomicBool,
 ) -> Result<SimulationResult, SimulationError> {
+    if let Some(stroke) = setup.scene().stroke() {
+        return super::stroke_run::run_stroke(setup, stroke, on_cycle, cancel);
+    }
     let started = Instant::now();
     let mut state = Run::new(setup, |grid: &Grid| setup.solver(grid));
     let total = setup.scene().test.cycles;
@@ -523,6 +526,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             profiles: self.profiles,
             pressure_maps: self.maps,
             ocp_trace: ocp,
+            stroke: None,
             summary,
             provenance: Some(Provenance::of(scene)),
         }
