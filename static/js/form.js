@@ -5,6 +5,7 @@ import { api, postJson } from "./api.js";
 import { $ } from "./dom.js";
 import { FORM, fieldId } from "./ids.js";
 import { applyMaterials, discHardness, loadMaterials, lockMaterials, showMaterials } from "./materials.js";
+import { RIG_PATHS, applyRig, initRig, lockRig, rigChanges, rigInputs, showRig } from "./rig.js";
 import * as run from "./run.js";
 import { allPresets, closestPreset, loadPresets as readPresets, presetNamed, withOverrides } from "./scenes.js";
 import { describe, differingPaths, flatten, getPath, setPath } from "./words.js";
@@ -25,6 +26,8 @@ let formExtra = null;   // a re-run's fields that have no input in the form: {fr
 let surface = null;     // the uploaded height map the form's scene runs on
 
 const mainInputs = () => [...document.querySelectorAll(`#${FORM.mainFields} input`)];
+// Every input that shows a scene's value at its path: the main fields and the rig's.
+const fieldInputs = () => [...mainInputs(), ...rigInputs()];
 const currentPreset = () => presetNamed($(FORM.preset).value);
 
 function buildFields() {
@@ -42,12 +45,13 @@ function buildFields() {
   }
 }
 
-// Each main field shows the scene's value at its path.
+// Each main field and the rig show the scene's values.
 function showValues(scene) {
-  for (const input of mainInputs()) {
+  for (const input of fieldInputs()) {
     const v = getPath(scene, input.dataset.path);
     input.value = v == null ? "" : String(v);
   }
+  showRig(scene);
 }
 
 function fillFromPreset() {
@@ -91,6 +95,7 @@ function autoName() {
     if (value === "" || JSON.stringify(value) === JSON.stringify(getPath(preset.scene, input.dataset.path))) continue;
     changes.push(describe(input.dataset.path, value));
   }
+  changes.push(...rigChanges(preset.scene, fieldValue));
   if (formExtra) {
     const extra = Object.entries(flatten(formExtra.overrides)).filter(([p]) => p !== "name");
     changes.push(...extra.slice(0, 3).map(([p, v]) => describe(p, v)));
@@ -124,6 +129,8 @@ export function sceneFromFields() {
     const value = fieldValue(input);
     if (value !== "") setPath(overrides, input.dataset.path, value);
   }
+  const preset = currentPreset();
+  applyRig(overrides, preset && preset.scene, fieldValue);
   applyMaterials(overrides);
   if (surface) {
     setPath(overrides, "disc.surface", { kind: "measured", id: surface.id, remove_tilt: $(FORM.surfaceTilt).checked });
@@ -179,6 +186,7 @@ function setJsonMode() {
   for (const input of [...mainInputs(), $(FORM.name)]) input.readOnly = on;
   $(FORM.preset).disabled = on;
   lockMaterials(on);
+  lockRig(on);
   $(FORM.fieldsToJson).disabled = on;
   if (on) fieldsFromJson();
   else followFields();
@@ -215,7 +223,7 @@ function showErrors(body, fromJson) {
     const field = fromJson ? null : document.querySelector(`.field[data-path="${CSS.escape(path)}"]`);
     if (field) {
       field.classList.add("invalid");
-      field.querySelector("input").setAttribute("aria-invalid", "true");
+      field.querySelector("input, select").setAttribute("aria-invalid", "true");
       field.querySelector(".error").textContent = f.message;
     } else {
       rest.push(`${f.path || "(scene)"}: ${f.message}`);
@@ -223,7 +231,7 @@ function showErrors(body, fromJson) {
   }
   $(fromJson ? FORM.jsonErrors : FORM.errors).textContent =
     (body.error || "The server refused the scene.") + (rest.length ? " — " + rest.join("; ") : "");
-  const first = document.querySelector(".field.invalid input");
+  const first = document.querySelector(".field.invalid :is(input, select)");
   if (first) first.focus();
 }
 
@@ -273,7 +281,7 @@ function editAgain(scene) {
   $(FORM.useJson).checked = false;
   $(FORM.preset).value = preset.name;
   $(FORM.presetDescription).textContent = preset.description;
-  const inForm = new Set([...FIELDS.map((f) => f[0]), "disc.material", "ball.material"]);
+  const inForm = new Set([...FIELDS.map((f) => f[0]), ...RIG_PATHS, "disc.material", "ball.material"]);
   const overrides = {};
   for (const path of differingPaths([scene, preset.scene])) {
     const v = getPath(scene, path);
@@ -314,5 +322,6 @@ export function init() {
   $(FORM.name).addEventListener("input", () => { nameEdited = $(FORM.name).value.trim() !== ""; followFields(); });
   $(FORM.useJson).addEventListener("change", setJsonMode);
   $(FORM.sceneJson).addEventListener("input", () => { if (isJsonMode()) fieldsFromJson(); });
+  initRig(followFields);
   run.onEditAgain(editAgain);
 }

@@ -36,6 +36,12 @@ export const MATERIALS = Object.freeze({
   note: "material-note",
 });
 
+/**
+ * The new-run form's rig: the rotating disc or the reciprocating one, and the box of the
+ * stroke's fields (their inputs are named by fieldId, as the main fields').
+ */
+export const RIG = Object.freeze({ kind: "rig-kind", fields: "rig-fields" });
+
 /** A main field's input, by its scene path: "test.load_n" is "f-test-load_n". */
 export const fieldId = (path) => "f-" + path.replace(/\./g, "-");
 
@@ -96,6 +102,14 @@ export const RUN_PLOT = Object.freeze({
   wac: "plot-wac",
   profile: "plot-profile",
   pressure: "plot-pressure",
+});
+
+/** The reciprocating rig's figures: shown for a result with `stroke`, never for a disc's. */
+export const STROKE_PLOT = Object.freeze({
+  map: "plot-stroke-map",
+  profile: "plot-stroke-profile",
+  potential: "plot-stroke-potential",
+  current: "plot-stroke-current",
 });
 
 /** The measurements attached to the run shown. */

@@ -12,15 +12,18 @@
 //   scenes       the presets, and the scenes jobs were submitted with (api, words)
 //   export       each figure as SVG and PNG (plots, svg)
 //   pressure     the run's pressure maps (plots, svg)
+//   stroke       the reciprocating rig's wear map, axial profile and cycle traces
+//                (plots, pressure, svg)
 //   measurements the tables attached to the run shown (api, topic)
 //   scores       the attached tables scored against the run shown (api)
 //   jobs         the job list (api, topic)
 //   labels       the sample, tags and note of the run shown (api)
 //   fig11        the Fig. 11 view's curves and its companion runs (api, jobs)
 //   run-figures  the run's line figures (plots, measurements, scenes, fig11)
-//   run          the run panel (jobs, labels, measurements, scores, pressure, fig11,
-//                run-figures, scenes, sse, topic, hash)
-//   form         the new-run form (run, scenes)
+//   run          the run panel (jobs, labels, measurements, scores, pressure, stroke,
+//                fig11, run-figures, scenes, sse, topic, hash)
+//   rig          the new-run form's rig: the disc, or the reciprocating stroke's fields
+//   form         the new-run form (run, scenes, rig)
 //   compare      the comparison of runs (jobs, plots, hash)
 //   studies      the studies (form, jobs, compare, plots, hash)
 //   calibration  the fits (form, run, plots)

@@ -31,11 +31,18 @@ export function dropChart(plotId) {
   if (existing) { existing.destroy(); charts.delete(plotId); }
 }
 
-/** Keeps (or with null, clears) the SVG text of a figure that is not a uPlot chart. */
+/**
+ * Keeps (or with null, clears) the SVG text of a figure that is not a uPlot chart; or a
+ * function that makes it, for a figure whose SVG is costly and wanted only on export.
+ */
 export const setSvgFigure = (plotId, svg) => { svgFigures.set(plotId, svg); };
 
 /** A figure's SVG text: undefined for a line chart's box, null while it has none. */
-export const svgFigure = (plotId) => (svgFigures.has(plotId) ? svgFigures.get(plotId) : undefined);
+export function svgFigure(plotId) {
+  if (!svgFigures.has(plotId)) return undefined;
+  const svg = svgFigures.get(plotId);
+  return typeof svg === "function" ? svg() : svg;
+}
 
 // A value for the legend: four significant figures; words where the cursor's point has none.
 function legendValue(u, v) {

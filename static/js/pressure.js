@@ -1,6 +1,7 @@
 // The run's contact pressure maps at the first and last cycle, as one SVG: one colour scale
 // (MPa) and one length scale (the same µm per pixel on x, on y and on both maps), so they
-// compare by eye.
+// compare by eye. Its colour scale, cell picture and map extents serve the reciprocating
+// rig's wear map too (stroke.js).
 import { $ } from "./dom.js";
 import { RUN_PLOT } from "./ids.js";
 import { setSvgFigure } from "./plots.js";
@@ -11,12 +12,15 @@ const WAITING = "Shown after the run ends.";
 
 // A perceptually ordered colour scale (viridis, sampled), interpolated.
 const VIRIDIS = [[68, 1, 84], [72, 40, 120], [62, 74, 137], [49, 104, 142], [38, 130, 142], [31, 158, 137], [53, 183, 121], [109, 205, 89], [180, 222, 44], [253, 231, 37]];
-function colour(f) {
+/** The colour scale at `f` in [0, 1] (clamped), as [r, g, b]. */
+function rgb(f) {
   f = Math.min(1, Math.max(0, f)) * (VIRIDIS.length - 1);
   const i = Math.min(VIRIDIS.length - 2, Math.floor(f));
   const a = VIRIDIS[i], b = VIRIDIS[i + 1], u = f - i;
-  return `rgb(${[0, 1, 2].map((j) => Math.round(a[j] + (b[j] - a[j]) * u)).join(",")})`;
+  return [0, 1, 2].map((j) => Math.round(a[j] + (b[j] - a[j]) * u));
 }
+/** The colour scale at `f` in [0, 1] (clamped), as CSS: the pressure maps' and the wear map's. */
+export const colour = (f) => `rgb(${rgb(f).join(",")})`;
 
 // The SVG's margins (left, top, bottom) and the gap between maps, in px.
 const L = 52, T = 24, B = 44, GAP = 16;
@@ -66,29 +70,32 @@ function addReadout(box, shown) {
   });
 }
 
-// A map's contact cells (p > 0) as a PNG of one pixel per cell, y up; the rest transparent.
-function contactPng(m, pMax) {
-  const nx = m.x_um.length, ny = m.y_um.length;
+/**
+ * A map of values (`rows[j][i]`, j along y) as a canvas of one pixel per cell, y up, each
+ * cell coloured at its value over `vMax`; the cells `drawn` refuses stay transparent.
+ */
+export function cellCanvas(rows, nx, ny, vMax, drawn = () => true) {
   const canvas = document.createElement("canvas");
   canvas.width = nx; canvas.height = ny;
   const ctx = canvas.getContext("2d");
   const image = ctx.createImageData(nx, ny);
   for (let j = 0; j < ny; j++) {
-    const row = m.pressure_mpa[j] || [];
+    const row = rows[j] || [];
     for (let i = 0; i < nx; i++) {
-      const p = row[i] || 0;
-      if (p <= 0) continue;
-      const rgb = colour(p / (pMax || 1)).slice(4, -1).split(",").map(Number);
-      const k = 4 * ((ny - 1 - j) * nx + i);
-      image.data.set([...rgb, 255], k);
+      const v = row[i] || 0;
+      if (!drawn(v)) continue;
+      image.data.set([...rgb(v / (vMax || 1)), 255], 4 * ((ny - 1 - j) * nx + i));
     }
   }
   ctx.putImageData(image, 0, 0);
-  return canvas.toDataURL("image/png");
+  return canvas;
 }
 
-// Each map's cell size and its edges, in µm.
-function extent(m) {
+// A map's contact cells (p > 0) as a PNG of one pixel per cell, y up; the rest transparent.
+const contactPng = (m, pMax) => cellCanvas(m.pressure_mpa, m.x_um.length, m.y_um.length, pMax, (p) => p > 0).toDataURL("image/png");
+
+/** A map's cell size and its edges, in µm, from its cell centres `x_um` and `y_um`. */
+export function extent(m) {
   const dx = m.x_um.length > 1 ? m.x_um[1] - m.x_um[0] : 1, dy = m.y_um.length > 1 ? m.y_um[1] - m.y_um[0] : 1;
   return { dx, dy, x0: m.x_um[0] - dx / 2, x1: m.x_um[m.x_um.length - 1] + dx / 2, y0: m.y_um[0] - dy / 2, y1: m.y_um[m.y_um.length - 1] + dy / 2 };
 }

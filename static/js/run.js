@@ -12,6 +12,7 @@ import * as scores from "./scores.js";
 import { fig11Curves, forgetFailed } from "./fig11.js";
 import { drawPressure, resetPressure } from "./pressure.js";
 import { drawProfiles, drawSeries, resetProfiles, updateTable3Choice } from "./run-figures.js";
+import { drawStroke, expectStroke, resetStroke } from "./stroke.js";
 import { closestPreset, remember, submittedScene } from "./scenes.js";
 import { readEvents } from "./sse.js";
 import { topic } from "./topic.js";
@@ -79,6 +80,8 @@ function select(id, how = {}) {
   if (job) showJobStatus(job);
   resetProfiles();
   resetPressure();
+  resetStroke();
+  expectStroke(scene);
   redrawSeries();
   if (how.scroll) reveal($(RUN.panel), how.focus);
   setHash("run", id);
@@ -204,6 +207,7 @@ async function loadResult(id) {
   redrawSeries();
   drawProfiles(result);
   drawPressure(result);
+  drawStroke(result);
   scores.show(id, () => selected === id);
 }
 
@@ -212,6 +216,7 @@ async function loadScene(id) {
   const r = await api(`/api/v1/jobs/${id}/scene`);
   if (selected !== id) return;
   if (r.ok && r.body && typeof r.body === "object") { scene = r.body; sceneAsRun = true; }
+  expectStroke(scene);
   renderParams();
   table3();
 }

@@ -37,7 +37,7 @@ export function differingPaths(scenes) {
 // A field in words with its unit, from its JSON name's unit suffix: "test.load_n" is "load (N)".
 const UNIT_SUFFIXES = [["v_per_decade", "V/decade"], ["a_cm2", "A/cm²"], ["g_cm3", "g/cm³"], ["g_mol", "g/mol"],
   ["mm3", "mm³"], ["mm2", "mm²"], ["cm2", "cm²"], ["rpm", "rpm"], ["mpa", "MPa"], ["gpa", "GPa"], ["mm", "mm"],
-  ["um", "µm"], ["n", "N"], ["s", "s"], ["v", "V"]];
+  ["um", "µm"], ["hz", "Hz"], ["n", "N"], ["s", "s"], ["v", "V"]];
 
 /** A field's name in words and its unit: { name: "load", unit: "N" } for "test.load_n". */
 export function fieldName(path) {

@@ -23,6 +23,7 @@ import { origin } from "./steps/origin.mjs";
 import { report } from "./steps/report.mjs";
 import { rough } from "./steps/rough.mjs";
 import { run } from "./steps/run.mjs";
+import { stroke } from "./steps/stroke.mjs";
 import { study } from "./steps/study.mjs";
 import { views } from "./steps/views.mjs";
 
@@ -56,7 +57,7 @@ try {
   page.on("response", (r) => { if (r.status() === 404 && !r.url().includes("/api/")) errors.push(`404 ${r.url()}`); });
   // What one step finds and a later one uses (the runs' ids, the run's length, ...).
   const found = {};
-  for (const scenario of [form, run, measurements, report, compare, access, study, calibration, listing, cancel, rough, ocp, views, figures, fig11, origin]) {
+  for (const scenario of [form, run, measurements, report, compare, access, study, calibration, listing, cancel, rough, ocp, views, figures, fig11, stroke, origin]) {
     await scenario(page, found);
   }
   assert.deepEqual(errors, [], "errors in the page");

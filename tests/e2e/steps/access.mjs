@@ -47,8 +47,9 @@ async function phone(page) {
     const past = [...document.querySelectorAll(`.plot, canvas, .heatmaps svg, #${runForm} input, #${runForm} select, #${runForm} textarea, #${runForm} button`)]
       .filter((el) => el.offsetParent && el.getBoundingClientRect().right > document.documentElement.clientWidth + 0.5)
       .map((el) => el.id || el.className || el.tagName);
+    // Shown ones only: a hidden input (the rig's stroke fields on the disc) has no width.
     const cut = [...document.querySelectorAll(`#${runForm} input:not([type=checkbox]), #${runForm} select`)]
-      .filter((el) => el.getBoundingClientRect().width < 60).map((el) => el.id);
+      .filter((el) => el.offsetParent && el.getBoundingClientRect().width < 60).map((el) => el.id);
     return { scrollWidth: document.documentElement.scrollWidth, clientWidth: document.documentElement.clientWidth, past, cut };
   }, FORM.form);
   console.log(`   phone: ${JSON.stringify(widths)}`);
