@@ -4,6 +4,7 @@
 use std::sync::atomic::AtomicBool;
 
 use serde_json::{Value, json};
+use tribosim::report::{Measured, run_report};
 use tribosim::simulation::{SimulationResult, TRACE_SAMPLES, parse_scene, run};
 
 /// A short stroke on a coarse grid: the paper's pair and cell at 1 Hz.
@@ -114,6 +115,12 @@ fn the_potential_oscillates_at_twice_the_frequency_and_corrosion_stays_within_th
     let last = result.cycles.last().expect("records");
     let wac = last.wac_volume_mm3.expect("corrosion");
     assert!(wac > 0.0 && wac < last.total_volume_mm3.expect("a total"));
+    // The report names the rig and draws the axis and the traces.
+    let report = run_report(&result, &Measured::default()).expect("a report");
+    assert!(report.contains("reciprocating ball-on-flat test"));
+    assert!(report.contains("Wear depth along the stroke"));
+    assert!(report.contains("Potential over a cycle"));
+    assert!(report.contains("H = A + B ln n"));
 }
 
 #[test]

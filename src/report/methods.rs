@@ -27,13 +27,27 @@ pub fn methods(models: &[ModelChoice]) -> String {
             active.push(name);
         }
     }
+    let uses = |name: &str| active.iter().any(|a| a == name);
+    let (rig, where_solved) = if uses("reciprocating") {
+        (
+            "reciprocating ball-on-flat",
+            " at positions along the stroke wherever the track's depth changes along it",
+        )
+    } else {
+        ("ball-on-disc", "")
+    };
+    let hardness = if uses("work_hardening") {
+        "the work-hardened disc (eq. 12, hardness H = A + B ln n fitted to the scene's table, \
+         Fig. 9)"
+    } else {
+        "the disc (eq. 12, at the scene's constant hardness)"
+    };
     let mut html = heading(2, "Methods");
     html.push_str(&format!(
-        "<p>The wear track of the ball-on-disc test was computed with tribosim after {}. \
-         Each solved cycle finds the contact pressure between the ball and the worn disc by \
-         boundary elements on a regular grid (DC-FFT influence coefficients, bounded \
-         conjugate gradients), capped at the yield pressure of the work-hardened disc \
-         (eq. 12, hardness H = A + B ln n fitted to the scene's table, Fig. 9); the groove \
+        "<p>The wear track of the {rig} test was computed with tribosim after {}. \
+         Each solved cycle finds the contact pressure between the ball and the worn disc{where_solved} \
+         by boundary elements on a regular grid (DC-FFT influence coefficients, bounded \
+         conjugate gradients), capped at the yield pressure of {hardness}; the groove \
          grows by yielding (eq. 13) and by Archard's law, V = k F s / H (eqs. 14-16), and \
          one solve may stand for several cycles when the wear profile of a pass changes \
          little (the cycle loop of Fig. 4). With a corrosion section, the potential of the \
@@ -87,4 +101,33 @@ pub fn build_table(caption: &str, build: &Build) -> String {
 /// The build that writes this report, now.
 pub fn report_provenance() -> String {
     build_table("This report", &Build::now())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simulation::Model;
+
+    fn model(name: Model, active: bool) -> ModelChoice {
+        ModelChoice {
+            name,
+            active,
+            reason: String::new(),
+        }
+    }
+
+    #[test]
+    fn the_methods_name_the_rig_and_the_hardness_the_run_used() {
+        let disc = methods(&[model(Model::WorkHardening, true)]);
+        assert!(disc.contains("ball-on-disc test") && disc.contains("H = A + B ln n"));
+        let constant = methods(&[
+            model(Model::WorkHardening, false),
+            model(Model::Reciprocating, true),
+        ]);
+        assert!(
+            constant.contains("reciprocating ball-on-flat test"),
+            "{constant}"
+        );
+        assert!(constant.contains("constant hardness") && !constant.contains("ln n"));
+    }
 }

@@ -13,6 +13,7 @@ mod residuals;
 mod run;
 mod run_figures;
 mod scene;
+mod stroke_figures;
 mod study;
 mod ticks;
 

@@ -47,7 +47,7 @@ fn table3_applies(result: &SimulationResult) -> bool {
 
 /// The rubbing's cycles per second.
 fn cycles_per_s(result: &SimulationResult) -> f64 {
-    result.scene.test.speed_rpm / 60.0
+    result.scene.test.cycles_per_second()
 }
 
 /// The measured wear volumes as `(cycle, mm^3, spread)`: at their cycles, or at their times
@@ -320,6 +320,7 @@ pub fn run_figures(result: &SimulationResult, measured: &Measured) -> Result<Str
     };
     let empty = "the result has no pressure maps (a stopped run keeps none)";
     html.push_str(&figure(svg.as_deref(), &caption, empty));
+    html.push_str(&super::stroke_figures::stroke_figures(result)?);
     Ok(html)
 }
 

@@ -285,3 +285,29 @@ def test_labels_at_submit_changed_after_and_searched(client: tribosim.Client) ->
     assert refused.value.fields[0].path == "note"
     job.wait(progress=False)
     job.delete()
+
+
+def test_a_reciprocating_result_has_its_map_profile_and_traces(
+    client: tribosim.Client, small_job: tribosim.Job
+) -> None:
+    rig = client.jobs.submit(
+        {
+            "test": {"cycles": 6, "reciprocating": {"stroke_mm": 0.6, "frequency_hz": 1.0}},
+            "numerics": {"grid": 32, "record_cycles": [3]},
+        },
+        name="pytest stroke",
+    )
+    rig.wait(progress=False)
+    result = rig.result()
+    wear_map = result.stroke_map
+    assert wear_map is not None
+    assert wear_map.depth_um.shape == (len(wear_map.y_um), len(wear_map.x_um))
+    axial = result.axial_profile
+    assert list(axial.columns) == ["x_um", "depth_um"]
+    assert float(axial["depth_um"].max()) == pytest.approx(result.summary["max_depth_um"])
+    traces = result.stroke_traces
+    # 200 samples a cycle at the first, the recorded and the last cycle (docs/result.md).
+    assert sorted(set(traces["cycle"])) == [1, 3, 6]
+    assert len(traces) == 3 * 200
+    disc = small_job.result()
+    assert disc.stroke_map is None and disc.axial_profile.empty and disc.stroke_traces.empty

@@ -34,7 +34,7 @@ from .events import CycleEvent, Event, StatusEvent
 from .jobs import Job, Jobs
 from .measurements import Measurements
 from .records import CalibrationInfo, JobInfo, Preset, StudyInfo, Surface
-from .result import Model, PressureMap, Result
+from .result import Model, PressureMap, Result, WearMap
 from .studies import Studies, Study
 from .surfaces import Surfaces
 
@@ -76,4 +76,5 @@ __all__ = [
     "TribosimError",
     "ValidationError",
     "WaitTimeoutError",
+    "WearMap",
 ]

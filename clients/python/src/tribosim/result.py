@@ -31,6 +31,16 @@ class PressureMap:
     pressure_mpa: numpy.ndarray
 
 
+@dataclass(frozen=True)
+class WearMap:
+    """The reciprocating rig's wear at the end of the run: `depth_um[iy, ix]` over `y_um`
+    (across the track) and `x_um` (along the stroke, from its middle)."""
+
+    x_um: numpy.ndarray
+    y_um: numpy.ndarray
+    depth_um: numpy.ndarray
+
+
 class Result:
     """The result JSON of a job. Columns keep the server's names, units in the names
     (``total_volume_mm3``, ``time_s``); `raw` is the whole document as it came. The volume a
@@ -109,3 +119,36 @@ class Result:
             )
             for m in self.raw["pressure_maps"]
         ]
+
+    @property
+    def stroke_map(self) -> WearMap | None:
+        """The reciprocating rig's wear map (block-averaged to at most 400 columns along the
+        stroke); None for a ball on a rotating disc."""
+        stroke = self.raw.get("stroke")
+        if stroke is None:
+            return None
+        m = stroke["map"]
+        return WearMap(as_array(m["x_um"]), as_array(m["y_um"]), as_array(m["depth_um"]))
+
+    @property
+    def axial_profile(self) -> pandas.DataFrame:
+        """The depth along the reciprocating track's centre line, ``x_um`` and ``depth_um``;
+        empty for a ball on a rotating disc."""
+        stroke = self.raw.get("stroke")
+        if stroke is None:
+            return frame({"x_um": [], "depth_um": []})
+        return frame(stroke["axial_profile"])
+
+    @property
+    def stroke_traces(self) -> pandas.DataFrame:
+        """The reciprocating rig's potential and current over a cycle, long form: one row per
+        (``cycle``, ``time_s``) with ``position_um``, ``anodic_area_mm2``, ``potential_v`` and
+        ``anodic_current_ma``; empty without corrosion or on a rotating disc."""
+        columns = ["time_s", "position_um", "anodic_area_mm2", "potential_v", "anodic_current_ma"]
+        traces = (self.raw.get("stroke") or {}).get("traces", [])
+        rows = [
+            {"cycle": t["cycle"], **{c: t[c][i] for c in columns}}
+            for t in traces
+            for i in range(len(t["time_s"]))
+        ]
+        return frame(rows) if rows else frame({c: [] for c in ["cycle", *columns]})
