@@ -44,6 +44,15 @@ impl Stepper {
         self.step
     }
 
+    /// Re-expresses the last solved profile on a new layout (`relayout`, e.g. a map
+    /// embedded in a grown grid's), so that the controller keeps its step and measures the
+    /// next change against it.
+    pub fn carry(&mut self, relayout: impl FnOnce(&[f64]) -> Vec<f64>) {
+        if let Some((_, profile)) = &mut self.previous {
+            *profile = relayout(profile);
+        }
+    }
+
     /// Cycles the solve at `cycle` stands for (itself included), given its per-pass wear
     /// profile and whether yielding reshaped the groove (`plastic`: a cut larger than the
     /// step bound's share of it). Never steps past `total`, so the last cycle is always
@@ -138,5 +147,15 @@ mod tests {
             2,
             "1e-3 of the wear moved: doubling"
         );
+    }
+
+    #[test]
+    fn a_carried_profile_keeps_the_step_and_compares_on_the_new_layout() {
+        let mut s = Stepper::new(CycleStep::Auto, STEP_CHANGE_BOUND);
+        s.next(1, 1000, false, &[1.0, 2.0]);
+        assert_eq!(s.next(2, 1000, false, &[1.0, 2.0]), 2);
+        // The same values with a zero either side: no change, so the step doubles on.
+        s.carry(|old| [&[0.0][..], old, &[0.0]].concat());
+        assert_eq!(s.next(4, 1000, false, &[0.0, 1.0, 2.0, 0.0]), 4);
     }
 }

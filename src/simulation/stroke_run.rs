@@ -16,7 +16,7 @@ use crate::corrosion::stroke::{Footprint, StrokeExposure};
 use crate::corrosion::{ContactGeometry, real_contact_area_m2};
 use crate::scene::AnodicArea;
 use crate::surface::count_islands;
-use crate::wear::Stroke;
+use crate::wear::{Stroke, WearMap};
 
 use super::electrochemistry::{Cell, Reading};
 use super::provenance::Provenance;
@@ -283,16 +283,28 @@ impl<'a> StrokeRun<'a> {
         }
     }
 
-    /// Widens an auto domain whose contact came near its edge; the step controller
-    /// starts afresh on the wider map.
+    /// Widens an auto domain whose contact came near its edge; the step controller's last
+    /// pressure integral is carried onto the wider map, on which it holds the same values.
     fn grow_if_crowded(&mut self, cycle: u64) {
         let scene = self.setup.scene();
         if scene.numerics.domain_um != crate::scene::DomainSize::Auto {
             return;
         }
+        let (nx, ny, dx) = {
+            let map = self.engine.map();
+            (map.nx, map.ny, map.dx)
+        };
         if let Some(wider) = self.engine.grow_if_crowded() {
-            let numerics = &scene.numerics;
-            self.stepper = Stepper::new(numerics.cycle_step, numerics.cycle_step_bound);
+            let length = self.stroke.length_m;
+            self.stepper.carry(|profile| {
+                let before = WearMap {
+                    nx,
+                    ny,
+                    dx,
+                    depth: profile.to_vec(),
+                };
+                before.embedded_in(&wider, length).depth
+            });
             self.models.push(ModelChoice {
                 name: Model::DomainGrowth,
                 active: true,

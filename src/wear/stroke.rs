@@ -349,4 +349,27 @@ mod tests {
             assert!((a - b).abs() <= 1e-13 * peak, "{a} {b}");
         }
     }
+
+    #[test]
+    fn a_map_embedded_in_a_wider_grid_keeps_each_depth_at_its_place() {
+        let narrow = Grid::square(8, 80e-6).expect("grid");
+        let wide = Grid::new(12, 16, 10e-6, 10e-6).expect("grid");
+        let mut map = WearMap::new(&narrow, 0.2e-3);
+        for (i, d) in map.depth.iter_mut().enumerate() {
+            *d = i as f64;
+        }
+        let wider = map.embedded_in(&wide, 0.2e-3);
+        assert_eq!((wider.nx, wider.ny), (map.nx + 4, 16));
+        for iy in 0..map.ny {
+            for ix in 0..map.nx {
+                // The same column centre, the same depth (whole-cell margins: exact).
+                let (wx, wy) = (ix + 2, iy + 4);
+                assert_eq!(wider.x(wx).to_bits(), map.x(ix).to_bits());
+                let (a, b) = (wider.depth[wy * wider.nx + wx], map.depth[iy * map.nx + ix]);
+                assert_eq!(a.to_bits(), b.to_bits());
+            }
+        }
+        let sum = |m: &WearMap| m.depth.iter().sum::<f64>();
+        assert_eq!(sum(&wider).to_bits(), sum(&map).to_bits());
+    }
 }
