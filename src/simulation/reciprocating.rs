@@ -249,7 +249,7 @@ impl StrokeEngine {
     }
 
     /// Widens the grid along the axes where a solve since the last growth came near its
-    /// edge ([`near_edges`]), carrying the map over; the new grid, or `None` when every
+    /// edge (the disc's growth rule), carrying the map over; the new grid, or `None` when every
     /// contact fitted or the grid is at its largest.
     pub fn grow_if_crowded(&mut self) -> Option<Grid> {
         let wider = widen(&self.grid, std::mem::take(&mut self.crowded))?;
