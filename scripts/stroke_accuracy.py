@@ -38,6 +38,7 @@ def relative(got: float, want: float) -> float:
 def profile_error(got_x, got_d, want_x, want_d) -> float:
     """The largest difference of two depth profiles on their own abscissae, linearly
     interpolated onto the reference's, relative to the reference's deepest point."""
+
     def at(x):
         if x <= got_x[0] or x >= got_x[-1]:
             return 0.0
@@ -50,6 +51,7 @@ def profile_error(got_x, got_d, want_x, want_d) -> float:
                 hi = mid
         w = (x - got_x[lo]) / (got_x[hi] - got_x[lo])
         return (1 - w) * got_d[lo] + w * got_d[hi]
+
     deepest = max(want_d)
     return max(abs(at(x) - d) for x, d in zip(want_x, want_d)) / deepest
 
@@ -75,10 +77,14 @@ def main() -> int:
     ref_s = reference["summary"]
     ref_mid = reference["profiles"][-1]
     ref_axis = reference["stroke"]["axial_profile"]
-    print(f"reference: grid {grids[-1]}, every cycle, {ref_s['wall_s']:.1f} s, "
-          f"{ref_s['solves']} solves, volume {ref_s['wear_volume_mm3']:.4e} mm^3")
-    print("| grid | step | wall s | x reference | solves | volume | deepest | middle "
-          "profile | axial profile | E mean |")
+    print(
+        f"reference: grid {grids[-1]}, every cycle, {ref_s['wall_s']:.1f} s, "
+        f"{ref_s['solves']} solves, volume {ref_s['wear_volume_mm3']:.4e} mm^3"
+    )
+    print(
+        "| grid | step | wall s | x reference | solves | volume | deepest | middle "
+        "profile | axial profile | E mean |"
+    )
     print("|---|---|---|---|---|---|---|---|---|---|")
     for grid in grids:
         for step in args.steps:
@@ -88,13 +94,18 @@ def main() -> int:
             axis = r["stroke"]["axial_profile"]
             e = s.get("potential_v")
             e_err = (e - ref_s["potential_v"]) * 1e3 if e is not None else float("nan")
+            across = profile_error(
+                mid["y_um"], mid["depth_um"], ref_mid["y_um"], ref_mid["depth_um"]
+            )
+            along = profile_error(
+                axis["x_um"], axis["depth_um"], ref_axis["x_um"], ref_axis["depth_um"]
+            )
             print(
                 f"| {grid} | {step} | {s['wall_s']:.1f} | {s['wall_s'] / ref_s['wall_s']:.3f} "
                 f"| {s['solves']} "
                 f"| {relative(s['wear_volume_mm3'], ref_s['wear_volume_mm3']):+.1e} "
                 f"| {relative(s['max_depth_um'], ref_s['max_depth_um']):+.1e} "
-                f"| {profile_error(mid['y_um'], mid['depth_um'], ref_mid['y_um'], ref_mid['depth_um']):.1e} "
-                f"| {profile_error(axis['x_um'], axis['depth_um'], ref_axis['x_um'], ref_axis['depth_um']):.1e} "
+                f"| {across:.1e} | {along:.1e} "
                 f"| {e_err:+.2f} mV |",
                 flush=True,
             )
