@@ -330,48 +330,12 @@ impl<'a> StrokeRun<'a> {
             }
         }
         let mut warnings = setup.warnings.clone();
-        let mut models: Vec<ModelChoice> = setup
-            .models
-            .iter()
-            .cloned()
-            .map(|mut model| {
-                if model.name == Model::Coupling {
-                    model.active = false;
-                    model.reason = "left out on the reciprocating rig: the tangential                                     traction's sign turns with the sliding direction"
-                        .to_owned();
-                }
-                model
-            })
-            .collect();
+        let mut models = setup_models(setup);
         models.extend(std::mem::take(&mut self.models));
         models.extend(self.stroke_models());
+        models.extend(self.corrosion_models());
         if let Some(cell) = &self.cell {
             warnings.extend(cell.warnings());
-            models.push(ModelChoice {
-                name: Model::Corrosion,
-                active: true,
-                reason: format!(
-                    "{}; on the reciprocating rig the area follows the stroke: each point \
-                     of the track is bare while the contact covers it and repassivates \
-                     ({}) until the next pass, at a time that varies along the stroke; the \
-                     record's area is the cycle's mean, its potential the cell's at that \
-                     mean, and `stroke.traces` hold the cycle sampled {TRACE_SAMPLES} times \
-                     (the periodic state of that cycle's contact)",
-                    cell.describe(),
-                    cell.settings().repassivation().describe()
-                ),
-            });
-            models.push(ModelChoice {
-                name: Model::Faraday,
-                active: true,
-                reason: cell.settings().dissolving().reason,
-            });
-        } else {
-            models.push(ModelChoice {
-                name: Model::Corrosion,
-                active: false,
-                reason: "no corrosion section in the scene".to_owned(),
-            });
         }
         let mut summary = setup
             .summary(&self.records, started.elapsed().as_secs_f64())
@@ -398,6 +362,38 @@ impl<'a> StrokeRun<'a> {
             summary,
             provenance: Some(Provenance::of(scene)),
         }
+    }
+
+    /// The corrosion's and Faraday's entries in the result's models.
+    fn corrosion_models(&self) -> Vec<ModelChoice> {
+        let Some(cell) = &self.cell else {
+            return vec![ModelChoice {
+                name: Model::Corrosion,
+                active: false,
+                reason: "no corrosion section in the scene".to_owned(),
+            }];
+        };
+        vec![
+            ModelChoice {
+                name: Model::Corrosion,
+                active: true,
+                reason: format!(
+                    "{}; on the reciprocating rig the area follows the stroke: each point \
+                     of the track is bare while the contact covers it and repassivates \
+                     ({}) until the next pass, at a time that varies along the stroke; the \
+                     record's area is the cycle's mean, its potential the cell's at that \
+                     mean, and `stroke.traces` hold the cycle sampled {TRACE_SAMPLES} times \
+                     (the periodic state of that cycle's contact)",
+                    cell.describe(),
+                    cell.settings().repassivation().describe()
+                ),
+            },
+            ModelChoice {
+                name: Model::Faraday,
+                active: true,
+                reason: cell.settings().dissolving().reason,
+            },
+        ]
     }
 
     /// The reciprocating rig, the cycle step and the wear law, in the result's models.
@@ -443,4 +439,16 @@ impl<'a> StrokeRun<'a> {
             },
         ]
     }
+}
+
+/// The setup's model choices, with the coupling left out as the engine leaves it.
+fn setup_models(setup: &Setup) -> Vec<ModelChoice> {
+    let mut models = setup.models.clone();
+    for model in models.iter_mut().filter(|m| m.name == Model::Coupling) {
+        model.active = false;
+        model.reason = "left out on the reciprocating rig: the tangential traction's sign \
+                        turns with the sliding direction"
+            .to_owned();
+    }
+    models
 }
