@@ -111,6 +111,20 @@ fn the_potential_oscillates_at_twice_the_frequency_and_corrosion_stays_within_th
         .fold((f64::MAX, 0.0_f64), |(l, h), &a| (l.min(a), h.max(a)));
     assert!(area[0] < quarter && area[TRACE_SAMPLES / 2] < quarter);
     assert!(high > 1.2 * low, "an oscillation, {low} to {high}");
+    // A trace that reaches E_corr (the paper's -0.1 V) is capped there, and the run says so.
+    let capped = stroke
+        .traces
+        .iter()
+        .any(|t| t.potential_v.iter().any(|&e| e >= -0.1));
+    let said = result
+        .field_warnings
+        .iter()
+        .any(|w| w.path == "corrosion.anodic_area" && w.message.contains("flat tops"));
+    assert!(
+        capped,
+        "this short stroke's turning points leave too little bare area"
+    );
+    assert!(said);
     // The corrosion never exceeds the total loss it is part of (k on the total loss).
     let last = result.cycles.last().expect("records");
     let wac = last.wac_volume_mm3.expect("corrosion");

@@ -14,7 +14,7 @@ use std::time::Instant;
 use crate::contact::{ContactSolution, Grid};
 use crate::corrosion::stroke::{Footprint, StrokeExposure};
 use crate::corrosion::{ContactGeometry, real_contact_area_m2};
-use crate::scene::AnodicArea;
+use crate::scene::{AnodicArea, FieldWarning};
 use crate::surface::count_islands;
 use crate::wear::{Stroke, WearMap};
 
@@ -69,6 +69,9 @@ struct StrokeRun<'a> {
     solves: usize,
     max_step: u64,
     last_middle: Option<ContactSolution>,
+    /// The traced cycles whose potential reached E_corr within the cycle, with how many
+    /// of the samples did: eq. 18 is capped there.
+    capped_in_trace: Vec<(u64, usize)>,
 }
 
 impl<'a> StrokeRun<'a> {
@@ -90,6 +93,7 @@ impl<'a> StrokeRun<'a> {
             solves: 0,
             max_step: 1,
             last_middle: None,
+            capped_in_trace: Vec::new(),
         }
     }
 
@@ -189,6 +193,14 @@ impl<'a> StrokeRun<'a> {
             .map_err(|source| SimulationError::Corrosion { cycle, source })?;
         if cycle == 1 || self.record_cycles.contains(&cycle) || cycle == scene.test.cycles {
             let trace = self.trace(cycle, &exposure)?;
+            let cell = self.cell.as_ref().expect("checked above");
+            if cell.settings().held_v().is_none() {
+                let e_corr = cell.model().corrosion_potential_v;
+                let capped = trace.potential_v.iter().filter(|&&e| e >= e_corr).count();
+                if capped > 0 {
+                    self.capped_in_trace.push((cycle, capped));
+                }
+            }
             self.traces.push(trace);
         }
         Ok(Some(reading))
@@ -337,6 +349,7 @@ impl<'a> StrokeRun<'a> {
         if let Some(cell) = &self.cell {
             warnings.extend(cell.warnings());
         }
+        warnings.extend(self.capped_warning());
         let mut summary = setup
             .summary(&self.records, started.elapsed().as_secs_f64())
             .with_warnings(&warnings);
@@ -362,6 +375,24 @@ impl<'a> StrokeRun<'a> {
             summary,
             provenance: Some(Provenance::of(scene)),
         }
+    }
+
+    /// Where the potential reached E_corr within a traced cycle: near the turning points the
+    /// bare area is least, and eq. 18 below the Tafel line's own current is capped there,
+    /// as the records' potential is at a too small area.
+    fn capped_warning(&self) -> Option<FieldWarning> {
+        let &(first, samples) = self.capped_in_trace.first()?;
+        Some(FieldWarning::new(
+            "corrosion.anodic_area",
+            format!(
+                "within {} of the {} traced cycles, the first cycle {first} ({samples} of its \
+                 {TRACE_SAMPLES} samples), the bare area fell so low near the turning points \
+                 that eq. 18 put the potential above E_corr, and it was capped there: the \
+                 trace's flat tops are the cap, not a measurement",
+                self.capped_in_trace.len(),
+                self.traces.len()
+            ),
+        ))
     }
 
     /// The corrosion's and Faraday's entries in the result's models.
