@@ -386,9 +386,9 @@ impl<'a> StrokeRun<'a> {
             "corrosion.anodic_area",
             format!(
                 "within {} of the {} traced cycles, the first cycle {first} ({samples} of its \
-                 {TRACE_SAMPLES} samples), the bare area fell so low near the turning points \
-                 that eq. 18 put the potential above E_corr, and it was capped there: the \
-                 trace's flat tops are the cap, not a measurement",
+                 {TRACE_SAMPLES} samples), the bare area fell so low (it is least near the \
+                 turning points) that eq. 18 put the potential above E_corr, and it was \
+                 capped there: the trace's flat tops are the cap, not a measurement",
                 self.capped_in_trace.len(),
                 self.traces.len()
             ),
