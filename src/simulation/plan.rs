@@ -145,13 +145,14 @@ fn derive(scene: Scene) -> Result<Plan, Vec<FieldError>> {
         sizing_m: sizing_radius_m,
     };
     let density = cells_per_contact_radius(&scene);
-    let cells = plan_grid(&scene.numerics, (sizing_radius_m, density), None).cells;
+    let first_grid = plan_grid(&scene.numerics, (sizing_radius_m, density), None);
+    let cells = first_grid.cells;
     let estimate = estimate(&scene, cells);
     let verdict = judge(&scene, &derived, &estimate);
     // A field the limits refuse keeps their message (its bound is exact); plausibility
     // names the slip of the others.
     let mut errors = limits(&scene, &derived);
-    errors.extend(stroke_limits(&scene, sizing_radius_m));
+    errors.extend(stroke_limits(&scene, sizing_radius_m, &first_grid));
     let refused = |path: &str, errors: &[FieldError]| errors.iter().any(|e| e.path == path);
     for refusal in verdict.refusals {
         if !refused(&refusal.path, &errors) {

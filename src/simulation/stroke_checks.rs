@@ -2,16 +2,43 @@
 //! range: a stroke longer than the contact, and a frequency whose half period leaves the
 //! film time to regrow (a warning).
 
+use super::sizing::GridPlan;
 use crate::scene::format::{num, sig};
 use crate::scene::{FieldError, FieldWarning, Scene};
 
+/// The most cells the wear map along the stroke may hold on the first grid (its columns,
+/// the stroke over a cell plus the grid's, times the grid's rows): 2 million cells are 16
+/// MB a copy, and a run holds four (the map, the cycle's and the sweep's pressure integral
+/// and the sweep's yield), which the growth of the grid across the track may double. It
+/// bounds the positions a sweep visits too, one per cell of the stroke.
+const MAX_MAP_CELLS: f64 = 2e6;
+
 /// The stroke must be longer than the contact's width along it, 2 x the radius the grid is
 /// sized by (`sizing_m`, Hertz's or the punch's at the lowest cap): shorter, no point of
-/// the track is ever uncovered, which is fretting, not the sliding the model describes.
-pub(super) fn stroke_limits(scene: &Scene, sizing_m: f64) -> Vec<FieldError> {
+/// the track is ever uncovered, which is fretting, not the sliding the model describes. Its
+/// map on the first grid (`grid`) must hold at most [`MAX_MAP_CELLS`].
+pub(super) fn stroke_limits(scene: &Scene, sizing_m: f64, grid: &GridPlan) -> Vec<FieldError> {
     let Some(rig) = &scene.test.reciprocating else {
         return Vec::new();
     };
+    let cell_m = grid.domain_m / grid.cells as f64;
+    let map_cells = (rig.stroke_mm * 1e-3 / cell_m + grid.cells as f64) * grid.cells as f64;
+    if map_cells > MAX_MAP_CELLS {
+        return vec![FieldError::new(
+            "test.reciprocating.stroke_mm",
+            format!(
+                "the wear map along a {} mm stroke on {} um cells ({} rows) would hold {} \
+                 cells, more than the {} a run may keep: a shorter stroke, or a coarser grid \
+                 (`numerics.grid`, `numerics.domain_um`), at most {} mm here",
+                num(rig.stroke_mm),
+                sig(cell_m * 1e6),
+                grid.cells,
+                sig(map_cells),
+                sig(MAX_MAP_CELLS),
+                sig((MAX_MAP_CELLS / grid.cells as f64 - grid.cells as f64) * cell_m * 1e3)
+            ),
+        )];
+    }
     let width_mm = 2.0 * sizing_m * 1e3;
     if rig.stroke_mm > width_mm {
         return Vec::new();
@@ -74,10 +101,34 @@ mod tests {
         scene
     }
 
+    /// `cells` cells of 3.75 um.
+    fn grid(cells: usize) -> GridPlan {
+        GridPlan {
+            cells,
+            domain_m: cells as f64 * 3.75e-6,
+            how: String::new(),
+        }
+    }
+
+    #[test]
+    fn a_map_past_its_bound_is_refused_with_the_longest_stroke_that_fits() {
+        // 100 mm on 3.75 um cells: 26,667 + 48 columns of 48 rows, 1.28 million cells.
+        assert!(stroke_limits(&rig(100.0, 1.0), 60e-6, &grid(48)).is_empty());
+        // On 96 rows: 2.57 million; the longest that fits is (2e6 / 96 - 96) x 3.75 um,
+        // 77.765 mm, to four digits.
+        let errors = stroke_limits(&rig(100.0, 1.0), 60e-6, &grid(96));
+        assert_eq!(errors.len(), 1);
+        assert!(
+            errors[0].message.contains("at most 77.77 mm"),
+            "{}",
+            errors[0].message
+        );
+    }
+
     #[test]
     fn a_stroke_within_the_contact_is_refused_at_its_field_with_the_width() {
         // A 60 um contact radius: 0.12 mm wide.
-        let errors = stroke_limits(&rig(0.1, 1.0), 60e-6);
+        let errors = stroke_limits(&rig(0.1, 1.0), 60e-6, &grid(48));
         assert_eq!(errors.len(), 1);
         assert_eq!(errors[0].path, "test.reciprocating.stroke_mm");
         assert!(
@@ -85,8 +136,8 @@ mod tests {
             "{}",
             errors[0].message
         );
-        assert!(stroke_limits(&rig(0.13, 1.0), 60e-6).is_empty());
-        assert!(stroke_limits(&Scene::default(), 60e-6).is_empty());
+        assert!(stroke_limits(&rig(0.13, 1.0), 60e-6, &grid(48)).is_empty());
+        assert!(stroke_limits(&Scene::default(), 60e-6, &grid(48)).is_empty());
     }
 
     #[test]
