@@ -246,9 +246,9 @@ impl<'a> Cell<'a> {
     }
 
     /// A reciprocating cycle whose stroke leaves the bare-equivalent area `area_m2` on
-    /// average over a cycle (before `anodic_area_factor`), standing for `duration_s` of
-    /// rubbing; `real_contact_m2` (F / H) and the contact's mean chord `chord_m` for the
-    /// model's reason.
+    /// average over a cycle (before `anodic_area_factor`), over `duration_s` of rubbing (one
+    /// cycle; those a step skips are [`Cell::skipped`]); `real_contact_m2` (F / H) and the
+    /// contact's mean chord `chord_m` for the model's reason.
     pub(super) fn stroke_cycle(
         &mut self,
         cycle: u64,

@@ -18,6 +18,19 @@ use crate::scene::CycleStep;
 /// The longest step, cycles: keeps a record at least this often.
 pub const MAX_STEP: u64 = 50;
 
+/// The cycle a step from `cycle` may not pass, of a run of `total`: the next record cycle
+/// (which must be solved), or the first cycle of a new wear rate (`rate_change`, whose rate
+/// the step was not chosen for), else the last.
+pub fn step_stop(cycle: u64, total: u64, record_cycles: &[u64], rate_change: Option<u64>) -> u64 {
+    record_cycles
+        .iter()
+        .copied()
+        .chain(rate_change)
+        .filter(|&r| r > cycle)
+        .min()
+        .unwrap_or(total)
+}
+
 /// Chooses how many cycles the next solve stands for.
 #[derive(Debug, Clone)]
 pub struct Stepper {

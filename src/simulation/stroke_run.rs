@@ -21,7 +21,7 @@ use crate::wear::{Stroke, WearMap};
 use super::electrochemistry::{Cell, Reading};
 use super::provenance::Provenance;
 use super::reciprocating::{REUSE_FRACTION_OF_APPROACH, StrokeCycle, StrokeEngine};
-use super::stepping::Stepper;
+use super::stepping::{Stepper, step_stop};
 use super::stroke_report::{AxialProfile, CycleTrace, StrokeReport, TRACE_SAMPLES, WearMapReport};
 use super::{
     CycleRecord, Model, ModelChoice, PressureMap, Profile, Setup, SimulationError, SimulationResult,
@@ -111,21 +111,25 @@ impl<'a> StrokeRun<'a> {
         // it, and the step starts afresh.
         let cut_m3 = solved.yielded_m * self.engine.map().dx * self.engine.grid().dy;
         let reshaped = cut_m3 > scene.numerics.cycle_step_bound * worn_before;
-        let stop = self
-            .record_cycles
-            .iter()
-            .copied()
-            .chain(self.setup.plan.wear().rate_change_cycle())
-            .filter(|&r| r > cycle)
-            .min()
-            .unwrap_or(scene.test.cycles);
+        let rate_change = self.setup.plan.wear().rate_change_cycle();
+        let stop = step_stop(cycle, scene.test.cycles, &self.record_cycles, rate_change);
+        // As on the disc, the controller starts afresh at the first cycle of a new rate.
+        if rate_change == Some(cycle) {
+            let numerics = &scene.numerics;
+            self.stepper = Stepper::new(numerics.cycle_step, numerics.cycle_step_bound);
+        }
         let step = self
             .stepper
             .next(cycle, stop, reshaped, &solved.pressed.depth);
         self.max_step = self.max_step.max(step);
-        self.engine.repeat(&solved.pressed, cycle + 1..cycle + step);
-        let reading = self.corrode(cycle, step, &solved)?;
+        // The record is the state at the end of the solved cycle; the cycles it stands for
+        // wear and dissolve after it.
+        let reading = self.corrode(cycle, &solved)?;
         self.record(cycle, &solved, reading, on_cycle);
+        self.engine.repeat(&solved.pressed, cycle + 1..cycle + step);
+        if let (Some(cell), Some(reading)) = (self.cell.as_mut(), reading.as_ref()) {
+            cell.skipped(reading, (step - 1) as f64 * scene.cycle_period_s());
+        }
         self.grow_if_crowded(cycle);
         self.last_middle = Some(solved.middle);
         Ok(step)
@@ -161,12 +165,11 @@ impl<'a> StrokeRun<'a> {
         }
     }
 
-    /// The electrochemistry of `cycle`, standing for `step` cycles: the mean area of the
-    /// stroke's exposure, and the trace over the cycle when it is one to keep.
+    /// The electrochemistry of `cycle`: the mean area of the stroke's exposure over the
+    /// cycle, and the trace over it when it is one to keep.
     fn corrode(
         &mut self,
         cycle: u64,
-        step: u64,
         solved: &StrokeCycle,
     ) -> Result<Option<Reading>, SimulationError> {
         if self.cell.is_none() {
@@ -188,7 +191,7 @@ impl<'a> StrokeRun<'a> {
                 cycle,
                 exposure.mean_area_m2(&kinetics),
                 (real, chord),
-                step as f64 * period,
+                period,
             )
             .map_err(|source| SimulationError::Corrosion { cycle, source })?;
         if cycle == 1 || self.record_cycles.contains(&cycle) || cycle == scene.test.cycles {

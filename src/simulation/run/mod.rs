@@ -39,7 +39,7 @@ use super::loaded::{
 };
 use super::ocp_trace::ocp_trace;
 use super::provenance::Provenance;
-use super::stepping::Stepper;
+use super::stepping::{Stepper, step_stop};
 use super::warm::WarmStart;
 use super::{
     CycleRecord, Model, ModelChoice, Plan, PressureMap, Profile, RunOptions, Setup,
@@ -198,14 +198,12 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let pass = wear.pass_profile(&self.grid, &solution.pressure);
         // A step never passes a record cycle, so that cycle is solved; nor the first cycle
         // of a new wear rate (an Archard regime), whose rate the step was not chosen for.
-        let stop = self
-            .record_cycles
-            .iter()
-            .copied()
-            .chain(wear.rate_change_cycle())
-            .filter(|&r| r > cycle)
-            .min()
-            .unwrap_or(setup.scene().test.cycles);
+        let stop = step_stop(
+            cycle,
+            setup.scene().test.cycles,
+            &self.record_cycles,
+            wear.rate_change_cycle(),
+        );
         // The step controller's rate of change was measured at the old rate: it starts
         // afresh (solving every cycle, then doubling) at the first cycle of a new one.
         if wear.rate_change_cycle() == Some(cycle) {
