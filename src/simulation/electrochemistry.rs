@@ -225,24 +225,8 @@ impl<'a> Cell<'a> {
             }
         }
         let area = self.settings.anodic_area_m2(&inputs);
-        let (potential, current) = self.couple(area)?;
-        self.charge_c += current * period_s;
-        self.tally(cycle, area, potential)?;
-        let snapshot = Snapshot {
-            cycle,
-            to_real_contact: area / inputs.real_contact_m2,
-            chord_m: inputs.mean_chord_m,
-        };
-        self.first.get_or_insert(snapshot);
-        self.last = Some(snapshot);
-        Ok(Reading {
-            anodic_area_m2: area,
-            potential_v: potential,
-            anodic_current_a: current,
-            contact_chord_m: inputs.mean_chord_m,
-            charge_c: self.charge_c,
-            wac_m3: self.model.dissolved_volume_m3(self.charge_c),
-        })
+        let contact = (inputs.real_contact_m2, inputs.mean_chord_m);
+        self.book(cycle, area, contact, period_s)
     }
 
     /// A reciprocating cycle whose stroke leaves the bare-equivalent area `area_m2` on
@@ -257,18 +241,31 @@ impl<'a> Cell<'a> {
         duration_s: f64,
     ) -> Result<Reading, CorrosionError> {
         let area = area_m2 * self.settings.anodic_area_factor;
-        let (potential, current) = self.couple(area)?;
+        self.book(cycle, area, (real_contact_m2, chord_m), duration_s)
+    }
+
+    /// The cell at the anodic area `area_m2` (the factor applied) over `duration_s` of
+    /// `cycle`: its potential and current, the charge they pass, the tallies and the
+    /// snapshot for the model's reason (`real_contact_m2`, `chord_m`).
+    fn book(
+        &mut self,
+        cycle: u64,
+        area_m2: f64,
+        (real_contact_m2, chord_m): (f64, Option<f64>),
+        duration_s: f64,
+    ) -> Result<Reading, CorrosionError> {
+        let (potential, current) = self.couple(area_m2)?;
         self.charge_c += current * duration_s;
-        self.tally(cycle, area, potential)?;
+        self.tally(cycle, area_m2, potential)?;
         let snapshot = Snapshot {
             cycle,
-            to_real_contact: area / real_contact_m2,
+            to_real_contact: area_m2 / real_contact_m2,
             chord_m,
         };
         self.first.get_or_insert(snapshot);
         self.last = Some(snapshot);
         Ok(Reading {
-            anodic_area_m2: area,
+            anodic_area_m2: area_m2,
             potential_v: potential,
             anodic_current_a: current,
             contact_chord_m: chord_m,
