@@ -11,7 +11,9 @@ use crate::corrosion::{
     AreaInputs, ContactGeometry, CorrosionError, CorrosionModel, real_contact_area_m2,
 };
 use crate::scene::{AnodicArea, Corrosion, FieldWarning, Scene};
-use crate::wear::Groove;
+use crate::wear::{Groove, VolumeBasis};
+
+use super::CycleRecord;
 
 /// The electrochemical cell of a run and the charge passed so far.
 #[derive(Debug)]
@@ -77,6 +79,27 @@ pub(super) struct Reading {
     pub(super) charge_c: f64,
     /// The wear-accelerated corrosion volume so far, m^3.
     pub(super) wac_m3: f64,
+}
+
+/// Fills `record`'s loss and corrosion columns: the groove `groove_m3` and the WAC of
+/// `reading` split by `basis` (without corrosion the WAC is nil and either basis splits the
+/// groove into itself), and the reading's potential, area, chord, current and charge.
+pub(super) fn fill_corrosion(
+    record: &mut CycleRecord,
+    groove_m3: f64,
+    basis: VolumeBasis,
+    reading: Option<Reading>,
+) {
+    let loss = basis.split(groove_m3, reading.map_or(0.0, |r| r.wac_m3));
+    record.wear_volume_mm3 = loss.total_m3 * 1e9;
+    record.total_volume_mm3 = Some(loss.total_m3 * 1e9);
+    record.mechanical_volume_mm3 = Some(loss.mechanical_m3 * 1e9);
+    record.potential_v = reading.map(|r| r.potential_v);
+    record.anodic_area_mm2 = reading.map(|r| r.anodic_area_m2 * 1e6);
+    record.contact_chord_um = reading.and_then(|r| r.contact_chord_m).map(|c| c * 1e6);
+    record.anodic_current_ma = reading.map(|r| r.anodic_current_a * 1e3);
+    record.charge_c = reading.map(|r| r.charge_c);
+    record.wac_volume_mm3 = reading.map(|r| r.wac_m3 * 1e9);
 }
 
 /// A solved cycle as the model's reason tells it.

@@ -133,8 +133,8 @@ impl Model {
     }
 }
 
-/// The state after one solved cycle.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// The state after one solved cycle (its default: cycle 0, nothing worn, no corrosion).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct CycleRecord {
     /// Cycle number, from 1.
     pub cycle: u64,

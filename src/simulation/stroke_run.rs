@@ -18,7 +18,7 @@ use crate::scene::{AnodicArea, FieldWarning};
 use crate::surface::count_islands;
 use crate::wear::{Stroke, WearMap};
 
-use super::electrochemistry::{Cell, Reading};
+use super::electrochemistry::{Cell, Reading, fill_corrosion};
 use super::provenance::Provenance;
 use super::reciprocating::{REUSE_FRACTION_OF_APPROACH, StrokeCycle, StrokeEngine};
 use super::stepping::{Stepper, step_stop};
@@ -252,14 +252,11 @@ impl<'a> StrokeRun<'a> {
         let n = cycle as f64;
         let middle = &solved.middle;
         let map = self.engine.map();
-        let basis = scene.wear.archard_k_basis;
-        let loss = basis.split(self.engine.volume_m3(), reading.map_or(0.0, |r| r.wac_m3));
         let contact: Vec<bool> = middle.pressure.iter().map(|&p| p > 0.0).collect();
         let cap = solved.cap_pa;
-        let record = CycleRecord {
+        let mut record = CycleRecord {
             cycle,
             time_s: n * scene.cycle_period_s(),
-            wear_volume_mm3: loss.total_m3 * 1e9,
             max_depth_um: map.depth.iter().copied().fold(0.0, f64::max) * 1e6,
             loaded_max_depth_um: 0.0,
             max_pressure_mpa: middle.max_pressure_pa() / 1e6,
@@ -270,15 +267,10 @@ impl<'a> StrokeRun<'a> {
             yield_pressure_mpa: cap.is_finite().then_some(cap / 1e6),
             approach_um: middle.approach_m * 1e6,
             iterations: solved.iterations,
-            potential_v: reading.map(|r| r.potential_v),
-            anodic_area_mm2: reading.map(|r| r.anodic_area_m2 * 1e6),
-            contact_chord_um: reading.and_then(|r| r.contact_chord_m).map(|c| c * 1e6),
-            anodic_current_ma: reading.map(|r| r.anodic_current_a * 1e3),
-            charge_c: reading.map(|r| r.charge_c),
-            wac_volume_mm3: reading.map(|r| r.wac_m3 * 1e9),
-            total_volume_mm3: Some(loss.total_m3 * 1e9),
-            mechanical_volume_mm3: Some(loss.mechanical_m3 * 1e9),
+            ..CycleRecord::default()
         };
+        let basis = scene.wear.archard_k_basis;
+        fill_corrosion(&mut record, self.engine.volume_m3(), basis, reading);
         on_cycle(&record);
         self.records.push(record);
         if cycle == 1 {

@@ -32,7 +32,7 @@ use crate::wear::Groove;
 mod stalls;
 
 use super::balance::{balance, overdrawn};
-use super::electrochemistry::{Cell, Reading, Surface};
+use super::electrochemistry::{Cell, Reading, Surface, fill_corrosion};
 use super::growth::{GROW_AT_EDGE_CELLS, GROW_AT_FRACTION, near_edges, widen};
 use super::loaded::{
     disc_share, elastic_displacement, full_displacement, loaded_max_depth_m, loaded_profile_m,
@@ -367,13 +367,9 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let track_length = setup.scene().track_length_m();
         let contact: Vec<bool> = solution.pressure.iter().map(|&p| p > 0.0).collect();
         let groove_m3 = self.groove.area_m2() * track_length;
-        let basis = setup.scene().wear.archard_k_basis;
-        // Without corrosion the WAC is nil and either basis splits the groove into itself.
-        let loss = basis.split(groove_m3, reading.map_or(0.0, |r| r.wac_m3));
-        let record = CycleRecord {
+        let mut record = CycleRecord {
             cycle,
             time_s: n * setup.scene().cycle_period_s(),
-            wear_volume_mm3: loss.total_m3 * 1e9,
             max_depth_um: self.groove.max_depth_m() * 1e6,
             loaded_max_depth_um: loaded_max_depth_m(
                 &self.groove,
@@ -389,15 +385,10 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             yield_pressure_mpa: cap.is_finite().then_some(cap / 1e6),
             approach_um: solution.approach_m * 1e6,
             iterations: solution.iterations,
-            potential_v: reading.map(|r| r.potential_v),
-            anodic_area_mm2: reading.map(|r| r.anodic_area_m2 * 1e6),
-            contact_chord_um: reading.and_then(|r| r.contact_chord_m).map(|c| c * 1e6),
-            anodic_current_ma: reading.map(|r| r.anodic_current_a * 1e3),
-            charge_c: reading.map(|r| r.charge_c),
-            wac_volume_mm3: reading.map(|r| r.wac_m3 * 1e9),
-            total_volume_mm3: Some(loss.total_m3 * 1e9),
-            mechanical_volume_mm3: Some(loss.mechanical_m3 * 1e9),
+            ..CycleRecord::default()
         };
+        let basis = setup.scene().wear.archard_k_basis;
+        fill_corrosion(&mut record, groove_m3, basis, reading);
         on_cycle(&record);
         self.records.push(record);
         if cycle == 1 {
