@@ -7,6 +7,7 @@
 //! did not give for this list is a 400. A resource filters its list by query parameters, one
 //! [`Filter`] each: adding a filter is one entry in the resource's list of filters.
 
+use std::cmp::Reverse;
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
@@ -118,10 +119,26 @@ fn cursor_of<T: Listed>(item: &T) -> Cursor {
     }
 }
 
-/// Whether `item` comes after `cursor` in the list's order (newest first, then id).
-fn after<T: Listed>(cursor: Cursor, item: &T) -> bool {
-    let at = item.created_at().unix_timestamp_nanos();
-    at < cursor.created_at_ns || (at == cursor.created_at_ns && item.id() > cursor.id)
+/// An item's place in the list's order, newest first, then by id: smaller comes first.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct Place {
+    newest_first_ns: Reverse<i128>,
+    id: Uuid,
+}
+
+impl Place {
+    fn of<T: Listed>(item: &T) -> Self {
+        Self {
+            newest_first_ns: Reverse(item.created_at().unix_timestamp_nanos()),
+            id: item.id(),
+        }
+    }
+
+    /// Whether the item comes after `cursor`, the last item of the page before.
+    fn after(self, cursor: Cursor) -> bool {
+        let at = self.newest_first_ns.0;
+        at < cursor.created_at_ns || (at == cursor.created_at_ns && self.id > cursor.id)
+    }
 }
 
 /// The query of a list, as given (`limit`, `cursor` and the filters' parameters), and the
@@ -161,9 +178,52 @@ impl ListQuery {
     pub(crate) fn page<T: Listed>(
         &self,
         path: &str,
-        mut items: Vec<T>,
+        items: Vec<T>,
         filters: &[Filter<T>],
     ) -> Result<Page<T>, ApiError> {
+        self.page_shown(path, items, |item| item, filters)
+    }
+
+    /// The page of `handles` this query asks for, each shown as the `T` the list answers:
+    /// the handles are ordered and cut at the cursor, and only those the page reaches are
+    /// shown and filtered. A page of 50 from a store of 5000 jobs therefore clones 51
+    /// records, not 5000: the clones were 5 ms of CPU a request (scripts/load_test.py,
+    /// item 9).
+    pub(crate) fn page_shown<K: Listed, T: Listed>(
+        &self,
+        path: &str,
+        handles: Vec<K>,
+        show: impl Fn(K) -> T,
+        filters: &[Filter<T>],
+    ) -> Result<Page<T>, ApiError> {
+        let tests = self.tests(filters)?;
+        let limit = self.limit()?;
+        let scope = self.scope(path);
+        let start = self.cursor(&scope)?;
+        // Each handle's place is computed once: comparing `OffsetDateTime`s in the sort
+        // was most of a page's cost (1.4 of 1.8 ms for a store of 5000 jobs).
+        let mut placed: Vec<(Place, K)> = handles
+            .into_iter()
+            .map(|handle| (Place::of(&handle), handle))
+            .filter(|(place, _)| start.is_none_or(|cursor| place.after(cursor)))
+            .collect();
+        placed.sort_unstable_by_key(|(place, _)| *place);
+        let mut items: Vec<T> = placed
+            .into_iter()
+            .map(|(_, handle)| show(handle))
+            .filter(|item| tests.iter().all(|t| t(item)))
+            .take(limit + 1)
+            .collect();
+        let next = (items.len() > limit).then(|| {
+            let cursor = cursor_of(&items[limit - 1]).encode(&self.key, &scope);
+            self.next_url(path, &cursor)
+        });
+        items.truncate(limit);
+        Ok(Page { items, next })
+    }
+
+    /// The tests of the filters the query names; 400 for a parameter that is none of them.
+    fn tests<'f, T>(&self, filters: &'f [Filter<T>]) -> Result<Vec<Test<'f, T>>, ApiError> {
         let mut tests = Vec::new();
         for (name, value) in &self.params {
             match filters.iter().find(|f| f.name() == name) {
@@ -181,23 +241,7 @@ impl ListQuery {
                 }
             }
         }
-        let limit = self.limit()?;
-        let scope = self.scope(path);
-        let start = self.cursor(&scope)?;
-        items.retain(|item| {
-            start.is_none_or(|cursor| after(cursor, item)) && tests.iter().all(|t| t(item))
-        });
-        items.sort_by(|a, b| {
-            b.created_at()
-                .cmp(&a.created_at())
-                .then(a.id().cmp(&b.id()))
-        });
-        let next = (items.len() > limit).then(|| {
-            let cursor = cursor_of(&items[limit - 1]).encode(&self.key, &scope);
-            self.next_url(path, &cursor)
-        });
-        items.truncate(limit);
-        Ok(Page { items, next })
+        Ok(tests)
     }
 
     /// The list a cursor of this query belongs to: `path` and every parameter but `limit`

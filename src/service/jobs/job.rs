@@ -118,6 +118,15 @@ impl Listed for JobRecord {
     }
 }
 
+impl Listed for Arc<Job> {
+    fn created_at(&self) -> OffsetDateTime {
+        self.created_at
+    }
+    fn id(&self) -> Uuid {
+        self.id
+    }
+}
+
 /// The filters of `GET /api/v1/jobs`.
 pub(super) const FILTERS: &[Filter<JobRecord>] = &[
     Filter::OneOf("status", JobStatus::NAMES, |j| j.status.name()),
@@ -185,6 +194,9 @@ pub(super) struct JobState {
 pub struct Job {
     /// The job's id.
     pub id: Uuid,
+    /// When it was created, outside the state's lock, so that a list is ordered without
+    /// taking every job's lock.
+    created_at: OffsetDateTime,
     state: Mutex<JobState>,
     /// Held across every file write of this job and the state change it records, so that
     /// concurrent requests on one job (two DELETEs, a DELETE and the worker finishing) act
@@ -208,6 +220,7 @@ impl Job {
     pub(super) fn new(record: JobRecord, scene: Option<Scene>, cycles: Option<Vec<Cycle>>) -> Self {
         Self {
             id: record.id,
+            created_at: record.created_at,
             state: Mutex::new(JobState {
                 record,
                 scene: scene.map(Arc::new),

@@ -177,17 +177,22 @@ impl Jobs {
         }
     }
 
+    /// Every job, in no order, and how the API shows one: its record with its place in
+    /// the queue (the places taken once, so showing every job stays linear in the queue).
+    pub fn listing(&self) -> (Vec<Arc<Job>>, impl Fn(Arc<Job>) -> JobRecord + use<>) {
+        let jobs = self.lock_jobs().values().cloned().collect();
+        let positions = self.queue.positions();
+        let show = move |job: Arc<Job>| JobRecord {
+            queue_position: positions.get(&job.id).copied(),
+            ..job.record()
+        };
+        (jobs, show)
+    }
+
     /// Every job's record as the API shows it, newest first.
     pub fn list(&self) -> Vec<JobRecord> {
-        let jobs: Vec<Arc<Job>> = self.lock_jobs().values().cloned().collect();
-        let positions = self.queue.positions();
-        let mut records: Vec<JobRecord> = jobs
-            .iter()
-            .map(|job| JobRecord {
-                queue_position: positions.get(&job.id).copied(),
-                ..job.record()
-            })
-            .collect();
+        let (jobs, show) = self.listing();
+        let mut records: Vec<JobRecord> = jobs.into_iter().map(show).collect();
         records.sort_by(|a, b| b.created_at.cmp(&a.created_at).then(a.id.cmp(&b.id)));
         records
     }

@@ -103,7 +103,8 @@ async fn list_jobs(
     State(jobs): State<Arc<Jobs>>,
     query: ListQuery,
 ) -> Result<Page<JobRecord>, ApiError> {
-    query.page("/api/v1/jobs", jobs.list(), FILTERS)
+    let (handles, show) = jobs.listing();
+    query.page_shown("/api/v1/jobs", handles, show, FILTERS)
 }
 
 /// `GET /api/v1/jobs/{id}`.
