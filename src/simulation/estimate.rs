@@ -1,8 +1,10 @@
 //! What a run will cost before it starts: its solves, its wall time and the size of its
-//! result, extrapolated from two measured runs of the paper's scene, and its peak memory,
-//! from the cells of its grid. A rough guide (a
-//! factor of about three either way), for a warning before a long run, not a schedule.
+//! result, extrapolated from two measured runs of the paper's scene (of the rig's default
+//! scene on the reciprocating rig), and its peak memory, from the cells of its grid (and of
+//! its wear map on the rig). A rough guide (a factor of about three either way), for a
+//! warning before a long run and the service's memory budget, not a schedule.
 
+use super::sizing::GridPlan;
 use crate::contact::Grid;
 use crate::scene::{CycleStep, DomainSize, Scene};
 
@@ -40,10 +42,49 @@ const BASE_PEAK_BYTES: f64 = 64e6;
 /// most in the paper's scene over 36,000 cycles, and the cells go as its square.
 const AUTO_DOMAIN_CELL_GROWTH: f64 = 4.0;
 
+/// The rig's default scene (a 5 mm stroke at 1 Hz, sinusoidal; auto grid of
+/// [`STROKE_MEASURED_CELLS`], auto stepping) run with `tribosim run` at two lengths on the
+/// development machine (2 cores): 50 cycles in 42 solved cycles (13,561 positions solved),
+/// 14.7 s wall; 1000 cycles in 197 solved cycles (86,996 positions), 249.8 s wall. A
+/// solved cycle solves the positions near the ends, whose number does not depend on the
+/// stroke's length; its cost grows as the worn contact widens.
+const STROKE_MEASURED_CYCLES: [f64; 2] = [50.0, 1000.0];
+/// Solved cycles of the two measured rig runs (see [`STROKE_MEASURED_CYCLES`]).
+const STROKE_MEASURED_SOLVED: [f64; 2] = [42.0, 197.0];
+/// Wall time of the two measured rig runs, s (see [`STROKE_MEASURED_CYCLES`]).
+const STROKE_MEASURED_WALL_S: [f64; 2] = [14.7, 249.8];
+/// Cells per side of the measured rig runs' first grid (16 per contact radius).
+const STROKE_MEASURED_CELLS: f64 = 48.0;
+/// Positions a sweep visits on the measured rig runs' first grid: one per cell of 2.763 um
+/// along the 5 mm stroke.
+const STROKE_MEASURED_POSITIONS: f64 = 1810.0;
+/// CPU time a sweep spends at a position whatever it solves (the flat under the contact
+/// read, compared and pressed into the map), s on 48 x 48 cells: 20% of the profile
+/// (`perf record`) of a 75 mm stroke run for 2 cycles, 12.5 s over 4 sweeps of 27,192
+/// positions.
+const STROKE_POSITION_S: f64 = 23e-6;
+/// CPU time a traced cycle (200 samples of the potential) spends per position of the
+/// stroke, s: 70% of the profile of the same 75 mm run, whose 2 cycles were both traced.
+const STROKE_TRACE_S_PER_POSITION: f64 = 160e-6;
+/// How far the rig's auto grid grew in cells over the measured 1000 strokes: from 48 x 48
+/// to 96 x 128; the wear map's rows grew as the grid's (48 to 128).
+const STROKE_CELL_GROWTH: f64 = 96.0 * 128.0 / (48.0 * 48.0);
+/// Rows of the rig's wear map at the end of the measured 1000 strokes over its first rows.
+const STROKE_ROW_GROWTH: f64 = 128.0 / 48.0;
+/// Peak memory per cell of the rig's wear map, bytes: a 75 mm stroke on 48 rows of 2.763 um
+/// (1.31 million map cells) run for 2 cycles peaked at 122 MB, 99 MB above the 23 MB of
+/// the 5 mm stroke's run (76 B a cell: the map's copies of `simulation::stroke_checks` and
+/// the exposure's points).
+const STROKE_PEAK_BYTES_PER_MAP_CELL: f64 = 80.0;
+/// Bytes of the result's `stroke` section, pretty-printed: 754 kB at 50 cycles, 1.36 MB at
+/// 1000 (the map has a row per grid row, which grew); the larger, rounded up.
+const STROKE_SECTION_BYTES: f64 = 1.4e6;
+
 /// What a run is expected to cost.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunEstimate {
-    /// Contact solves (one cycle record each).
+    /// Solved cycles (one cycle record each); on the reciprocating rig, each solves the
+    /// contact at many positions.
     pub solves: u64,
     /// Wall time, s.
     pub wall_s: f64,
@@ -58,8 +99,17 @@ fn exponent(values: [f64; 2]) -> f64 {
     (values[1] / values[0]).ln() / (MEASURED_CYCLES[1] / MEASURED_CYCLES[0]).ln()
 }
 
-/// The estimate for `scene` on a first grid of `cells` per side.
-pub fn estimate(scene: &Scene, cells: usize) -> RunEstimate {
+/// The estimate for `scene` on its first grid.
+pub fn estimate(scene: &Scene, grid: &GridPlan) -> RunEstimate {
+    if scene.test.reciprocating.is_some() {
+        stroke_estimate(scene, grid)
+    } else {
+        disc_estimate(scene, grid.cells)
+    }
+}
+
+/// The estimate for a disc on a first grid of `cells` per side.
+fn disc_estimate(scene: &Scene, cells: usize) -> RunEstimate {
     let cycles = scene.test.cycles as f64;
     let along = cycles / MEASURED_CYCLES[0];
     let auto_solves = MEASURED_SOLVES[0] * along.powf(exponent(MEASURED_SOLVES));
@@ -83,6 +133,50 @@ pub fn estimate(scene: &Scene, cells: usize) -> RunEstimate {
         wall_s: solves * per_solve_s * grid,
         bytes: solves * RECORD_BYTES + OTHER_BYTES,
         memory_bytes: BASE_PEAK_BYTES + PEAK_BYTES_PER_CELL * cells_then.min(cells_max),
+    }
+}
+
+/// The estimate for the reciprocating rig of `scene` on its first grid: the measured
+/// runs' cost per solved cycle, scaled as the cube of the cells per side (the positions
+/// near the ends go as the density, a solve as its square; `docs/accuracy.md`), plus what
+/// a stroke longer than the measured one adds at each position of each sweep and trace.
+fn stroke_estimate(scene: &Scene, grid: &GridPlan) -> RunEstimate {
+    let power = |values: [f64; 2]| {
+        let along = scene.test.cycles as f64 / STROKE_MEASURED_CYCLES[0];
+        let exponent = (values[1] / values[0]).ln()
+            / (STROKE_MEASURED_CYCLES[1] / STROKE_MEASURED_CYCLES[0]).ln();
+        values[0] * along.powf(exponent)
+    };
+    let cycles = scene.test.cycles as f64;
+    let auto_solved = power(STROKE_MEASURED_SOLVED).clamp(1.0, cycles);
+    let solved = match scene.numerics.cycle_step {
+        CycleStep::EveryCycle => cycles,
+        CycleStep::Auto => auto_solved,
+    };
+    let per_solved_s = power(STROKE_MEASURED_WALL_S) / power(STROKE_MEASURED_SOLVED);
+    let density = grid.cells as f64 / STROKE_MEASURED_CELLS;
+    let cell_m = grid.domain_m / grid.cells as f64;
+    let length_m = scene.stroke().map_or(0.0, |stroke| stroke.length_m);
+    let positions = length_m / cell_m;
+    let traced = scene.record_cycles().len() as f64 + 2.0;
+    let extra_positions = (positions - STROKE_MEASURED_POSITIONS).max(0.0);
+    let extra_s = extra_positions
+        * (2.0 * solved * STROKE_POSITION_S * density.powi(2)
+            + traced * STROKE_TRACE_S_PER_POSITION);
+    let growth = match scene.numerics.domain_um {
+        DomainSize::Auto => (STROKE_CELL_GROWTH, STROKE_ROW_GROWTH),
+        DomainSize::Micrometres(_) => (1.0, 1.0),
+    };
+    let cells = (grid.cells as f64).powi(2);
+    let cells_max = (Grid::MAX_CELLS_PER_SIDE as f64).powi(2);
+    let map_cells = (positions + grid.cells as f64) * grid.cells as f64 * growth.1;
+    RunEstimate {
+        solves: solved.round() as u64,
+        wall_s: solved * per_solved_s * density.powi(3) + extra_s,
+        bytes: solved * RECORD_BYTES + OTHER_BYTES + STROKE_SECTION_BYTES,
+        memory_bytes: BASE_PEAK_BYTES
+            + PEAK_BYTES_PER_CELL * (cells * growth.0).min(cells_max)
+            + STROKE_PEAK_BYTES_PER_MAP_CELL * map_cells,
     }
 }
 
@@ -117,7 +211,7 @@ mod tests {
         let mut scene = Scene::default();
         for (i, cycles) in MEASURED_CYCLES.into_iter().enumerate() {
             scene.test.cycles = cycles as u64;
-            let e = estimate(&scene, PAPER_CELLS as usize);
+            let e = disc_estimate(&scene, PAPER_CELLS as usize);
             // The power laws pass through both points: exact but for rounding (1e-9).
             assert_eq!(e.solves, MEASURED_SOLVES[i] as u64);
             assert!((e.wall_s / MEASURED_WALL_S[i] - 1.0).abs() < 1e-9, "{e:?}");
@@ -128,13 +222,13 @@ mod tests {
     fn every_cycle_solves_each_and_costs_more() {
         let mut scene = Scene::default();
         scene.test.cycles = 36_000;
-        let auto = estimate(&scene, 144);
+        let auto = disc_estimate(&scene, 144);
         scene.numerics.cycle_step = CycleStep::EveryCycle;
-        let every = estimate(&scene, 144);
+        let every = disc_estimate(&scene, 144);
         assert_eq!(every.solves, 36_000);
         assert!(every.wall_s > auto.wall_s && every.bytes > auto.bytes);
         // A grid of half the cells per side costs a quarter.
-        let half = estimate(&scene, 72);
+        let half = disc_estimate(&scene, 72);
         assert!((half.wall_s / every.wall_s - 0.25).abs() < 1e-12);
     }
 
@@ -152,7 +246,7 @@ mod tests {
         scene.test.cycles = 2;
         scene.numerics.domain_um = DomainSize::Micrometres(150.0);
         for (cells, peak) in measured {
-            let estimate = estimate(&scene, cells).memory_bytes;
+            let estimate = disc_estimate(&scene, cells).memory_bytes;
             // Above each, and not so far above that it refuses what the machine can run: the
             // per-cell figure is within 20% of each point's own (830 against 713 to 825
             // bytes), so the estimate is within the base and 1.2 times the peak.
@@ -163,8 +257,55 @@ mod tests {
         }
         // An auto domain may grow: its cells are budgeted four times over.
         scene.numerics.domain_um = DomainSize::Auto;
-        let auto = estimate(&scene, 512).memory_bytes;
+        let auto = disc_estimate(&scene, 512).memory_bytes;
         assert!((auto - (BASE_PEAK_BYTES + 4.0 * 512.0 * 512.0 * PEAK_BYTES_PER_CELL)).abs() < 1.0);
+    }
+
+    /// The rig's default scene on the measured runs' first grid (48 cells of 2.763 um).
+    fn rig(cycles: u64, stroke_mm: f64) -> (Scene, GridPlan) {
+        let mut scene = Scene::default();
+        scene.test.cycles = cycles;
+        scene.test.reciprocating = Some(crate::scene::Reciprocating {
+            stroke_mm,
+            ..crate::scene::Reciprocating::default()
+        });
+        let grid = GridPlan {
+            cells: 48,
+            domain_m: 48.0 * 2.763e-6,
+            how: String::new(),
+        };
+        (scene, grid)
+    }
+
+    #[test]
+    fn the_rig_estimate_passes_through_its_measured_runs() {
+        for (i, cycles) in STROKE_MEASURED_CYCLES.into_iter().enumerate() {
+            let (scene, grid) = rig(cycles as u64, 5.0);
+            let e = estimate(&scene, &grid);
+            assert_eq!(e.solves, STROKE_MEASURED_SOLVED[i] as u64);
+            // Exact but for rounding: the 5 mm stroke is 1809.6 cells, within the measured
+            // 1810 positions, so no position is added.
+            assert!(
+                (e.wall_s / STROKE_MEASURED_WALL_S[i] - 1.0).abs() < 1e-9,
+                "{e:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_rig_memory_estimate_lies_above_its_measured_peaks() {
+        // Peak RSS of `tribosim run`, bytes: 1000 cycles of 5 mm (the grid grew to 96 x
+        // 128) and 2 cycles of 75 mm (the map of 1.31 million cells).
+        for (cycles, stroke_mm, peak) in [(1000, 5.0, 34.0e6), (2, 75.0, 122.0e6)] {
+            let (scene, grid) = rig(cycles, stroke_mm);
+            let e = estimate(&scene, &grid);
+            assert!(e.memory_bytes > peak, "{stroke_mm} mm: {e:?}");
+        }
+        // The longer stroke's time grows with its positions: 2 cycles of 75 mm took 12.5 s,
+        // and the estimate is within the factor of three the module claims.
+        let (scene, grid) = rig(2, 75.0);
+        let wall_s = estimate(&scene, &grid).wall_s;
+        assert!(wall_s > 12.5 / 3.0 && wall_s < 12.5 * 3.0, "{wall_s}");
     }
 
     #[test]

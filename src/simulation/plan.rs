@@ -146,8 +146,7 @@ fn derive(scene: Scene) -> Result<Plan, Vec<FieldError>> {
     };
     let density = cells_per_contact_radius(&scene);
     let first_grid = plan_grid(&scene.numerics, (sizing_radius_m, density), None);
-    let cells = first_grid.cells;
-    let estimate = estimate(&scene, cells);
+    let estimate = estimate(&scene, &first_grid);
     let verdict = judge(&scene, &derived, &estimate);
     // A field the limits refuse keeps their message (its bound is exact); plausibility
     // names the slip of the others.

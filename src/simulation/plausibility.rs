@@ -328,12 +328,17 @@ fn cost(verdict: &mut Verdict, scene: &Scene, estimate: &RunEstimate) {
     verdict.warn(
         "test.cycles",
         format!(
-            "{} cycles will take about {} and give a result of about {} ({} solves; estimated \
-             from the paper's scene, within a factor of about 3)",
+            "{} cycles will take about {} and give a result of about {} ({} solved cycles; \
+             estimated from the {}, within a factor of about 3)",
             scene.test.cycles,
             describe_duration(estimate.wall_s),
             describe_size(estimate.bytes),
-            estimate.solves
+            estimate.solves,
+            if scene.test.reciprocating.is_some() {
+                "rig's default scene"
+            } else {
+                "paper's scene"
+            }
         ),
     );
 }
