@@ -20,7 +20,9 @@ use crate::wear::{Stroke, WearMap};
 
 use super::electrochemistry::{Cell, Reading, fill_corrosion};
 use super::provenance::Provenance;
-use super::reciprocating::{REUSE_FRACTION_OF_APPROACH, StrokeCycle, StrokeEngine};
+use super::reciprocating::{
+    REUSE_FRACTION_OF_APPROACH, SOLVE_EVERY_POSITIONS, StrokeCycle, StrokeEngine, StrokeNumerics,
+};
 use super::stepping::{Stepper, step_stop};
 use super::stroke_report::{AxialProfile, CycleTrace, StrokeReport, TRACE_SAMPLES, WearMapReport};
 use super::{
@@ -81,7 +83,7 @@ impl<'a> StrokeRun<'a> {
         Self {
             setup,
             stroke,
-            engine: StrokeEngine::new(setup, stroke, REUSE_FRACTION_OF_APPROACH),
+            engine: StrokeEngine::new(setup, stroke, StrokeNumerics::default()),
             stepper: Stepper::new(numerics.cycle_step, numerics.cycle_step_bound),
             cell: Cell::of(scene, setup.plan.hertz().contact_radius_m()),
             record_cycles: scene.record_cycles(),
@@ -434,9 +436,10 @@ impl<'a> StrokeRun<'a> {
                 active: true,
                 reason: format!(
                     "a {:.3} mm stroke at {} Hz ({:?} speed): the ball's centre at {positions} \
-                     positions a cell apart each sweep, solved where the flat under the \
-                     contact changed by more than {REUSE_FRACTION_OF_APPROACH:e} of Hertz's \
-                     approach since the last solve ({} solves in all); the friction coupling \
+                     positions a cell apart each sweep, every {SOLVE_EVERY_POSITIONS}th solved \
+                     where the flat under the contact changed by more than \
+                     {REUSE_FRACTION_OF_APPROACH:e} of Hertz's approach since the last solve \
+                     and the pressures blended between ({} solves in all); the friction coupling \
                      left out (its sign turns with the direction); the cap at the hardness \
                      law's, without plastic strain",
                     self.stroke.length_m * 1e3,
