@@ -129,9 +129,11 @@ fn the_potential_oscillates_at_twice_the_frequency_and_corrosion_stays_within_th
     let last = result.cycles.last().expect("records");
     let wac = last.wac_volume_mm3.expect("corrosion");
     assert!(wac > 0.0 && wac < last.total_volume_mm3.expect("a total"));
-    // The report names the rig and draws the axis and the traces.
+    // The report names the rig and draws the map, the axis and the traces.
     let report = run_report(&result, &Measured::default()).expect("a report");
     assert!(report.contains("reciprocating ball-on-flat test"));
+    assert!(report.contains("Wear map along and across the stroke at the end of the run: x"));
+    assert!(report.contains("depth (um)</text>"));
     assert!(report.contains("Wear depth along the stroke"));
     assert!(report.contains("Potential over a cycle"));
     assert!(report.contains("H = A + B ln n"));

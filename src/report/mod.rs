@@ -16,6 +16,7 @@ mod scene;
 mod stroke_figures;
 mod study;
 mod ticks;
+mod wear_map;
 
 pub use compare::{Labelled, comparison_report};
 pub use figure::FigureError;

@@ -21,26 +21,26 @@ pub struct Map<'a> {
 }
 
 /// A map's square, px.
-const SIDE: f64 = 260.0;
+pub(super) const SIDE: f64 = 260.0;
 /// Room left of a square for its tick labels and the y axis's title, px.
-const LEFT: f64 = 72.0;
+pub(super) const LEFT: f64 = 72.0;
 /// Room above a square for its title, px.
-const TOP: f64 = 28.0;
+pub(super) const TOP: f64 = 28.0;
 /// Room below a square for its tick labels and the x axis's title, px.
-const BOTTOM: f64 = 52.0;
+pub(super) const BOTTOM: f64 = 52.0;
 /// The colour bar's width and the room right of it for its labels and title, px.
-const BAR: f64 = 16.0;
-const BAR_ROOM: f64 = 96.0;
+pub(super) const BAR: f64 = 16.0;
+pub(super) const BAR_ROOM: f64 = 96.0;
 /// A tick's length, px.
-const TICK: f64 = 5.0;
+pub(super) const TICK: f64 = 5.0;
 
 /// Cells per side a map is drawn with at most: its square is 260 px wide, so finer cells
 /// cannot be seen, and a 2048-cell map would write millions of rectangles (about 90 bytes
 /// each) into a report the service builds in memory.
 const MAX_DRAWN_CELLS: usize = 150;
 
-/// The colour of the fraction `f` of the pressure scale; white for no contact.
-fn colour(f: f64) -> String {
+/// The colour of the fraction `f` of a colour scale; white for none (no contact, no wear).
+pub(super) fn colour(f: f64) -> String {
     if f <= 0.0 {
         return "#fff".to_owned();
     }
@@ -92,7 +92,7 @@ pub fn pressure_svg(maps: &[Map<'_>]) -> Option<(String, String)> {
             map.cycle
         );
     }
-    colour_bar(&mut svg, width - BAR_ROOM - BAR, p_max);
+    colour_bar(&mut svg, width - BAR_ROOM - BAR, p_max, "pressure (MPa)");
     svg.push_str("</svg>");
     let scales = format!(
         "x along the sliding direction, y across the track, both from the ball's centre \
@@ -174,12 +174,13 @@ fn axes(svg: &mut String, left: f64, ticks: &Ticks, half: f64, first: bool) {
 }
 
 /// Strips a colour bar is drawn with: as many as its 260 px can tell apart in print.
-const BAR_STRIPS: usize = 64;
+pub(super) const BAR_STRIPS: usize = 64;
 
-/// The colour bar at `left` px, from 0 (bottom) to `p_max` MPa (top), with its ticks: drawn
-/// as strips, since a gradient would need a `url(#...)` reference, which the reports keep
-/// out so that nothing in them can point elsewhere.
-fn colour_bar(svg: &mut String, left: f64, p_max: f64) {
+/// The colour bar at `left` px, beside a plot [`SIDE`] px high below [`TOP`], from 0
+/// (bottom) to `p_max` (top) in the unit of its `title`, with its ticks: drawn as strips,
+/// since a gradient would need a `url(#...)` reference, which the reports keep out so that
+/// nothing in them can point elsewhere.
+pub(super) fn colour_bar(svg: &mut String, left: f64, p_max: f64, title: &str) {
     let strip = SIDE / BAR_STRIPS as f64;
     for k in 0..BAR_STRIPS {
         let f = (k as f64 + 0.5) / BAR_STRIPS as f64;
@@ -212,7 +213,7 @@ fn colour_bar(svg: &mut String, left: f64, p_max: f64) {
     let _ = write!(
         svg,
         "<text x=\"{x}\" y=\"{y}\" text-anchor=\"middle\" transform=\"rotate(-90 {x} {y})\">\
-         pressure (MPa)</text>"
+         {title}</text>"
     );
 }
 

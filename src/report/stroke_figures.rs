@@ -1,9 +1,10 @@
-//! The reciprocating rig's figures (`result.stroke`): the depth along the track's axis and
-//! the potential over a cycle at the traced cycles, as the page draws them.
+//! The reciprocating rig's figures (`result.stroke`): the wear map, the depth along the
+//! track's axis and the potential over a cycle at the traced cycles, as the page draws them.
 
 use crate::simulation::{SimulationResult, StrokeReport};
 
 use super::figure::{FigureError, LineFigure, Series, Style, figure};
+use super::wear_map::wear_map_svg;
 
 fn axial(stroke: &StrokeReport) -> LineFigure {
     let profile = &stroke.axial_profile;
@@ -54,6 +55,12 @@ pub fn stroke_figures(result: &SimulationResult) -> Result<String, FigureError> 
         return Ok(String::new());
     };
     let mut html = String::new();
+    let caption = "Wear map along and across the stroke at the end of the run";
+    let (svg, caption) = match wear_map_svg(&stroke.map) {
+        Some((svg, scales)) => (Some(svg), format!("{caption}: {scales}")),
+        None => (None, caption.to_owned()),
+    };
+    html.push_str(&figure(svg.as_deref(), &caption, "no wear"));
     let axial = axial(stroke);
     html.push_str(&figure(axial.svg()?.as_deref(), &axial.title, "no wear"));
     let traces = traces(stroke, result.scene.cycle_period_s());
