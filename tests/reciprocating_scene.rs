@@ -141,7 +141,7 @@ fn the_potential_oscillates_at_twice_the_frequency_and_corrosion_stays_within_th
 
 #[test]
 fn what_the_rig_cannot_run_is_refused_at_its_field() {
-    // A stroke within the contact (2a is about 0.09 mm here), given in um by mistake.
+    // A stroke within the contact (2a is about 0.09 mm here): 0.05 typed in cm or m.
     assert_eq!(
         refused_at(&scene(
             json!({"test": {"reciprocating": {"stroke_mm": 0.05}}})

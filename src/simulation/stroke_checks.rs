@@ -48,11 +48,13 @@ pub(super) fn stroke_limits(scene: &Scene, sizing_m: f64, grid: &GridPlan) -> Ve
         format!(
             "must be longer than the contact's width 2a = {} mm at this load, got {} mm: a \
              shorter stroke never uncovers the track's middle (fretting, which this model \
-             does not describe). Was it in um? {} um = {} mm",
+             does not describe). Was it in cm or m? {} cm = {} mm, {} m = {} mm",
             sig(width_mm),
             num(rig.stroke_mm),
             num(rig.stroke_mm),
-            sig(rig.stroke_mm * 1e-3)
+            sig(rig.stroke_mm * 10.0),
+            num(rig.stroke_mm),
+            sig(rig.stroke_mm * 1e3)
         ),
     )]
 }

@@ -95,6 +95,11 @@ async function strokeFigures(page) {
     // One cycle at 1 Hz: the times within it, from the first sample's middle to the last's.
     assert.ok(drawn[id].x[0] > 0 && drawn[id].x[1] < 1, `${id}: x ${drawn[id].x} is not within one cycle`);
   }
+  // The run's printable report carries the rig's three figures, the map among them.
+  const report = await page.evaluate(async () => (await fetch(`/api/v1/jobs/${e2e.run.selectedId()}/report`)).text());
+  for (const caption of ["Wear map along and across the stroke", "Wear depth along the stroke", "Potential over a cycle"]) {
+    assert.ok(report.includes(`<figcaption>${caption}`), `the report has no figure "${caption}"`);
+  }
   const [download] = await Promise.all([page.waitForEvent("download"), page.click(`${sel(STROKE_PLOT.map)} .export-svg`)]);
   assert.match(fs.readFileSync(await download.path(), "utf8"), /^<svg[^>]*>.*<image [^>]*href="data:image\/png;base64,/s);
   // The four boxes together, in the page's coordinates.
