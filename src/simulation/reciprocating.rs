@@ -307,7 +307,9 @@ impl StrokeEngine {
         let mut wear = SweepWear::new(&self.grid, self.length_m, self.steps);
         let mut sweep = Sweep::default();
         let middle = self.steps / 2;
-        let mut before: Option<Anchor> = None;
+        // The last anchor's place in the sweep and its pressure, and a blend's buffer.
+        let mut before: Option<usize> = None;
+        let mut anchor = vec![0.0; self.grid.len()];
         let mut blended = vec![0.0; self.grid.len()];
         for k in 0..=self.steps {
             let j = if backward { self.steps - k } else { k };
@@ -328,15 +330,15 @@ impl StrokeEngine {
             if in_middle {
                 sweep.middle = Some((kept.solution.clone(), cap));
             }
-            if let Some(anchor) = &before {
-                for between in anchor.k + 1..k {
-                    let w = (between - anchor.k) as f64 / (k - anchor.k) as f64;
+            if let Some(previous) = before {
+                for between in previous + 1..k {
+                    let w = (between - previous) as f64 / (k - previous) as f64;
                     // A kept solve stands for the positions between, as for its anchor.
                     let pressure = if solved.is_some() {
-                        blend(&anchor.pressure, &kept.solution.pressure, w, &mut blended);
+                        blend(&anchor, &kept.solution.pressure, w, &mut blended);
                         &blended
                     } else {
-                        &anchor.pressure
+                        &anchor
                     };
                     let at = if backward {
                         self.steps - between
@@ -347,10 +349,11 @@ impl StrokeEngine {
                 }
             }
             wear.press(j, &kept.solution.pressure, &kept.pressed_in);
-            before = Some(Anchor {
-                k,
-                pressure: kept.solution.pressure.clone(),
-            });
+            // A kept anchor's pressure is the last anchor's: copied only where it solved.
+            if solved.is_some() || before.is_none() {
+                anchor.copy_from_slice(&kept.solution.pressure);
+            }
+            before = Some(k);
         }
         for (((d, p), y), total) in self
             .map
@@ -413,12 +416,6 @@ impl StrokeEngine {
         });
         Ok(Some(iterations))
     }
-}
-
-/// An anchor position of a sweep: its index in the sweep and its pressure.
-struct Anchor {
-    k: usize,
-    pressure: Vec<f64>,
 }
 
 /// Writes into `out` the pressure `w` of the way from `a` to `b`.
