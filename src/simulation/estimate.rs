@@ -96,9 +96,10 @@ pub struct RunEstimate {
     pub memory_bytes: f64,
 }
 
-/// The exponent of the power law through the two measured points of `values`.
-fn exponent(values: [f64; 2]) -> f64 {
-    (values[1] / values[0]).ln() / (MEASURED_CYCLES[1] / MEASURED_CYCLES[0]).ln()
+/// The power law through two measured runs, `values` at `measured` cycles, at `cycles`.
+fn power_law(measured: [f64; 2], values: [f64; 2], cycles: f64) -> f64 {
+    let exponent = (values[1] / values[0]).ln() / (measured[1] / measured[0]).ln();
+    values[0] * (cycles / measured[0]).powf(exponent)
 }
 
 /// The estimate for `scene` on its first grid.
@@ -113,16 +114,15 @@ pub fn estimate(scene: &Scene, grid: &GridPlan) -> RunEstimate {
 /// The estimate for a disc on a first grid of `cells` per side.
 fn disc_estimate(scene: &Scene, cells: usize) -> RunEstimate {
     let cycles = scene.test.cycles as f64;
-    let along = cycles / MEASURED_CYCLES[0];
-    let auto_solves = MEASURED_SOLVES[0] * along.powf(exponent(MEASURED_SOLVES));
+    let power = |values| power_law(MEASURED_CYCLES, values, cycles);
+    let auto_solves = power(MEASURED_SOLVES);
     let solves = match scene.numerics.cycle_step {
         CycleStep::EveryCycle => cycles,
         CycleStep::Auto => auto_solves.clamp(1.0, cycles),
     };
     // A solve's cost grows with the domain as the groove widens (wall time per solve over
     // solves per cycle), and with the cells of the grid (the FFT's N^2 log N, taken as N^2).
-    let per_solve_s = MEASURED_WALL_S[0] / MEASURED_SOLVES[0]
-        * along.powf(exponent(MEASURED_WALL_S) - exponent(MEASURED_SOLVES));
+    let per_solve_s = power(MEASURED_WALL_S) / power(MEASURED_SOLVES);
     let grid = (cells as f64 / PAPER_CELLS).powi(2);
     let growth = match scene.numerics.domain_um {
         DomainSize::Auto => AUTO_DOMAIN_CELL_GROWTH,
@@ -143,13 +143,8 @@ fn disc_estimate(scene: &Scene, cells: usize) -> RunEstimate {
 /// near the ends go as the density, a solve as its square; `docs/accuracy.md`), plus what
 /// a stroke longer than the measured one adds at each position of each sweep and trace.
 fn stroke_estimate(scene: &Scene, grid: &GridPlan) -> RunEstimate {
-    let power = |values: [f64; 2]| {
-        let along = scene.test.cycles as f64 / STROKE_MEASURED_CYCLES[0];
-        let exponent = (values[1] / values[0]).ln()
-            / (STROKE_MEASURED_CYCLES[1] / STROKE_MEASURED_CYCLES[0]).ln();
-        values[0] * along.powf(exponent)
-    };
     let cycles = scene.test.cycles as f64;
+    let power = |values| power_law(STROKE_MEASURED_CYCLES, values, cycles);
     let auto_solved = power(STROKE_MEASURED_SOLVED).clamp(1.0, cycles);
     let solved = match scene.numerics.cycle_step {
         CycleStep::EveryCycle => cycles,
