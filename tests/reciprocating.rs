@@ -102,13 +102,16 @@ fn near_the_ends_a_kept_pressure_wears_as_a_solve_at_every_position() {
         },
     )
     .expect("runs");
-    let positions = 2 * ((600e-6_f64 / (240e-6 / 64.0)).ceil() as usize + 1);
-    // Every position solved, but in the first sweep over the unworn flat, which is the same
-    // under every position: its one solution holds exactly.
+    // Every position solved whose flat under the contact differs in any cell from the last
+    // solve's: not in the first sweep over the unworn flat, nor where a sweep left the
+    // track's middle uniform along the stroke to the last bit (the second cycle's middle,
+    // 219 solves of 322), whose one solution holds exactly. So at least as many solves as
+    // the reuse makes in every cycle.
     assert!(
-        every.solves[1..].iter().all(|&s| s == positions),
-        "{:?}",
-        every.solves
+        every.solves.iter().zip(&kept.solves).all(|(e, k)| e >= k),
+        "{:?} against {:?}",
+        every.solves,
+        kept.solves
     );
     let deepest = every.map.depth.iter().copied().fold(0.0, f64::max);
     let worst = kept

@@ -311,8 +311,10 @@ impl StrokeEngine {
         let mut before: Option<usize> = None;
         let mut anchor = vec![0.0; self.grid.len()];
         let mut blended = vec![0.0; self.grid.len()];
+        let steps = self.steps;
+        let at = move |k: usize| if backward { steps - k } else { k };
         for k in 0..=self.steps {
-            let j = if backward { self.steps - k } else { k };
+            let j = at(k);
             let in_middle = !backward && j == middle;
             let yielding = self
                 .last
@@ -330,31 +332,31 @@ impl StrokeEngine {
             if in_middle {
                 sweep.middle = Some((kept.solution.clone(), cap));
             }
+            // The run of positions so far pressed the last anchor's pressure.
+            if solved.is_some() {
+                wear.flush(&anchor);
+            }
             if let Some(previous) = before {
                 for between in previous + 1..k {
-                    let w = (between - previous) as f64 / (k - previous) as f64;
-                    // A kept solve stands for the positions between, as for its anchor.
-                    let pressure = if solved.is_some() {
+                    if solved.is_some() {
+                        let w = (between - previous) as f64 / (k - previous) as f64;
                         blend(&anchor, &kept.solution.pressure, w, &mut blended);
-                        &blended
+                        wear.press(at(between), &blended);
                     } else {
-                        &anchor
-                    };
-                    let at = if backward {
-                        self.steps - between
-                    } else {
-                        between
-                    };
-                    wear.press(at, pressure, &[]);
+                        // A kept solve stands for the positions between, as for its anchor.
+                        wear.keep(at(between));
+                    }
                 }
             }
-            wear.press(j, &kept.solution.pressure, &kept.pressed_in);
             // A kept anchor's pressure is the last anchor's: copied only where it solved.
             if solved.is_some() || before.is_none() {
                 anchor.copy_from_slice(&kept.solution.pressure);
             }
+            wear.keep(j);
+            wear.push_in(j, &kept.pressed_in);
             before = Some(k);
         }
+        wear.flush(&anchor);
         for (((d, p), y), total) in self
             .map
             .depth
@@ -433,6 +435,8 @@ struct SweepWear {
     step_m: f64,
     pressure: WearMap,
     yielded: Vec<f64>,
+    /// The first and last positions of a run pressing one pressure, not yet pressed.
+    run: Option<(usize, usize)>,
 }
 
 impl SweepWear {
@@ -444,6 +448,7 @@ impl SweepWear {
             step_m: length_m / steps as f64,
             yielded: vec![0.0; pressure.depth.len()],
             pressure,
+            run: None,
         }
     }
 
@@ -452,16 +457,49 @@ impl SweepWear {
         -self.half_m + j as f64 * self.step_m
     }
 
-    /// Presses `pressure` over the stretch of the stroke nearest to position `j`, and the
-    /// interpenetrations `pressed_in` at it.
-    fn press(&mut self, j: usize, pressure: &[f64], pressed_in: &[(usize, usize, f64)]) {
-        let (grid, half, x) = (self.grid, self.half_m, self.position_m(j));
-        let (from, to) = (
-            (x - self.step_m / 2.0).max(-half),
-            (x + self.step_m / 2.0).min(half),
-        );
-        self.pressure.add_pass(&grid, pressure, from, to);
-        let map = &self.pressure;
+    /// The stretch of the stroke nearest to positions `first..=last`, m.
+    fn stretch_m(&self, first: usize, last: usize) -> (f64, f64) {
+        let half = self.half_m;
+        (
+            (self.position_m(first) - self.step_m / 2.0).max(-half),
+            (self.position_m(last) + self.step_m / 2.0).min(half),
+        )
+    }
+
+    /// Presses `pressure` over the stretch of the stroke nearest to position `j`.
+    fn press(&mut self, j: usize, pressure: &[f64]) {
+        let (from, to) = self.stretch_m(j, j);
+        self.pressure.add_pass(&self.grid, pressure, from, to);
+    }
+
+    /// Adds position `j`, next to the run's, to the run of positions that press one
+    /// pressure, pressed at once by [`Self::flush`]: in the middle of a long stroke,
+    /// hundreds of positions keep one solve.
+    fn keep(&mut self, j: usize) {
+        self.run = Some(match self.run {
+            None => (j, j),
+            Some((first, last)) => {
+                debug_assert!(
+                    j + 1 == first || j == last + 1,
+                    "{j} next to {first}..={last}"
+                );
+                (first.min(j), last.max(j))
+            }
+        });
+    }
+
+    /// Presses `pressure` over the stretch of the run of [`Self::keep`], and ends it.
+    fn flush(&mut self, pressure: &[f64]) {
+        if let Some((first, last)) = self.run.take() {
+            let (from, to) = self.stretch_m(first, last);
+            self.pressure.add_pass(&self.grid, pressure, from, to);
+        }
+    }
+
+    /// Records the interpenetrations `pressed_in` at position `j`: each map cell keeps its
+    /// deepest.
+    fn push_in(&mut self, j: usize, pressed_in: &[(usize, usize, f64)]) {
+        let (grid, x, map) = (self.grid, self.position_m(j), &self.pressure);
         for &(c, iy, depth_m) in pressed_in {
             let column = ((x + grid.x(c)) / map.dx + map.nx as f64 / 2.0).floor();
             if (0.0..map.nx as f64).contains(&column) {

@@ -111,6 +111,13 @@ impl Stroke {
     }
 }
 
+/// Stretches longer than this many cells take [`WearMap::add_pass`]'s prefix sums. Counted
+/// in cell operations, the column-by-column visit costs the grid's cells times the
+/// stretch's cells plus two; the prefix sums one pass over the grid to build, then a few
+/// operations per row for each of the stretch's cells plus the grid's columns: they break
+/// even near two cells. A sweep's single positions, about a cell each, keep the visit.
+const LONG_STRETCH_CELLS: f64 = 4.0;
+
 /// The flat's wear along and across the track: depths on cells of the contact grid's size,
 /// centred on the stroke's middle, columns along the stroke and rows across it.
 #[derive(Debug, Clone, PartialEq)]
@@ -178,13 +185,27 @@ impl WearMap {
     /// the wear before `k / H`. A cell of `grid` at `xi` presses the map's column at `x`
     /// while `X` is within `dx / 2` of `x - xi`, so each pair adds its pressure times the
     /// length of that interval inside the stretch: exact for pressures constant over each
-    /// cell, as the contact solution's are. Only the columns a cell can reach are visited,
-    /// the stretch's cells and two more per grid column, with nothing allocated: a sweep
-    /// calls this at every position.
+    /// cell, as the contact solution's are.
+    ///
+    /// A stretch of a few cells (a sweep's single position) visits, per grid column, the
+    /// columns it reaches, with nothing allocated. A longer one (a run of positions that
+    /// keep one solve's pressure) would visit the stretch's columns from every grid
+    /// column; it sums each map column's wholly covered cells from prefix sums along the
+    /// rows instead, so its cost is the map columns it reaches rather than their product
+    /// with the grid's.
     pub fn add_pass(&mut self, grid: &Grid, pressure: &[f64], from_m: f64, to_m: f64) {
         debug_assert_eq!(pressure.len(), grid.len(), "one pressure per cell");
         debug_assert_eq!(grid.ny, self.ny, "the map has the grid's rows");
         let (lo, hi) = (from_m.min(to_m), from_m.max(to_m));
+        if hi - lo > LONG_STRETCH_CELLS * grid.dx {
+            self.add_long_pass(grid, pressure, lo, hi);
+        } else {
+            self.add_short_pass(grid, pressure, lo, hi);
+        }
+    }
+
+    /// [`Self::add_pass`] column by column, for `lo <= hi`.
+    fn add_short_pass(&mut self, grid: &Grid, pressure: &[f64], lo: f64, hi: f64) {
         let half = grid.dx / 2.0;
         let column_of = |x: f64| x / self.dx + self.nx as f64 / 2.0 - 0.5;
         for c in 0..grid.nx {
@@ -201,6 +222,64 @@ impl WearMap {
                 for iy in 0..self.ny {
                     self.depth[iy * self.nx + ix] += pressure[iy * grid.nx + c] * length;
                 }
+            }
+        }
+    }
+
+    /// [`Self::add_pass`] from prefix sums, for `hi - lo` over a cell. Grid column `c`
+    /// presses map column `ix` for the ball positions within `dx / 2` of
+    /// `s = x(ix) - xi(c) = (ix - c + offset) dx`: wholly (length `dx`) for `s` in
+    /// `[lo + dx/2, hi - dx/2]`, a contiguous run of `c` summed from the prefix sums, and
+    /// in part for the at most two columns at either end of that run.
+    fn add_long_pass(&mut self, grid: &Grid, pressure: &[f64], lo: f64, hi: f64) {
+        let (dx, n) = (grid.dx, grid.nx);
+        let half = dx / 2.0;
+        let mut sums = vec![0.0; (n + 1) * grid.ny];
+        for (row, out) in pressure.chunks_exact(n).zip(sums.chunks_exact_mut(n + 1)) {
+            for c in 0..n {
+                out[c + 1] = out[c] + row[c];
+            }
+        }
+        let offset = (n as f64 - self.nx as f64) / 2.0;
+        // The map columns some cell reaches: `s` within (lo - dx/2, hi + dx/2) for a `c`
+        // in 0..n.
+        let first_ix = ((lo - half) / dx - offset).floor().max(0.0) as usize;
+        let last_ix = ((hi + half) / dx - offset + n as f64).ceil().max(0.0) as usize;
+        let last_ix = last_ix.min(self.nx - 1);
+        let clip = |c: f64| c.clamp(-1.0, n as f64) as isize;
+        let mut partial: Vec<(usize, f64)> = Vec::with_capacity(4);
+        for ix in first_ix..=last_ix {
+            let base = ix as f64 + offset;
+            let (whole_lo, whole_hi) = (
+                clip((base - (hi - half) / dx).ceil()),
+                clip((base - (lo + half) / dx).floor()),
+            );
+            let (reach_lo, reach_hi) = (
+                clip((base - (hi + half) / dx).floor()).max(0),
+                clip((base - (lo - half) / dx).ceil()).min(n as isize - 1),
+            );
+            let whole = (whole_lo.max(0), whole_hi.min(n as isize - 1));
+            // Partial columns: those reached outside the whole run (all reached ones when
+            // the run is empty).
+            let outside = |c: isize| whole.0 > whole.1 || c < whole.0 || c > whole.1;
+            partial.clear();
+            partial.extend(
+                (reach_lo..=reach_hi)
+                    .filter(|&c| outside(c))
+                    .filter_map(|c| {
+                        let centre = (base - c as f64) * dx;
+                        let length = (centre + half).min(hi) - (centre - half).max(lo);
+                        (length > 0.0).then_some((c as usize, length))
+                    }),
+            );
+            for iy in 0..self.ny {
+                let row = &pressure[iy * n..(iy + 1) * n];
+                let mut added: f64 = partial.iter().map(|&(c, l)| row[c] * l).sum();
+                if whole.0 <= whole.1 {
+                    let s = &sums[iy * (n + 1)..(iy + 1) * (n + 1)];
+                    added += dx * (s[whole.1 as usize + 1] - s[whole.0 as usize]);
+                }
+                self.depth[iy * self.nx + ix] += added;
             }
         }
     }
@@ -347,6 +426,38 @@ mod tests {
         for (a, b) in whole.depth.iter().zip(&pieces.depth) {
             // Sums of the same products in another order: rounding only.
             assert!((a - b).abs() <= 1e-13 * peak, "{a} {b}");
+        }
+    }
+
+    #[test]
+    fn the_prefix_sums_of_a_long_stretch_add_what_the_column_by_column_visit_adds() {
+        // Odd and even grids (the map's columns sit half a cell off the grid's for an odd
+        // one), stretches from just over the switch to the whole stroke, one ending off the
+        // stroke, in either direction.
+        for nx in [15, 16] {
+            let grid = Grid::new(nx, 12, 6e-6, 6e-6).expect("a grid");
+            let p = pressure(&grid);
+            let length = 250e-6 + 0.29 * grid.dx;
+            let stretches = [
+                (-0.5, 0.5),
+                (0.5, -0.5),
+                (-0.13, 0.0),
+                (-0.5, -0.38),
+                (0.31, 0.7),
+            ];
+            for (from, to) in stretches.map(|(a, b)| (a * length, b * length)) {
+                let mut long = WearMap::new(&grid, length);
+                long.add_long_pass(&grid, &p, from.min(to), from.max(to));
+                let mut short = WearMap::new(&grid, length);
+                short.add_short_pass(&grid, &p, from.min(to), from.max(to));
+                let peak = short.depth.iter().copied().fold(0.0, f64::max);
+                assert!(peak > 0.0);
+                for (a, b) in long.depth.iter().zip(&short.depth) {
+                    // The same products summed in another order, the whole cells' lengths
+                    // dx rather than two differences: rounding only.
+                    assert!((a - b).abs() <= 1e-13 * peak, "{nx} {from} {to}: {a} {b}");
+                }
+            }
         }
     }
 
