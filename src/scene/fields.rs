@@ -419,8 +419,10 @@ pub(super) const CYCLE_STEP: Field = Field {
     unit: "",
     range: Range::AutoOrOne,
     why: "",
-    meaning: "Which cycles are solved: 1 solves every cycle (the paper's numerics); `auto` \
-              lets one solve stand for several cycles while the surface changes slowly.",
+    meaning: "Which cycles are solved: 1 solves every cycle (the paper's numerics; on the \
+              reciprocating rig, both sweeps of each); `auto` lets one solve stand for several \
+              cycles while the surface changes slowly (on the rig, a forward sweep for its \
+              return too).",
     feeds: "the loop of Fig. 4; the time step of eq. 15's s",
 };
 

@@ -46,8 +46,8 @@ pub use plan::{Plan, parse_scene, parse_scene_str};
 pub use plausibility::{RULES_BEGIN, RULES_END, check_map, rules_table};
 pub use provenance::{Build, GIT_COMMIT, Provenance, scene_sha256};
 pub use reciprocating::{
-    REUSE_FRACTION_OF_APPROACH, SOLVE_EVERY_POSITIONS, StrokeCycle, StrokeEngine, StrokeNumerics,
-    StrokeWear, reciprocate,
+    RETURN_SOLVED_ABOVE_CUT_SHARE, REUSE_FRACTION_OF_APPROACH, SOLVE_EVERY_POSITIONS, StrokeCycle,
+    StrokeEngine, StrokeNumerics, StrokeWear, reciprocate,
 };
 pub use result::{
     CycleRecord, Model, ModelChoice, OcpPhase, OcpSample, PressureMap, Profile, SimulationResult,

@@ -14,20 +14,29 @@ use std::time::Instant;
 use crate::contact::{ContactSolution, Grid};
 use crate::corrosion::stroke::{Footprint, StrokeExposure};
 use crate::corrosion::{ContactGeometry, real_contact_area_m2};
-use crate::scene::{AnodicArea, FieldWarning};
+use crate::scene::{AnodicArea, CycleStep, FieldWarning, Scene};
 use crate::surface::count_islands;
 use crate::wear::{Stroke, WearMap};
 
 use super::electrochemistry::{Cell, Reading, fill_corrosion};
 use super::provenance::Provenance;
 use super::reciprocating::{
-    REUSE_FRACTION_OF_APPROACH, SOLVE_EVERY_POSITIONS, StrokeCycle, StrokeEngine, StrokeNumerics,
+    RETURN_SOLVED_ABOVE_CUT_SHARE, REUSE_FRACTION_OF_APPROACH, SOLVE_EVERY_POSITIONS, StrokeCycle,
+    StrokeEngine, StrokeNumerics,
 };
 use super::stepping::{Stepper, step_stop};
 use super::stroke_report::{AxialProfile, CycleTrace, StrokeReport, TRACE_SAMPLES, WearMapReport};
 use super::{
     CycleRecord, Model, ModelChoice, PressureMap, Profile, Setup, SimulationError, SimulationResult,
 };
+
+/// The rig's numerics for `scene`: every sweep solved where it asks for every cycle.
+fn stroke_numerics(scene: &Scene) -> StrokeNumerics {
+    StrokeNumerics {
+        solve_return: scene.numerics.cycle_step == CycleStep::EveryCycle,
+        ..StrokeNumerics::default()
+    }
+}
 
 /// Cycles whose profile across the middle is kept, besides the record cycles and the last.
 const PROFILE_CYCLES: [u64; 10] = [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000];
@@ -69,6 +78,8 @@ struct StrokeRun<'a> {
     traces: Vec<CycleTrace>,
     models: Vec<ModelChoice>,
     solves: usize,
+    /// Solved cycles whose return sweep was solved too.
+    returns_solved: usize,
     max_step: u64,
     last_middle: Option<ContactSolution>,
     /// The traced cycles whose potential reached E_corr within the cycle, with how many
@@ -83,7 +94,7 @@ impl<'a> StrokeRun<'a> {
         Self {
             setup,
             stroke,
-            engine: StrokeEngine::new(setup, stroke, StrokeNumerics::default()),
+            engine: StrokeEngine::new(setup, stroke, stroke_numerics(scene)),
             stepper: Stepper::new(numerics.cycle_step, numerics.cycle_step_bound),
             cell: Cell::of(scene, setup.plan.hertz().contact_radius_m()),
             record_cycles: scene.record_cycles(),
@@ -93,6 +104,7 @@ impl<'a> StrokeRun<'a> {
             traces: Vec::new(),
             models: Vec::new(),
             solves: 0,
+            returns_solved: 0,
             max_step: 1,
             last_middle: None,
             capped_in_trace: Vec::new(),
@@ -109,6 +121,7 @@ impl<'a> StrokeRun<'a> {
         let worn_before = self.engine.volume_m3();
         let solved = self.engine.cycle(cycle)?;
         self.solves += solved.solves;
+        self.returns_solved += usize::from(solved.return_solved);
         // As on the disc: a cut larger than the step bound's share of the track reshapes
         // it, and the step starts afresh.
         let cut_m3 = solved.yielded_m * self.engine.map().dx * self.engine.grid().dy;
@@ -439,13 +452,17 @@ impl<'a> StrokeRun<'a> {
                      positions a cell apart each sweep, every {SOLVE_EVERY_POSITIONS}th solved \
                      where the flat under the contact changed by more than \
                      {REUSE_FRACTION_OF_APPROACH:e} of Hertz's approach since the last solve \
-                     and the pressures blended between ({} solves in all); the friction coupling \
-                     left out (its sign turns with the direction); the cap at the hardness \
-                     law's, without plastic strain",
+                     and the pressures blended between ({} solves in all); the return sweep \
+                     solved after a forward sweep that cut over {RETURN_SOLVED_ABOVE_CUT_SHARE:e} \
+                     of the worn volume ({} of {} solved cycles), otherwise pressing the forward's \
+                     pressure again; the friction coupling left out (its sign turns with the \
+                     direction); the cap at the hardness law's, without plastic strain",
                     self.stroke.length_m * 1e3,
                     self.stroke.frequency_hz,
                     self.stroke.law,
-                    self.solves
+                    self.solves,
+                    self.returns_solved,
+                    self.records.len(),
                 ),
             },
             ModelChoice {
