@@ -22,6 +22,26 @@ fn scene(hardness_mpa: f64, cycles: u64) -> Value {
     })
 }
 
+/// A crank-driven stroke of `length_m` at 1 Hz.
+fn crank(length_m: f64) -> Stroke {
+    Stroke {
+        length_m,
+        frequency_hz: 1.0,
+        law: VelocityLaw::Sinusoidal,
+    }
+}
+
+/// The largest difference between two maps' cells, and the deepest cell of `reference`.
+fn worst_and_deepest(map: &[f64], reference: &[f64]) -> (f64, f64) {
+    let deepest = reference.iter().copied().fold(0.0, f64::max);
+    let worst = map
+        .iter()
+        .zip(reference)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    (worst, deepest)
+}
+
 /// The rotating run's groove depth per row after `2 n` passes, and the reciprocating
 /// run's middle column after `n` cycles, m.
 fn middle_against_disc(hardness_mpa: f64, n: u64) -> (Vec<f64>, Vec<f64>, Vec<usize>) {
@@ -30,11 +50,7 @@ fn middle_against_disc(hardness_mpa: f64, n: u64) -> (Vec<f64>, Vec<f64>, Vec<us
     let profile = rotating.profiles.last().expect("the last cycle's profile");
     let disc: Vec<f64> = profile.depth_um.iter().map(|d| d * 1e-6).collect();
     let setup = Setup::new(&plan, &RunOptions::default()).expect("set up");
-    let stroke = Stroke {
-        length_m: 2e-3,
-        frequency_hz: 1.0,
-        law: VelocityLaw::Sinusoidal,
-    };
+    let stroke = crank(2e-3);
     // Every sweep solved, as every pass of the disc is.
     let numerics = StrokeNumerics {
         solve_return: true,
@@ -58,12 +74,7 @@ fn the_middle_of_a_long_stroke_wears_as_the_disc_per_pass() {
     // 0.9 of it at 1e-4, 1e-5 and 1e-6 (the constant's comment), so twice it is the bound.
     for hardness_mpa in [5000.0, 2473.0] {
         let (disc, middle, solves) = middle_against_disc(hardness_mpa, 10);
-        let deepest = disc.iter().copied().fold(0.0, f64::max);
-        let worst = disc
-            .iter()
-            .zip(&middle)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let (worst, deepest) = worst_and_deepest(&middle, &disc);
         let bound = 2.0 * REUSE_FRACTION_OF_APPROACH * deepest;
         assert!(
             worst <= bound,
@@ -121,14 +132,7 @@ fn near_the_ends_a_kept_pressure_wears_as_a_solve_at_every_position() {
         every.solves,
         kept.solves
     );
-    let deepest = every.map.depth.iter().copied().fold(0.0, f64::max);
-    let worst = kept
-        .map
-        .depth
-        .iter()
-        .zip(&every.map.depth)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max);
+    let (worst, deepest) = worst_and_deepest(&kept.map.depth, &every.map.depth);
     // The bound of the test above, for the same reason.
     let bound = 2.0 * REUSE_FRACTION_OF_APPROACH * deepest;
     assert!(
@@ -154,11 +158,7 @@ fn blending_between_anchors_wears_as_a_solve_at_each_position() {
     for hardness_mpa in [5000.0, 2473.0] {
         let plan = parse_scene(&scene(hardness_mpa, 10)).expect("a valid scene");
         let setup = Setup::new(&plan, &RunOptions::default()).expect("set up");
-        let stroke = Stroke {
-            length_m: 1e-3,
-            frequency_hz: 1.0,
-            law: VelocityLaw::Sinusoidal,
-        };
+        let stroke = crank(1e-3);
         let both = StrokeNumerics {
             solve_return: true,
             ..StrokeNumerics::default()
@@ -169,14 +169,7 @@ fn blending_between_anchors_wears_as_a_solve_at_each_position() {
         };
         let blended = reciprocate(&setup, stroke, 1..11, both).expect("runs");
         let solved = reciprocate(&setup, stroke, 1..11, each).expect("runs");
-        let deepest = solved.map.depth.iter().copied().fold(0.0, f64::max);
-        let worst = blended
-            .map
-            .depth
-            .iter()
-            .zip(&solved.map.depth)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let (worst, deepest) = worst_and_deepest(&blended.map.depth, &solved.map.depth);
         let volume = blended.volume_m3[9] / solved.volume_m3[9] - 1.0;
         assert!(
             worst <= 5.2e-3 * deepest,
@@ -196,11 +189,7 @@ fn blending_between_anchors_wears_as_a_solve_at_each_position() {
 fn a_return_pressing_the_forward_sweep_again_wears_as_a_solved_return() {
     // The default, whose return presses the forward sweep's pressure again after a sweep
     // that cut little, against both sweeps solved, over 10 cycles of a 1 mm stroke.
-    let stroke = Stroke {
-        length_m: 1e-3,
-        frequency_hz: 1.0,
-        law: VelocityLaw::Sinusoidal,
-    };
+    let stroke = crank(1e-3);
     let both = StrokeNumerics {
         solve_return: true,
         ..StrokeNumerics::default()
@@ -218,14 +207,7 @@ fn a_return_pressing_the_forward_sweep_again_wears_as_a_solved_return() {
     // 2.2e-3, with 168 solves against 356. The volume is Archard's load times the sliding
     // distance whatever the pressure's shape, so the same to rounding (measured 3e-14).
     let (again, solved) = runs(5000.0);
-    let deepest = solved.map.depth.iter().copied().fold(0.0, f64::max);
-    let worst = again
-        .map
-        .depth
-        .iter()
-        .zip(&solved.map.depth)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max);
+    let (worst, deepest) = worst_and_deepest(&again.map.depth, &solved.map.depth);
     assert!(worst <= 5.2e-3 * deepest, "{worst} of {deepest}");
     let volume = again.volume_m3[9] / solved.volume_m3[9] - 1.0;
     assert!(volume.abs() <= 1e-12, "{volume}");
