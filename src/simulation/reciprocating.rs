@@ -84,9 +84,10 @@ pub struct StrokeCycle {
     /// The pressure integral the two sweeps left on the flat, Pa m (before `k / H`): the
     /// wear of a cycle at this pressure, which the cycles a step skips repeat.
     pub pressed: WearMap,
-    /// The depth yielding pushed in this cycle, summed over the map's cells, m (times a
-    /// cell's area, a volume).
-    pub yielded_m: f64,
+    /// The volume yielding pushed in (cut) this cycle, m^3.
+    pub cut_m3: f64,
+    /// The volume worn before this cycle, m^3.
+    pub worn_before_m3: f64,
     /// The contact with the ball at the stroke's middle on the forward sweep, and the cap
     /// it was solved under, Pa.
     pub middle: ContactSolution,
@@ -277,12 +278,11 @@ impl StrokeEngine {
         let mut pressed = WearMap::new(&self.grid, self.length_m);
         let worn_before = self.volume_m3();
         let forward = self.sweep(&mut pressed, cycle, false)?;
-        let cut_m3 = forward.yielded_m * self.map.dx * self.grid.dy;
-        let return_solved =
-            self.solve_return || cut_m3 > RETURN_SOLVED_ABOVE_CUT_SHARE * worn_before;
-        let (solves, iterations, yielded_m) = if return_solved {
+        let return_solved = self.solve_return
+            || cuts_over(forward.cut_m3, worn_before, RETURN_SOLVED_ABOVE_CUT_SHARE);
+        let (solves, iterations, cut_m3) = if return_solved {
             let back = self.sweep(&mut pressed, cycle, true)?;
-            (back.solves, back.iterations, back.yielded_m)
+            (back.solves, back.iterations, back.cut_m3)
         } else {
             let scale = self.wear_scale(cycle);
             let pressure = &forward.pressure;
@@ -295,7 +295,8 @@ impl StrokeEngine {
             return_solved,
             iterations: forward.iterations + iterations,
             pressed,
-            yielded_m: forward.yielded_m + yielded_m,
+            cut_m3: forward.cut_m3 + cut_m3,
+            worn_before_m3: worn_before,
             middle,
             cap_pa,
         })
@@ -402,7 +403,7 @@ impl StrokeEngine {
         Ok(Sweep {
             solves,
             iterations,
-            yielded_m: wear.yielded.iter().sum(),
+            cut_m3: wear.yielded.iter().sum::<f64>() * self.map.dx * self.grid.dy,
             middle: middle_contact,
             pressure: wear.pressure,
         })
@@ -573,11 +574,25 @@ impl SweepWear {
     }
 }
 
+impl StrokeCycle {
+    /// Whether the cycle cut more than `share` of the volume worn before it: it reshaped
+    /// the track.
+    pub fn cut_over(&self, share: f64) -> bool {
+        cuts_over(self.cut_m3, self.worn_before_m3, share)
+    }
+}
+
+/// Whether a cut of `cut_m3` is more than `share` of the worn volume `worn_m3`.
+fn cuts_over(cut_m3: f64, worn_m3: f64, share: f64) -> bool {
+    cut_m3 > share * worn_m3
+}
+
 /// What one sweep cost and left.
 struct Sweep {
     solves: usize,
     iterations: usize,
-    yielded_m: f64,
+    /// The volume the sweep's yielding pushed in, m^3.
+    cut_m3: f64,
     middle: Option<(ContactSolution, f64)>,
     /// The sweep's pressure integral, Pa m.
     pressure: WearMap,

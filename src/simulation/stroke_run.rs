@@ -118,14 +118,12 @@ impl<'a> StrokeRun<'a> {
         on_cycle: &mut dyn FnMut(&CycleRecord),
     ) -> Result<u64, SimulationError> {
         let scene = self.setup.scene();
-        let worn_before = self.engine.volume_m3();
         let solved = self.engine.cycle(cycle)?;
         self.solves += solved.solves;
         self.returns_solved += usize::from(solved.return_solved);
         // As on the disc: a cut larger than the step bound's share of the track reshapes
         // it, and the step starts afresh.
-        let cut_m3 = solved.yielded_m * self.engine.map().dx * self.engine.grid().dy;
-        let reshaped = cut_m3 > scene.numerics.cycle_step_bound * worn_before;
+        let reshaped = solved.cut_over(scene.numerics.cycle_step_bound);
         let rate_change = self.setup.plan.wear().rate_change_cycle();
         let stop = step_stop(cycle, scene.test.cycles, &self.record_cycles, rate_change);
         // As on the disc, the controller starts afresh at the first cycle of a new rate.
