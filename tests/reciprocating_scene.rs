@@ -204,3 +204,38 @@ fn a_stepped_record_is_the_state_at_its_own_cycle() {
     // ahead of its own would be off by about 1 / n, at least 2.5e-2 in 40 cycles.
     assert!(worst < 1e-5, "{worst}");
 }
+
+/// A Ti-6Al-4V flat against zirconia at docs/materials.md's example k, 2e-4, grows its grid
+/// from 64 x 64 to 64 x 96 cells near cycle 180. Run to 180 cycles, the last pressure map was
+/// cut from the grown grid with the solve's smaller field (an index out of bounds); run on,
+/// the grown grid's first solve, started cold, stayed at residual 0.54 for 2000 iterations.
+/// The map now keeps the grid it was solved on, and a grown grid's first solve starts from
+/// the last pressure.
+#[test]
+fn a_grown_grids_first_solve_converges_and_the_last_map_is_the_solves() {
+    for cycles in [180, 184] {
+        let run = result(&json!({
+            "disc": {"material": "ti6al4v"},
+            "ball": {"material": "zirconia"},
+            "wear": {"archard_k": 2.0e-4},
+            "corrosion": null,
+            "test": {"cycles": cycles, "reciprocating": {}},
+            "numerics": {"cycle_step_bound": 0.02, "tolerance": 1e-5}
+        }));
+        // At cycle 180 of 180 (the last solved cycle) and at 181 of 184 (before the last).
+        let grown = run
+            .models
+            .iter()
+            .any(|m| m.reason.contains("grown to 64 x 96 cells"));
+        assert!(grown, "the grid grew to 64 x 96: {:?}", run.models);
+        let last = run.pressure_maps.last().expect("a map");
+        assert_eq!(last.cycle, cycles);
+        assert!(
+            last.pressure_mpa
+                .iter()
+                .all(|row| row.len() == last.x_um.len()),
+            "every row spans the map's columns"
+        );
+        assert_eq!(last.pressure_mpa.len(), last.y_um.len());
+    }
+}

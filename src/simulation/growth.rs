@@ -53,6 +53,18 @@ pub(super) fn widen(grid: &Grid, (grow_x, grow_y): (bool, bool)) -> Option<Grid>
         .flatten()
 }
 
+/// `field` on `from` placed on the wider grid `to`, centred as [`widen`] grows it (the same
+/// cells on both sides), zero on the new cells.
+pub(super) fn embedded(field: &[f64], from: &Grid, to: &Grid) -> Vec<f64> {
+    let (x0, y0) = ((to.nx - from.nx) / 2, (to.ny - from.ny) / 2);
+    let mut wider = vec![0.0; to.len()];
+    for (iy, row) in field.chunks_exact(from.nx).enumerate() {
+        let start = (iy + y0) * to.nx + x0;
+        wider[start..start + from.nx].copy_from_slice(row);
+    }
+    wider
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -70,5 +82,27 @@ mod tests {
         assert_eq!(wider.dy.to_bits(), grid.dy.to_bits());
         let largest = Grid::square(Grid::MAX_CELLS_PER_SIDE, 1e-3).expect("valid");
         assert!(widen(&largest, (true, true)).is_none());
+    }
+
+    #[test]
+    fn an_embedded_field_keeps_its_cells_at_the_same_place_about_the_centre() {
+        let from = Grid::new(4, 2, 1.0, 1.0).expect("valid");
+        let to = Grid::new(6, 4, 1.0, 1.0).expect("valid");
+        let field: Vec<f64> = (1..=8).map(f64::from).collect();
+        let wider = embedded(&field, &from, &to);
+        // Each cell's value sits at the cell of the wider grid with the same centre (x and
+        // y about the grid's centre); the new cells hold zero.
+        let mut carried = 0;
+        for (j, &value) in wider.iter().enumerate() {
+            let (x, y) = (to.x(j % to.nx), to.y(j / to.nx));
+            let source = (0..from.len()).find(|&i| {
+                from.x(i % from.nx).to_bits() == x.to_bits()
+                    && from.y(i / from.nx).to_bits() == y.to_bits()
+            });
+            let expected = source.map_or(0.0, |i| field[i]);
+            assert_eq!(value.to_bits(), expected.to_bits(), "cell {j}");
+            carried += usize::from(source.is_some());
+        }
+        assert_eq!(carried, field.len());
     }
 }

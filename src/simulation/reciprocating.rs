@@ -9,28 +9,26 @@
 //! under the contact is the last solved position's, shifted by the ball's move, keeps its
 //! pressure without a solve: in the middle of a long stroke the track is uniform along it,
 //! and the contact is solved again only where its depth changes along the stroke, near the
-//! ends. The forward and the return pass press alike (the normal contact: the friction
-//! coupling, whose sign turns with the sliding direction, is left out); each sweep's wear
-//! is on the flat before the next sweep is solved, and a return after a forward sweep that
-//! cut little presses the forward's pressure again ([`RETURN_SOLVED_ABOVE_CUT_SHARE`]).
+//! ends. Both sweeps press alike (the friction coupling, whose sign turns with the sliding
+//! direction, is left out); a sweep wears the flat before the next is solved, and a return
+//! after a forward sweep that cut little presses the forward's pressure again
+//! ([`RETURN_SOLVED_ABOVE_CUT_SHARE`]).
 
 use std::ops::Range;
 
 use crate::contact::{ContactProblem, ContactSolution, ContactSolver, Grid};
 use crate::wear::{Stroke, WearMap};
 
-use super::growth::{near_edges, widen};
+use super::growth::{embedded, near_edges, widen};
 use super::{Setup, SimulationError};
 
 /// How far the flat under the loaded cells may differ from the last solve's, as a fraction
-/// of Hertz's elastic approach, for a position to keep the last solve's pressure. The
-/// pressure moves by about the contact's stiffness times the change, so by about this
-/// fraction of itself, and the wear with it. Measured by `tests/reciprocating.rs` (10
-/// cycles of a 2 mm stroke, the middle against the disc's groove, error of the deepest
-/// point; contact solves in the 10th cycle, of 1070 positions) at 1e-4 / 1e-5 / 1e-6:
-/// elastic 2.9e-5 / 2.4e-6 / 2.6e-7 with 106 / 148 / 178 solves; yielding (the paper's
-/// bulk hardness) 9.3e-5 / 6.3e-6 / 7.2e-7 with 228 / 286 / 332. 1e-5 errs far below the
-/// grid (2-5%, `docs/accuracy.md`) for a quarter more solves than 1e-4.
+/// of Hertz's elastic approach, for a position to keep the last solve's pressure, which
+/// moves by about this fraction of itself. Measured by `tests/reciprocating.rs` (10 cycles
+/// of a 2 mm stroke, the middle against the disc's groove, error of the deepest point;
+/// solves in the 10th cycle, of 1070 positions) at 1e-4 / 1e-5 / 1e-6: elastic 2.9e-5 /
+/// 2.4e-6 / 2.6e-7 with 106 / 148 / 178 solves; yielding 9.3e-5 / 6.3e-6 / 7.2e-7 with 228
+/// / 286 / 332. 1e-5 errs far below the grid (2-5%) for a quarter more solves than 1e-4.
 pub const REUSE_FRACTION_OF_APPROACH: f64 = 1e-5;
 
 /// Positions of a sweep from one solve to the next ([`StrokeNumerics::solve_every`]), the
@@ -38,11 +36,8 @@ pub const REUSE_FRACTION_OF_APPROACH: f64 = 1e-5;
 /// position (20 cycles of a 2 mm stroke, the largest cell's error over the deepest point,
 /// and the time), every 2 / 4 / 8 / 16: elastic 8.8e-4 / 2.7e-3 / 5.9e-3 / 1.0e-2 in
 /// 0.62 / 0.40 / 0.26 / 0.22 of the time; yielding (the paper's bulk hardness) 4.8e-4 /
-/// 9.5e-4 / 2.3e-3 / 7.1e-3 in 0.67 / 0.58 / 0.53 / 0.46. On the rig's default scene
-/// over 1000 strokes, 4 took 0.37 of the CPU time, with the volume within 1.6e-5 and
-/// the deepest point 3.3e-6, the axial profile 1.2e-3 (`docs/accuracy.md`). 4 is the
-/// largest whose error stays below the auto grid's own (5.2e-3 against a grid twice as
-/// fine).
+/// 9.5e-4 / 2.3e-3 / 7.1e-3 in 0.67 / 0.58 / 0.53 / 0.46. 4 is the largest whose error
+/// stays below the auto grid's own (5.2e-3 against a grid twice as fine).
 pub const SOLVE_EVERY_POSITIONS: usize = 4;
 
 /// A cycle's return sweep is solved only when its forward sweep cut (the groove yielding
@@ -52,12 +47,10 @@ pub const SOLVE_EVERY_POSITIONS: usize = 4;
 /// forward's less one sweep's wear and cut: the approximation a cycle step makes over
 /// whole cycles, here over half of one. A sweep that cuts much reshapes the flat under the
 /// return's contact, whose own solves then decide its groove: pressing the forward again
-/// at every cut lost the returns' cuts, -4.5e-3 of the volume. Measured on the rig's
-/// default scene over 1000 strokes against solving every position of both sweeps (the
-/// volume / deepest point / WAC / axial profile's largest error over the deepest point;
-/// solves; `docs/accuracy.md`): both sweeps solved +1.6e-5 / +3.3e-6 / +1.1e-4 / 1.2e-3,
-/// 26,067; 1e-3 +1.4e-5 / +1.6e-6 / +7.0e-5 / 1.8e-3, 13,478; 1e-2 -1.6e-4 / -1.2e-4 /
-/// +4.5e-4 / 1.8e-3, 13,147.
+/// at every cut lost the returns' cuts, -4.5e-3 of the volume. Over 1000 strokes against
+/// solving every position of both sweeps (volume / deepest point / WAC / axial profile;
+/// solves; `docs/rig-accuracy.md`): both sweeps +1.6e-5 / +3.3e-6 / +1.1e-4 / 1.2e-3, 26,067;
+/// 1e-3 +1.4e-5 / +1.6e-6 / +7.0e-5 / 1.8e-3, 13,478; 1e-2 -1.6e-4 / -1.2e-4 / +4.5e-4.
 pub const RETURN_SOLVED_ABOVE_CUT_SHARE: f64 = 1e-3;
 
 /// What a run of reciprocating cycles left.
@@ -222,6 +215,8 @@ pub struct StrokeEngine {
     depth: Vec<f64>,
     steps: usize,
     last: Option<Kept>,
+    /// The last pressure carried onto a grown grid: the next solve's start.
+    carried: Option<Vec<f64>>,
     map: WearMap,
     /// Whether a solve since the last growth came near the grid's edge, along x and y.
     crowded: (bool, bool),
@@ -248,6 +243,7 @@ impl StrokeEngine {
             grid,
             setup,
             last: None,
+            carried: None,
             crowded: (false, false),
         }
     }
@@ -320,11 +316,16 @@ impl StrokeEngine {
     pub fn grow_if_crowded(&mut self) -> Option<Grid> {
         let wider = widen(&self.grid, std::mem::take(&mut self.crowded))?;
         self.map = self.map.embedded_in(&wider, self.length_m);
-        self.grid = wider;
         self.solver = self.setup.solver(&wider);
         self.ball = self.setup.ball_height(&wider);
         self.depth = vec![0.0; wider.len()];
-        self.last = None;
+        // Cold, a grown grid's first solve stalled: a Ti-6Al-4V flat grown to 64 x 96 at
+        // residual 0.54 for 2000 iterations (`tests/reciprocating_scene.rs`).
+        let old = std::mem::replace(&mut self.grid, wider);
+        self.carried = self
+            .last
+            .take()
+            .map(|kept| embedded(&kept.solution.pressure, &old, &wider));
         Some(wider)
     }
 
@@ -442,15 +443,17 @@ impl StrokeEngine {
             yield_pressure_pa: cap,
             pass_wear_per_pa: 0.0,
         };
-        let warm = self
+        let last = self
             .last
             .as_ref()
             .map(|kept| kept.solution.pressure.as_slice());
+        let warm = last.or(self.carried.as_deref());
         let solution = self
             .solver
             .solve(&problem, &self.setup.options, warm)
             .map_err(|source| SimulationError::Contact { cycle, source })?;
         let iterations = solution.iterations;
+        self.carried = None;
         let near = near_edges(&self.grid, &solution.pressure);
         self.crowded = (self.crowded.0 || near.0, self.crowded.1 || near.1);
         self.last = Some(Kept {

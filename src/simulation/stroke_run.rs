@@ -81,7 +81,9 @@ struct StrokeRun<'a> {
     /// Solved cycles whose return sweep was solved too.
     returns_solved: usize,
     max_step: u64,
-    last_middle: Option<ContactSolution>,
+    /// The last solved cycle's contact at the middle and the grid it was solved on, which
+    /// the grid may have grown beyond since.
+    last_middle: Option<(Grid, ContactSolution)>,
     /// The traced cycles whose potential reached E_corr within the cycle, with how many
     /// of the samples did: eq. 18 is capped there.
     capped_in_trace: Vec<(u64, usize)>,
@@ -143,8 +145,8 @@ impl<'a> StrokeRun<'a> {
         if let (Some(cell), Some(reading)) = (self.cell.as_mut(), reading.as_ref()) {
             cell.skipped(reading, (step - 1) as f64 * scene.cycle_period_s());
         }
+        self.last_middle = Some((*self.engine.grid(), solved.middle));
         self.grow_if_crowded(cycle);
-        self.last_middle = Some(solved.middle);
         Ok(step)
     }
 
@@ -342,13 +344,14 @@ impl<'a> StrokeRun<'a> {
     fn finish(mut self, started: Instant) -> SimulationResult {
         let setup = self.setup;
         let scene = setup.scene();
-        let grid: Grid = *self.engine.grid();
-        if let (Some(record), Some(middle)) = (self.records.last(), &self.last_middle) {
+        if let (Some(record), Some((solved_on, middle))) = (self.records.last(), &self.last_middle)
+        {
             if record.cycle != 1 {
                 self.maps
-                    .push(PressureMap::of(record.cycle, &grid, &middle.pressure));
+                    .push(PressureMap::of(record.cycle, solved_on, &middle.pressure));
             }
         }
+        let grid: Grid = *self.engine.grid();
         let mut warnings = setup.warnings.clone();
         let mut models = setup_models(setup);
         models.extend(std::mem::take(&mut self.models));
