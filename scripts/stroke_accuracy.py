@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Speed against error of the reciprocating rig's numerics (docs/accuracy.md, "The
+"""Speed against error of the reciprocating rig's numerics (docs/rig-accuracy.md, "The
 reciprocating rig").
 
 Runs one reciprocating scene at several grids and cycle-step settings with the release

@@ -10,7 +10,7 @@ use serde::Serialize;
 use crate::contact::Grid;
 use crate::scene::PAPER_TABLE3;
 use crate::scene::{
-    CycleStep, DALMAU2018_316L, DomainSize, GridSize, Scene, TestConditions, Tolerance,
+    CycleStep, DALMAU2018_316L, DomainSize, GridSize, Scene, StepBound, TestConditions, Tolerance,
     dalmau2018_316l,
 };
 use crate::simulation::{
@@ -231,7 +231,7 @@ fn cycle_step_rows() -> Result<Vec<WearRow>, SimulationError> {
         for bound in STEP_BOUNDS {
             let auto = simulate_with(|s| {
                 s.test.cycles = cycles;
-                s.numerics.cycle_step_bound = bound;
+                s.numerics.cycle_step_bound = StepBound::Share(bound);
             })?;
             let default = if bound == STEP_CHANGE_BOUND {
                 " (default)"

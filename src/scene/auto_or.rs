@@ -1,6 +1,6 @@
 //! The settings that take `"auto"` or a number (`numerics.grid`, `numerics.domain_um`,
-//! `numerics.tolerance`, `numerics.cycle_step`, `numerics.threads`) and their one JSON
-//! shape.
+//! `numerics.tolerance`, `numerics.cycle_step`, `numerics.cycle_step_bound`,
+//! `numerics.threads`) and their one JSON shape.
 
 use serde::de::{DeserializeOwned, Error as _};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -34,6 +34,17 @@ pub enum Tolerance {
     Auto,
     /// This relative residual.
     Relative(f64),
+}
+
+/// The automatic cycle step's bound: `"auto"` or a number.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(from = "AutoOr<f64>", into = "AutoOr<f64>")]
+pub enum StepBound {
+    /// Chosen by the scene's rig and disc (`Numerics::step_bound`,
+    /// `Numerics::solve_cycle_step`).
+    Auto,
+    /// This largest relative (L1) change of the per-pass wear profile across one step.
+    Share(f64),
 }
 
 /// Which cycles are solved: `1` (every one) or `"auto"`.
@@ -145,6 +156,24 @@ impl From<Tolerance> for AutoOr<f64> {
     }
 }
 
+impl From<AutoOr<f64>> for StepBound {
+    fn from(value: AutoOr<f64>) -> Self {
+        match value {
+            AutoOr::Auto => Self::Auto,
+            AutoOr::Value(relative) => Self::Share(relative),
+        }
+    }
+}
+
+impl From<StepBound> for AutoOr<f64> {
+    fn from(value: StepBound) -> Self {
+        match value {
+            StepBound::Auto => Self::Auto,
+            StepBound::Share(relative) => Self::Value(relative),
+        }
+    }
+}
+
 impl From<AutoOr<f64>> for DomainSize {
     fn from(value: AutoOr<f64>) -> Self {
         match value {
@@ -194,27 +223,27 @@ impl From<CycleStep> for AutoOr<u64> {
 
 #[cfg(test)]
 mod tests {
-    use super::Tolerance;
-    use crate::scene::{DEFAULT_TOLERANCE, Numerics};
+    use super::{StepBound, Tolerance};
+    use crate::scene::Numerics;
 
     #[test]
-    fn an_auto_tolerance_is_the_smooth_or_the_rough_discs_and_a_number_is_kept() {
-        let auto: Numerics = serde_json::from_str(r#"{"tolerance": "auto"}"#).expect("auto");
+    fn an_auto_tolerance_and_step_bound_read_and_write_auto_and_a_number_is_kept() {
+        let auto: Numerics =
+            serde_json::from_str(r#"{"tolerance": "auto", "cycle_step_bound": "auto"}"#)
+                .expect("auto");
         assert_eq!(auto.tolerance, Tolerance::Auto);
-        // The very constants, bit for bit.
-        let bits = |tolerance: f64| tolerance.to_bits();
-        assert_eq!(bits(auto.solve_tolerance(false)), bits(DEFAULT_TOLERANCE));
-        assert_eq!(bits(auto.solve_tolerance(true)), bits(1e-5));
-        assert_eq!(Numerics::default().tolerance, Tolerance::Auto);
-        let given: Numerics = serde_json::from_str(r#"{"tolerance": 1e-7}"#).expect("a number");
-        assert_eq!(bits(given.solve_tolerance(true)), bits(1e-7));
-        assert_eq!(
-            serde_json::to_value(given).expect("JSON")["tolerance"],
-            serde_json::json!(1e-7)
-        );
-        assert_eq!(
-            serde_json::to_value(auto).expect("JSON")["tolerance"],
-            serde_json::json!("auto")
-        );
+        assert_eq!(auto.cycle_step_bound, StepBound::Auto);
+        assert_eq!(auto, Numerics::default());
+        let given: Numerics =
+            serde_json::from_str(r#"{"tolerance": 1e-7, "cycle_step_bound": 0.05}"#)
+                .expect("numbers");
+        assert_eq!(given.tolerance, Tolerance::Relative(1e-7));
+        assert_eq!(given.cycle_step_bound, StepBound::Share(0.05));
+        let written = serde_json::to_value(given).expect("JSON");
+        assert_eq!(written["tolerance"], serde_json::json!(1e-7));
+        assert_eq!(written["cycle_step_bound"], serde_json::json!(0.05));
+        let written = serde_json::to_value(auto).expect("JSON");
+        assert_eq!(written["tolerance"], serde_json::json!("auto"));
+        assert_eq!(written["cycle_step_bound"], serde_json::json!("auto"));
     }
 }

@@ -409,7 +409,8 @@ pub(super) const TOLERANCE: Field = Field {
     why: "below 1e-10 the residual's round-off floor stalls long runs; above 1e-2 the \
           pressures are too rough to wear with",
     meaning: "Relative residual at which the contact solver stops; `auto` is 1e-6 on a \
-              smooth disc and 1e-5 on a rough one (`docs/accuracy.md`).",
+              smooth disc, 1e-4 on a rough one and 1e-5 on the reciprocating rig \
+              (`docs/accuracy.md`).",
     feeds: "the bounded solve of eqs. 10-12",
 };
 
@@ -422,7 +423,8 @@ pub(super) const CYCLE_STEP: Field = Field {
     meaning: "Which cycles are solved: 1 solves every cycle (the paper's numerics; on the \
               reciprocating rig, both sweeps of each); `auto` lets one solve stand for several \
               cycles while the surface changes slowly (on the rig, a forward sweep for its \
-              return too).",
+              return too); on a rough disc it solves every cycle unless `cycle_step_bound` is \
+              given (`docs/accuracy.md`).",
     feeds: "the loop of Fig. 4; the time step of eq. 15's s",
 };
 
@@ -430,12 +432,13 @@ pub(super) const CYCLE_STEP: Field = Field {
 pub(super) const CYCLE_STEP_BOUND: Field = Field {
     path: "numerics.cycle_step_bound",
     unit: "",
-    range: Range::Closed(1e-4, 0.1),
+    range: Range::AutoOrClosed(1e-4, 0.1),
     why: "above 0.1 a step skipped the end of the yielding phase (volume error 1.6e-3 at 300 \
           cycles); below 1e-4 no step is ever taken",
     meaning: "With `cycle_step: \"auto\"`, the largest relative (L1) change of the per-pass \
-              wear profile one step may span (`docs/accuracy.md` shows what it costs and \
-              buys).",
+              wear profile one step may span; `auto` is 0.01 on a disc and 0.02 on the \
+              reciprocating rig, and solves every cycle of a rough disc, where steps skip the \
+              yield cuts of their cycles (`docs/accuracy.md` shows what each costs and buys).",
     feeds: "the time step of eq. 15's s",
 };
 

@@ -10,6 +10,7 @@
 //! through the SI accessors (`ball_radius_m`, `sliding_speed_m_s`, ...); the `wear` section
 //! parses into the wear law ([`Wear::law`]).
 
+mod auto_numerics;
 mod auto_or;
 mod corrosion;
 mod error;
@@ -37,7 +38,10 @@ use crate::hardness::{HardnessError, HardnessLaw};
 use crate::wear::WearLaw;
 
 pub use crate::wear::ArchardRegimeChange;
-pub use auto_or::{CycleStep, DomainSize, FixedStrideError, GridSize, SolverThreads, Tolerance};
+pub use auto_numerics::{NumericsCase, STROKE_STEP_CHANGE_BOUND, STROKE_TOLERANCE};
+pub use auto_or::{
+    CycleStep, DomainSize, FixedStrideError, GridSize, SolverThreads, StepBound, Tolerance,
+};
 pub use corrosion::{
     AnodicArea, Control, Corrosion, GalvanicCell, PAPER_CORROSION_POTENTIAL_V,
     PAPER_REPASSIVATION_TIME_S, SPOT_REPASSIVATION_TIME_S, Spots, TAFEL_OVERPOTENTIAL_RANGE_V,

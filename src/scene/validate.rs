@@ -20,7 +20,7 @@ use super::format::num;
 use super::surface::SurfaceKind;
 use super::{
     Control, Corrosion, DomainSize, FieldError, GridSize, MAX_RECORD_CYCLES, RecordCycles, Scene,
-    SolverThreads, Tolerance,
+    SolverThreads, StepBound, Tolerance,
 };
 use crate::text::TextError;
 
@@ -274,7 +274,9 @@ fn check_numerics(c: &mut Checks, scene: &Scene) {
     if let Tolerance::Relative(relative) = numerics.tolerance {
         c.number(&TOLERANCE, relative);
     }
-    c.number(&CYCLE_STEP_BOUND, numerics.cycle_step_bound);
+    if let StepBound::Share(share) = numerics.cycle_step_bound {
+        c.number(&CYCLE_STEP_BOUND, share);
+    }
     if let SolverThreads::Count(threads) = numerics.threads {
         c.whole(&THREADS, threads as u64);
     }
@@ -505,7 +507,7 @@ mod tests {
         scene.test.cycles = MAX_CYCLES;
         scene.numerics.grid = GridSize::Cells(2048);
         scene.numerics.tolerance = Tolerance::Relative(1e-10);
-        scene.numerics.cycle_step_bound = 0.1;
+        scene.numerics.cycle_step_bound = StepBound::Share(0.1);
         scene.numerics.domain_um = DomainSize::Micrometres(100_000.0);
         scene.numerics.threads = SolverThreads::Count(64);
         scene.ball.poisson_ratio = -0.99;
@@ -515,7 +517,7 @@ mod tests {
         scene.test.cycles = MAX_CYCLES + 1;
         scene.numerics.grid = GridSize::Cells(7);
         scene.numerics.tolerance = Tolerance::Relative(0.99e-10);
-        scene.numerics.cycle_step_bound = 0.11;
+        scene.numerics.cycle_step_bound = StepBound::Share(0.11);
         scene.numerics.domain_um = DomainSize::Micrometres(0.0);
         scene.numerics.threads = SolverThreads::Count(0);
         scene.ball.poisson_ratio = -1.0;

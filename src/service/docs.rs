@@ -39,6 +39,7 @@ const GUIDES: &[(&str, &str)] = guides![
     "peers.md",
     "report.md",
     "result.md",
+    "rig-accuracy.md",
     "scene.md",
     "stability.md",
     "study.md",

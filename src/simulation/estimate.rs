@@ -43,22 +43,25 @@ const BASE_PEAK_BYTES: f64 = 64e6;
 const AUTO_DOMAIN_CELL_GROWTH: f64 = 4.0;
 
 /// The rig's default scene (a 5 mm stroke at 1 Hz, sinusoidal; auto grid of
-/// [`STROKE_MEASURED_CELLS`], auto stepping) run with `tribosim run` at two lengths on the
-/// development machine (2 cores, shared with a build: the CPU time is taken, the quiet
-/// machine's wall time): 50 cycles in 41 solved cycles (2992 positions solved), 3.7 s
-/// (3.54 and 3.83); 1000 cycles in 196 solved cycles (13,478 positions), 41.0 s (the
-/// median of 37.2, 46.0 and 41.0). A solved cycle solves the positions near the ends,
-/// whose number does not depend on the stroke's length; its cost grows as the worn
-/// contact widens.
+/// [`STROKE_MEASURED_CELLS`], auto stepping and tolerance) run with `tribosim run` at two
+/// lengths on the development machine (2 cores): 50 cycles in 21 solved cycles (2018
+/// positions solved), 1000 cycles in 123 solved cycles (9565 positions). The times are
+/// those of the rig's earlier defaults (bound 0.01, 1e-6: 3.7 s and 41.0 s, the machine
+/// quiet), scaled by the ratio of the CPU times of the two defaults run in one session
+/// (1.50 / 2.40 s and 15.75 / 24.30 s), so that every measured time here stands on the
+/// same machine's speed, which moves by tens of percent from session to session. A solved
+/// cycle solves the positions near the ends, whose number does not depend on the stroke's
+/// length; its cost grows as the worn contact widens.
 const STROKE_MEASURED_CYCLES: [f64; 2] = [50.0, 1000.0];
 /// Solved cycles of the two measured rig runs (see [`STROKE_MEASURED_CYCLES`]).
-const STROKE_MEASURED_SOLVED: [f64; 2] = [41.0, 196.0];
+const STROKE_MEASURED_SOLVED: [f64; 2] = [21.0, 123.0];
 /// Time of the two measured rig runs, s (see [`STROKE_MEASURED_CYCLES`]).
-const STROKE_MEASURED_WALL_S: [f64; 2] = [3.7, 41.0];
-/// Positions solved per solved cycle with both sweeps solved (`cycle_step: 1`) over those
-/// of the measured runs, whose returns mostly press the forward sweep again: 26,067
-/// against 13,478 over the 1000 strokes.
-const STROKE_BOTH_SWEEPS_FACTOR: f64 = 26_067.0 / 13_478.0;
+const STROKE_MEASURED_WALL_S: [f64; 2] = [3.7 * 1.50 / 2.40, 41.0 * 15.75 / 24.30];
+/// Positions solved per solved cycle with both sweeps of every cycle solved (`cycle_step:
+/// 1`) over those of the measured runs, whose returns mostly press the forward sweep again:
+/// 144,798 positions in 1000 cycles (`scripts/stroke_step_bound.py`'s reference) against
+/// 9565 in 123 solved cycles.
+const STROKE_BOTH_SWEEPS_FACTOR: f64 = (144_798.0 / 1000.0) / (9565.0 / 123.0);
 /// Cells per side of the measured rig runs' first grid (16 per contact radius).
 const STROKE_MEASURED_CELLS: f64 = 48.0;
 /// Positions a sweep visits on the measured rig runs' first grid: one per cell of 2.763 um
@@ -122,7 +125,7 @@ fn disc_estimate(scene: &Scene, cells: usize) -> RunEstimate {
     let cycles = scene.test.cycles as f64;
     let power = |values| power_law(MEASURED_CYCLES, values, cycles);
     let auto_solves = power(MEASURED_SOLVES);
-    let solves = match scene.numerics.cycle_step {
+    let solves = match scene.numerics.solve_cycle_step(scene.numerics_case()) {
         CycleStep::EveryCycle => cycles,
         CycleStep::Auto => auto_solves.clamp(1.0, cycles),
     };
@@ -146,13 +149,13 @@ fn disc_estimate(scene: &Scene, cells: usize) -> RunEstimate {
 
 /// The estimate for the reciprocating rig of `scene` on its first grid: the measured
 /// runs' cost per solved cycle, scaled as the cube of the cells per side (the positions
-/// near the ends go as the density, a solve as its square; `docs/accuracy.md`), plus what
+/// near the ends go as the density, a solve as its square; `docs/rig-accuracy.md`), plus what
 /// a stroke longer than the measured one adds at each position of each sweep and trace.
 fn stroke_estimate(scene: &Scene, grid: &GridPlan) -> RunEstimate {
     let cycles = scene.test.cycles as f64;
     let power = |values| power_law(STROKE_MEASURED_CYCLES, values, cycles);
     let auto_solved = power(STROKE_MEASURED_SOLVED).clamp(1.0, cycles);
-    let (solved, sweeps) = match scene.numerics.cycle_step {
+    let (solved, sweeps) = match scene.numerics.solve_cycle_step(scene.numerics_case()) {
         CycleStep::EveryCycle => (cycles, STROKE_BOTH_SWEEPS_FACTOR),
         CycleStep::Auto => (auto_solved, 1.0),
     };

@@ -133,7 +133,7 @@ impl Setup {
     pub fn new(plan: &Plan, options: &RunOptions) -> Result<Self, SimulationError> {
         let scene = plan.scene();
         let solver = SolverOptions {
-            tolerance: scene.numerics.solve_tolerance(scene.disc.surface.is_some()),
+            tolerance: scene.numerics.solve_tolerance(scene.numerics_case()),
             concurrent_runs: options.concurrent_runs,
             ..SolverOptions::default()
         };

@@ -28,7 +28,7 @@ pub const CELLS_PER_CONTACT_RADIUS: f64 = 44.0;
 /// Auto cell density on the reciprocating rig, where the contact is solved at positions a
 /// cell apart along the stroke, so a run costs about the cube of the density. Measured by
 /// `scripts/stroke_accuracy.py` (20 cycles of a 2 mm stroke against grid 96, 32 per
-/// radius, every cycle solved; `docs/accuracy.md`): at 16 per radius (grid 48) the
+/// radius, every cycle solved; `docs/rig-accuracy.md`): at 16 per radius (grid 48) the
 /// deepest point errs by -1.6e-3, the profile across the middle by 5.2e-3 and along the
 /// axis by 1.6e-3 of the deepest point, the volume by -1.2e-3, in 0.13 of the time; at
 /// 10.7 (grid 32) by -2.1e-3, 1.0e-2 and 7.1e-3 in 0.04; at 21 (grid 64) by -4.5e-4,

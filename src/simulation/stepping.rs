@@ -13,7 +13,7 @@
 //! max-norm measure stalls at steps of 1: the row entering contact at the rim of the
 //! widening groove changes by 2.5% of the peak every cycle, however slowly the rest moves.
 
-use crate::scene::CycleStep;
+use crate::scene::{CycleStep, Scene};
 
 /// The longest step, cycles: keeps a record at least this often.
 pub const MAX_STEP: u64 = 50;
@@ -49,6 +49,13 @@ impl Stepper {
             previous: None,
             step: 1,
         }
+    }
+
+    /// The controller of `scene`'s numerics, resolved for its rig and disc
+    /// ([`crate::scene::Numerics::solve_cycle_step`], [`crate::scene::Numerics::step_bound`]).
+    pub fn of(scene: &Scene) -> Self {
+        let (numerics, case) = (&scene.numerics, scene.numerics_case());
+        Self::new(numerics.solve_cycle_step(case), numerics.step_bound(case))
     }
 
     /// The cycles the last solve stood for (1 before the first): the next step is at most

@@ -33,7 +33,8 @@ use super::{
 /// The rig's numerics for `scene`: every sweep solved where it asks for every cycle.
 fn stroke_numerics(scene: &Scene) -> StrokeNumerics {
     StrokeNumerics {
-        solve_return: scene.numerics.cycle_step == CycleStep::EveryCycle,
+        solve_return: scene.numerics.solve_cycle_step(scene.numerics_case())
+            == CycleStep::EveryCycle,
         ..StrokeNumerics::default()
     }
 }
@@ -92,12 +93,11 @@ struct StrokeRun<'a> {
 impl<'a> StrokeRun<'a> {
     fn new(setup: &'a Setup, stroke: Stroke) -> Self {
         let scene = setup.scene();
-        let numerics = &scene.numerics;
         Self {
             setup,
             stroke,
             engine: StrokeEngine::new(setup, stroke, stroke_numerics(scene)),
-            stepper: Stepper::new(numerics.cycle_step, numerics.cycle_step_bound),
+            stepper: Stepper::of(scene),
             cell: Cell::of(scene, setup.plan.hertz().contact_radius_m()),
             record_cycles: scene.record_cycles(),
             records: Vec::new(),
@@ -125,13 +125,12 @@ impl<'a> StrokeRun<'a> {
         self.returns_solved += usize::from(solved.return_solved);
         // As on the disc: a cut larger than the step bound's share of the track reshapes
         // it, and the step starts afresh.
-        let reshaped = solved.cut_over(scene.numerics.cycle_step_bound);
+        let reshaped = solved.cut_over(scene.numerics.step_bound(scene.numerics_case()));
         let rate_change = self.setup.plan.wear().rate_change_cycle();
         let stop = step_stop(cycle, scene.test.cycles, &self.record_cycles, rate_change);
         // As on the disc, the controller starts afresh at the first cycle of a new rate.
         if rate_change == Some(cycle) {
-            let numerics = &scene.numerics;
-            self.stepper = Stepper::new(numerics.cycle_step, numerics.cycle_step_bound);
+            self.stepper = Stepper::of(scene);
         }
         let step = self
             .stepper
@@ -476,7 +475,7 @@ impl<'a> StrokeRun<'a> {
                     self.records.len(),
                     scene.test.cycles,
                     self.max_step,
-                    numerics.cycle_step_bound * 100.0
+                    numerics.step_bound(scene.numerics_case()) * 100.0
                 ),
             },
             ModelChoice {

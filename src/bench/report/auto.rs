@@ -168,9 +168,9 @@ pub(super) fn step_intro() -> String {
         "### Cycle step: `STEP_CHANGE_BOUND` = {STEP_CHANGE_BOUND}, `MAX_STEP` = {MAX_STEP}\n\n\
          A solve stands for the next cycles while the per-pass wear profile changes by less than \
          the bound (relative, L1) per step, the step at most doubling each time and never \
-         beyond `MAX_STEP`. The bound is the scene's `numerics.cycle_step_bound` (default \
-         {STEP_CHANGE_BOUND}); the cycle-step study above sweeps it against solving every \
-         cycle:"
+         beyond `MAX_STEP`. The bound is the scene's `numerics.cycle_step_bound` (`auto`: \
+         {STEP_CHANGE_BOUND} on a smooth disc, every cycle solved on a rough one); the \
+         cycle-step study above sweeps it against solving every cycle:"
     )
 }
 

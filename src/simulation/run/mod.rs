@@ -25,7 +25,7 @@ use crate::contact::{
 use crate::corrosion::ContactGeometry;
 use crate::corrosion::spots::SpotRows;
 use crate::hardness::pass_strain;
-use crate::scene::{DomainSize, Spots, Tolerance};
+use crate::scene::{CycleStep, DomainSize, Spots, Tolerance};
 use crate::surface::count_islands;
 use crate::wear::Groove;
 
@@ -143,7 +143,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             ball: setup.ball_height(&grid),
             groove: setup.unworn_disc(),
             share: disc_share(setup),
-            stepper: Stepper::new(scene.numerics.cycle_step, scene.numerics.cycle_step_bound),
+            stepper: Stepper::of(setup.scene()),
             record_cycles: scene.record_cycles(),
             history: WarmStart::new(
                 setup.plan.pair().reduced_modulus_pa,
@@ -193,7 +193,9 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         // solving every cycle volume +1.42e-4 against +1.92e-4, WAC -1.46e-3 against
         // -1.60e-3.
         let cut = self.groove.area_m2() - worn_before;
-        let reshaped = yielded && cut > setup.scene().numerics.cycle_step_bound * worn_before;
+        let scene = setup.scene();
+        let reshaped =
+            yielded && cut > scene.numerics.step_bound(scene.numerics_case()) * worn_before;
         let wear = setup.plan.wear();
         let pass = wear.pass_profile(&self.grid, &solution.pressure);
         // A step never passes a record cycle, so that cycle is solved; nor the first cycle
@@ -207,8 +209,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         // The step controller's rate of change was measured at the old rate: it starts
         // afresh (solving every cycle, then doubling) at the first cycle of a new one.
         if wear.rate_change_cycle() == Some(cycle) {
-            let numerics = &setup.scene().numerics;
-            self.stepper = Stepper::new(numerics.cycle_step, numerics.cycle_step_bound);
+            self.stepper = Stepper::of(setup.scene());
         }
         let step = self.stepper.next(cycle, stop, reshaped, &pass);
         self.max_step = self.max_step.max(step);
@@ -527,20 +528,34 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let setup = self.setup;
         let numerics = &setup.scene().numerics;
         let mut models = std::mem::take(&mut self.models);
-        let mut stepping = format!(
-            "{:?}: {} solves for {} cycles, longest step {}; a step keeps the per-pass wear profile within {:.2}% of the solved one",
-            numerics.cycle_step,
-            self.solves,
-            setup.scene().test.cycles,
-            self.max_step,
-            numerics.cycle_step_bound * 100.0
-        );
+        let case = setup.scene().numerics_case();
+        let every_by_auto = numerics.cycle_step == CycleStep::Auto
+            && numerics.solve_cycle_step(case) == CycleStep::EveryCycle;
+        let mut stepping = if every_by_auto {
+            format!(
+                "Auto on a rough disc: every cycle solved ({} solves for {} cycles), since there \
+                 steps skip the yield cuts of their cycles and cost more accuracy than they save \
+                 time (`docs/accuracy.md`, the default by speed against error; a scene that \
+                 gives `cycle_step_bound` steps under it)",
+                self.solves,
+                setup.scene().test.cycles,
+            )
+        } else {
+            format!(
+                "{:?}: {} solves for {} cycles, longest step {}; a step keeps the per-pass wear profile within {:.2}% of the solved one",
+                numerics.cycle_step,
+                self.solves,
+                setup.scene().test.cycles,
+                self.max_step,
+                numerics.step_bound(case) * 100.0
+            )
+        };
         if setup.surface.is_some() {
             if numerics.tolerance == Tolerance::Auto {
                 stepping.push_str(&format!(
                     "; a rough disc's contacts solved to {:.0e} (`numerics.tolerance: auto`; \
                      `docs/accuracy.md`, the default by speed against error)",
-                    numerics.solve_tolerance(true)
+                    numerics.solve_tolerance(case)
                 ));
             }
             stepping.push_str(
