@@ -247,7 +247,7 @@ def choice(rows):
         f"time target: a rough solve costs several smooth ones, since its cells are four times "
         f'smaller and its contact churns at the cap ("fallbacks / restarts" counts the solves '
         f"whose free-set preconditioner stalled and whose warm start began again from the "
-        f"uniform pressure; \"Rough wear: where the time goes\" for the shares).\n"
+        f'uniform pressure; "Rough wear: where the time goes" for the shares).\n'
     )
 
 

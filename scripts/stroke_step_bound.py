@@ -100,9 +100,8 @@ def errors(run, reference):
     e, ref_e = s.get("potential_v"), ref.get("potential_v")
     cells.append(f"{(e - ref_e) * 1e3:+.2f} mV" if e is not None and ref_e is not None else "none")
     axis, ref_axis = run["stroke"]["axial_profile"], reference["stroke"]["axial_profile"]
-    cells.append(
-        f"{profile_error(axis['x_um'], axis['depth_um'], ref_axis['x_um'], ref_axis['depth_um']):.1e}"
-    )
+    along = profile_error(axis["x_um"], axis["depth_um"], ref_axis["x_um"], ref_axis["depth_um"])
+    cells.append(f"{along:.1e}")
     mid, ref_mid = run["profiles"][-1], reference["profiles"][-1]
     cells.append(
         f"{profile_error(mid['y_um'], mid['depth_um'], ref_mid['y_um'], ref_mid['depth_um']):.1e}"
@@ -152,7 +151,7 @@ CHOICE = (
     "The rig's `auto` is the row marked as its default: `cycle_step_bound` 0.02 "
     "(`STROKE_STEP_CHANGE_BOUND`) and `tolerance` 1e-5 (`STROKE_TOLERANCE`, both in "
     "`src/scene/auto_numerics.rs`). On every scene its errors stay under the auto grid's "
-    "own, 5.2e-3 in the middle profile (\"The reciprocating rig: speed against error\"), "
+    'own, 5.2e-3 in the middle profile ("The reciprocating rig: speed against error"), '
     "where 0.05 reaches it under 10 N; 0.03 saves little more time than 0.02 and errs up to "
     "half as much again. The tolerance moves no error at the table's digits. A disc keeps "
     "0.01 and 1e-6: its steps were chosen on the paper's scene (`STEP_CHANGE_BOUND`)."
@@ -165,7 +164,8 @@ def write_markdown(path, rows, commit, note):
         f"Written by `scripts/stroke_step_bound.py --markdown {path}` on {now} "
         + (f"(commit `{commit}`, 2 cores)" if commit else "from the rows of earlier runs")
         + ": each scene with each candidate `numerics`, errors "
-        "against the same scene with every cycle solved (both sweeps of each) at tolerance 1e-8, relative, "
+        "against the same scene with every cycle solved (both sweeps of each) at tolerance "
+        "1e-8, relative, "
         "the profiles' as the largest difference over the deepest point; CPU time of the "
         "child over bound 0.01 at 1e-6's in the same script."
     )
