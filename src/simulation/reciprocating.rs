@@ -42,15 +42,14 @@ pub const SOLVE_EVERY_POSITIONS: usize = 4;
 
 /// A cycle's return sweep is solved only when its forward sweep cut (the groove yielding
 /// pushed in) more than this share of the volume worn before the cycle; otherwise it
-/// presses the forward sweep's pressure again, and one sweep a cycle is solved. The two
-/// sweeps press alike on the same flat (the normal contact), and the return's flat is the
-/// forward's less one sweep's wear and cut: the approximation a cycle step makes over
-/// whole cycles, here over half of one. A sweep that cuts much reshapes the flat under the
+/// presses the forward's pressure again: both press alike on the same flat, and the
+/// return's is the forward's less one sweep's wear and cut (a cycle step's approximation,
+/// over half a cycle). A sweep that cuts much reshapes the flat under the
 /// return's contact, whose own solves then decide its groove: pressing the forward again
 /// at every cut lost the returns' cuts, -4.5e-3 of the volume. Over 1000 strokes against
 /// solving every position of both sweeps (volume / deepest point / WAC / axial profile;
-/// solves; `docs/rig-accuracy.md`): both sweeps +1.6e-5 / +3.3e-6 / +1.1e-4 / 1.2e-3, 26,067;
-/// 1e-3 +1.4e-5 / +1.6e-6 / +7.0e-5 / 1.8e-3, 13,478; 1e-2 -1.6e-4 / -1.2e-4 / +4.5e-4.
+/// solves; `docs/rig-accuracy.md`): both sweeps +1.6e-5 / +3.3e-6 / +1.1e-4 / 1.2e-3,
+/// 26,067; 1e-3 +1.4e-5 / +1.6e-6 / +7.0e-5 / 1.8e-3, 13,478; 1e-2 -1.6e-4 / -1.2e-4.
 pub const RETURN_SOLVED_ABOVE_CUT_SHARE: f64 = 1e-3;
 
 /// What a run of reciprocating cycles left.
@@ -310,17 +309,16 @@ impl StrokeEngine {
         }
     }
 
-    /// Widens the grid along the axes where a solve since the last growth came near its
-    /// edge (the disc's growth rule), carrying the map over; the new grid, or `None` when every
-    /// contact fitted or the grid is at its largest.
+    /// Widens the grid where a solve since the last growth came near its edge (the disc's
+    /// rule), carrying the map and the last pressure over; the new grid, or `None`.
     pub fn grow_if_crowded(&mut self) -> Option<Grid> {
         let wider = widen(&self.grid, std::mem::take(&mut self.crowded))?;
         self.map = self.map.embedded_in(&wider, self.length_m);
         self.solver = self.setup.solver(&wider);
         self.ball = self.setup.ball_height(&wider);
         self.depth = vec![0.0; wider.len()];
-        // Cold, a grown grid's first solve stalled: a Ti-6Al-4V flat grown to 64 x 96 at
-        // residual 0.54 for 2000 iterations (`tests/reciprocating_scene.rs`).
+        // Cold, a grown grid's first solve stalled at residual 0.54 (a Ti-6Al-4V flat grown
+        // to 64 x 96, `tests/reciprocating_scene.rs`).
         let old = std::mem::replace(&mut self.grid, wider);
         self.carried = self
             .last
