@@ -85,6 +85,19 @@ pub struct WindowFractions {
     pub checked: f64,
 }
 
+impl WindowFractions {
+    /// The `solve_window` model's account of these fractions over `solves` solves.
+    pub fn describe(&self, solves: usize) -> String {
+        format!(
+            "each solve on the last contact's bounding box plus {:.0}% (at least {} cells), checked on the cells that could touch: on average {:.0}% of the grid's cells solved, {:.0}% checked",
+            100.0 * MARGIN_FRACTION,
+            MIN_MARGIN,
+            100.0 * self.solved / solves as f64,
+            100.0 * self.checked / solves as f64
+        )
+    }
+}
+
 impl std::ops::AddAssign for WindowFractions {
     fn add_assign(&mut self, other: Self) {
         self.solved += other.solved;

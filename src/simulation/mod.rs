@@ -26,6 +26,7 @@ mod stepping;
 mod stroke_checks;
 mod stroke_report;
 mod stroke_run;
+mod sweep_wear;
 mod warm;
 
 use thiserror::Error;

@@ -466,6 +466,11 @@ impl<'a> StrokeRun<'a> {
                 ),
             },
             ModelChoice {
+                name: Model::SolveWindow,
+                active: true,
+                reason: self.engine.window_fractions().describe(self.solves),
+            },
+            ModelChoice {
                 name: Model::CycleStep,
                 active: self.max_step > 1,
                 reason: format!(

@@ -19,8 +19,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use crate::contact::{
-    ContactError, ContactProblem, ContactSolution, ContactSolver, Grid, MARGIN_FRACTION,
-    MIN_MARGIN, Window, WindowFractions, WindowedSolver, cold_start,
+    ContactError, ContactProblem, ContactSolution, ContactSolver, Grid, Window, WindowFractions,
+    WindowedSolver, cold_start,
 };
 use crate::corrosion::ContactGeometry;
 use crate::corrosion::spots::SpotRows;
@@ -569,13 +569,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             active: self.max_step > 1,
             reason: stepping,
         });
-        let mut window = format!(
-            "each solve on the last contact's bounding box plus {:.0}% (at least {} cells), checked on the cells that could touch: on average {:.0}% of the grid's cells solved, {:.0}% checked",
-            100.0 * MARGIN_FRACTION,
-            MIN_MARGIN,
-            100.0 * self.window_fractions.solved / self.solves as f64,
-            100.0 * self.window_fractions.checked / self.solves as f64
-        );
+        let mut window = self.window_fractions.describe(self.solves);
         window += &self.stalls.describe(self.solves);
         models.push(ModelChoice {
             name: Model::SolveWindow,
