@@ -39,9 +39,10 @@ pub struct StrokeExposure {
     period_s: f64,
     /// The area a point stands for times the stripped share, m^2.
     point_area_m2: f64,
-    /// Per point, its covered intervals within a cycle, sorted (`end` may pass the period
-    /// for the interval that runs over into the next cycle).
-    covered: Vec<Vec<(f64, f64)>>,
+    /// Per point, how many rows' points it stands for and its covered intervals within a
+    /// cycle, sorted (`end` may pass the period for the interval that runs over into the
+    /// next cycle).
+    covered: Vec<(f64, Vec<(f64, f64)>)>,
 }
 
 impl StrokeExposure {
@@ -50,7 +51,7 @@ impl StrokeExposure {
     pub fn new(stroke: &Stroke, footprint: &Footprint, spacing_m: f64) -> Self {
         let half = stroke.length_m / 2.0;
         let mut covered = Vec::new();
-        for &(lo, hi) in &footprint.chords_m {
+        for ((lo, hi), rows) in distinct(&footprint.chords_m) {
             // Points from the start's trailing edge to the far end's leading edge, centred
             // on that span so that a symmetric chord gives a mirror-symmetric track.
             let (first, last) = (-half + lo, half + hi);
@@ -60,7 +61,7 @@ impl StrokeExposure {
                 let x = centre + (i as f64 + 0.5 - 0.5 * count as f64) * spacing_m;
                 let intervals = intervals(stroke, x - hi, x - lo);
                 if !intervals.is_empty() {
-                    covered.push(intervals);
+                    covered.push((rows, intervals));
                 }
             }
         }
@@ -77,7 +78,7 @@ impl StrokeExposure {
         let fraction: f64 = self
             .covered
             .iter()
-            .map(|intervals| self.current_fraction(intervals, t, kinetics))
+            .map(|(rows, intervals)| rows * self.current_fraction(intervals, t, kinetics))
             .sum();
         fraction * self.point_area_m2
     }
@@ -89,7 +90,7 @@ impl StrokeExposure {
         let seconds: f64 = self
             .covered
             .iter()
-            .map(|intervals| {
+            .map(|(rows, intervals)| {
                 let next_starts = intervals
                     .iter()
                     .skip(1)
@@ -100,6 +101,7 @@ impl StrokeExposure {
                     .zip(next_starts)
                     .map(|(&(start, end), next)| end - start + kinetics.charge_s(next - end))
                     .sum::<f64>()
+                    * rows
             })
             .sum();
         seconds / period * self.point_area_m2
@@ -123,6 +125,25 @@ impl StrokeExposure {
         }
         kinetics.current_fraction(since)
     }
+}
+
+/// The distinct chords of `chords_m`, each with how many rows have it. The chords of a
+/// solved contact end on cell edges, so rows share them and their points are the same.
+/// Merged, 1000 strokes of the default rig (`tribosim run` of `{"test": {"cycles": 1000,
+/// "reciprocating": {}}}`) took 8.0 s of CPU against 9.8 s, with the same results to
+/// 1e-14; the traces had taken 10% of its `perf` profile.
+fn distinct(chords_m: &[(f64, f64)]) -> Vec<((f64, f64), f64)> {
+    let mut merged: Vec<((f64, f64), f64)> = Vec::new();
+    for &(lo, hi) in chords_m {
+        let same = |c: &&mut ((f64, f64), f64)| {
+            c.0.0.to_bits() == lo.to_bits() && c.0.1.to_bits() == hi.to_bits()
+        };
+        match merged.iter_mut().find(same) {
+            Some(chord) => chord.1 += 1.0,
+            None => merged.push(((lo, hi), 1.0)),
+        }
+    }
+    merged
 }
 
 /// The times within a cycle at which the ball's centre lies in `[from, to]`: the forward
