@@ -238,7 +238,9 @@ def choice(rows):
         f"1e-5 (the default then) 522 solves, 4230 iterations, 36.6 times the smooth disc "
         f"(36.6, 35.9, 36.9), errors -2.3e-4 in volume, -1.3e-4 in the deepest point, "
         f"-3.2e-3 in the WAC and -1.57 mV in E; every cycle at 1e-4 in the same invocation "
-        f"32.3 times (33.0, 31.2, 32.3), 0.88 of it, with the errors of its row above; and at "
+        f"32.3 times (33.0, 31.2, 32.3), 0.88 of it, with the errors its row had then (-7.2e-5 "
+        f"in volume, +1.0e-5 in the deepest point, -3.9e-3 in the WAC, -1.06 mV in E, before "
+        f"the cap release was damped); and at "
         f"1e-4, 521 solves erred by -1.8e-3 in volume, beyond the target. A step skips the "
         f'yield cuts of its cycles ("Rough wear: speed levers"), which costs more accuracy '
         f"than the 13% fewer solves save time. Iterations are the measure that does not move "
