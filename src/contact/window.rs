@@ -127,6 +127,21 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         self.focus = around(&self.grid, pressure);
     }
 
+    /// Moves the solver onto `wider`, a grid of the same cells grown about the same centre
+    /// (the domain's growth), its next solve focused on `pressure` (a field of `wider`).
+    /// The solvers of the windows' shapes are kept, as their cells are the same, and so are
+    /// the fractions so far: the report's shares are each solve's of its own grid.
+    pub fn grow(&mut self, wider: Grid, pressure: &[f64]) {
+        debug_assert!(
+            wider.dx.to_bits() == self.grid.dx.to_bits()
+                && wider.dy.to_bits() == self.grid.dy.to_bits(),
+            "a grown grid keeps its cells"
+        );
+        self.grid = wider;
+        self.full = (self.factory)(&wider);
+        self.focus_on(pressure);
+    }
+
     /// The shares of the grid solved and checked, summed over the solves so far (for the
     /// report).
     pub fn fractions(&self) -> WindowFractions {

@@ -209,8 +209,6 @@ pub struct StrokeEngine {
     setup: Setup,
     grid: Grid,
     solver: WindowedSolver<Factory>,
-    /// The windows of the solvers of grids grown out of.
-    window_fractions: WindowFractions,
     ball: Vec<f64>,
     reuse_m: f64,
     solve_every: usize,
@@ -236,7 +234,6 @@ impl StrokeEngine {
         let grid = setup.grid;
         Self {
             solver: windowed(&setup, grid),
-            window_fractions: WindowFractions::default(),
             ball: setup.ball_height(&grid),
             reuse_m: numerics.reuse_fraction * setup.plan.hertz().approach_m(),
             solve_every: numerics.solve_every.max(1),
@@ -265,9 +262,7 @@ impl StrokeEngine {
 
     /// The shares of the grid the solves so far were solved and checked on, summed.
     pub fn window_fractions(&self) -> WindowFractions {
-        let mut fractions = self.window_fractions;
-        fractions += self.solver.fractions();
-        fractions
+        self.solver.fractions()
     }
 
     /// The worn volume, m^3.
@@ -327,20 +322,15 @@ impl StrokeEngine {
     pub fn grow_if_crowded(&mut self) -> Option<Grid> {
         let wider = widen(&self.grid, std::mem::take(&mut self.crowded))?;
         self.map = self.map.embedded_in(&wider, self.length_m);
-        self.window_fractions += self.solver.fractions();
-        self.solver = windowed(&self.setup, wider);
         self.ball = self.setup.ball_height(&wider);
         self.depth = vec![0.0; wider.len()];
         // Cold, a grown grid's first solve stalled at residual 0.54 (a Ti-6Al-4V flat grown
         // to 64 x 96, `tests/reciprocating_scene.rs`).
         let old = std::mem::replace(&mut self.grid, wider);
-        self.carried = self
-            .last
-            .take()
-            .map(|kept| embedded(&kept.solution.pressure, &old, &wider));
-        if let Some(carried) = &self.carried {
-            self.solver.focus_on(carried);
-        }
+        let kept = self.last.take().expect("only a solve crowds the grid");
+        let carried = embedded(&kept.solution.pressure, &old, &wider);
+        self.solver.grow(wider, &carried);
+        self.carried = Some(carried);
         Some(wider)
     }
 

@@ -19,8 +19,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use crate::contact::{
-    ContactError, ContactProblem, ContactSolution, ContactSolver, Grid, Window, WindowFractions,
-    WindowedSolver, cold_start,
+    ContactError, ContactProblem, ContactSolution, ContactSolver, Grid, Window, WindowedSolver,
+    cold_start,
 };
 use crate::corrosion::ContactGeometry;
 use crate::corrosion::spots::SpotRows;
@@ -100,9 +100,8 @@ pub fn run_setup(
 /// A run between cycles: the surface, the solver of its grid, and what has been recorded.
 struct Run<'a, F> {
     setup: &'a Setup,
-    /// Builds the contact solver of a grid (or of a window of it).
-    factory: F,
     grid: Grid,
+    /// The contact solver of `grid`, built with the run's factory (of a grid or a window).
     solver: WindowedSolver<F>,
     /// The unworn ball's height over `grid`.
     ball: Vec<f64>,
@@ -127,8 +126,6 @@ struct Run<'a, F> {
     max_step: u64,
     /// The surface's cumulative plastic strain, for a cap that hardens with it.
     plastic_strain: f64,
-    /// Window fractions of the solvers of grids grown out of.
-    window_fractions: WindowFractions,
 }
 
 impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
@@ -137,7 +134,6 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let grid = setup.grid;
         Self {
             setup,
-            factory,
             grid,
             solver: WindowedSolver::new(grid, factory),
             ball: setup.ball_height(&grid),
@@ -161,7 +157,6 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             stalls: Stalls::default(),
             max_step: 1,
             plastic_strain: 0.0,
-            window_fractions: WindowFractions::default(),
         }
     }
 
@@ -439,9 +434,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             gap = old.embed(&wider, &gap);
             self.groove = self.groove.widened(&wider);
             self.grid = wider;
-            self.window_fractions += self.solver.fractions();
-            self.solver = WindowedSolver::new(wider, self.factory);
-            self.solver.focus_on(&pressure);
+            self.solver.grow(wider, &pressure);
             self.ball = self.setup.ball_height(&wider);
             self.models.push(ModelChoice {
                 name: Model::DomainGrowth,
@@ -470,7 +463,6 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                     .push(PressureMap::of(record.cycle, &self.grid, pressure));
             }
         }
-        self.window_fractions += self.solver.fractions();
         let mut warnings = setup.warnings.clone();
         let mut models = self.run_models();
         let mut ocp = Vec::new();
@@ -569,7 +561,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             active: self.max_step > 1,
             reason: stepping,
         });
-        let mut window = self.window_fractions.describe(self.solves);
+        let mut window = self.solver.fractions().describe(self.solves);
         window += &self.stalls.describe(self.solves);
         models.push(ModelChoice {
             name: Model::SolveWindow,
