@@ -25,6 +25,7 @@ use super::operator::Operator;
 use super::problem::{ContactProblem, ContactSolution, ContactSolver, SolverOptions};
 use super::residual::{approach, complementarity_residual};
 use super::solver::solve;
+use super::transform::Real;
 
 /// Outer iterations allowed; each is a warm-started inner solve.
 pub const MAX_OUTER_ITERATIONS: usize = 100;
@@ -149,9 +150,9 @@ pub const DIRECT_BUDGET: usize = 150;
 /// work buffers and spectra), the kernels 130 MB; the summed operator alone is needed
 /// otherwise.
 #[derive(Debug)]
-pub struct CoupledSolver {
-    summed: DcFft,
-    route: Route,
+pub struct CoupledSolver<T: Real = f64> {
+    summed: DcFft<T>,
+    route: Route<T>,
     /// Threads of each apply, on either route.
     threads: usize,
 }
@@ -159,22 +160,29 @@ pub struct CoupledSolver {
 /// How the coupled solver solves: directly (keeping the kernels the fixed point would
 /// need), or by the fixed point on its operators.
 #[derive(Debug)]
-enum Route {
+enum Route<T: Real> {
     Direct {
         normal: Kernel,
         coupling: Kernel,
     },
     FixedPoint {
-        normal: Box<DcFft>,
-        coupling: Box<DcFft>,
+        normal: Box<DcFft<T>>,
+        coupling: Box<DcFft<T>>,
     },
 }
 
 impl CoupledSolver {
-    /// The operators of `normal` and `coupling` kernels on one grid.
+    /// The operators of `normal` and `coupling` kernels on one grid, in `f64`.
     pub fn new(normal: &Kernel, coupling: &Kernel) -> Self {
+        Self::of(normal, coupling)
+    }
+}
+
+impl<T: Real> CoupledSolver<T> {
+    /// The operators of `normal` and `coupling` kernels on one grid.
+    pub fn of(normal: &Kernel, coupling: &Kernel) -> Self {
         Self {
-            summed: DcFft::sum(normal, coupling),
+            summed: DcFft::of_sum(normal, coupling),
             route: Route::Direct {
                 normal: normal.clone(),
                 coupling: coupling.clone(),
@@ -196,7 +204,7 @@ impl CoupledSolver {
     }
 }
 
-impl ContactSolver for CoupledSolver {
+impl<T: Real> ContactSolver for CoupledSolver<T> {
     fn solve(
         &mut self,
         problem: &ContactProblem,
@@ -213,8 +221,8 @@ impl ContactSolver for CoupledSolver {
                 Err(ContactError::NotConverged { iterations, .. }) => {
                     spent = iterations;
                     self.route = Route::FixedPoint {
-                        normal: Box::new(DcFft::new(normal).threaded(self.threads)),
-                        coupling: Box::new(DcFft::new(coupling).threaded(self.threads)),
+                        normal: Box::new(DcFft::of(normal).threaded(self.threads)),
+                        coupling: Box::new(DcFft::of(coupling).threaded(self.threads)),
                     };
                 }
                 outcome => return outcome,

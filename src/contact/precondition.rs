@@ -19,33 +19,33 @@ use rustfft::num_complex::Complex;
 
 use super::influence::Kernel;
 use super::operator::{NEAR_REACH, Preconditioner};
-use super::transform::{BLOCK, Plans, STRIDE_PAD, Split, inverse_row};
+use super::transform::{BLOCK, Plans, Real, STRIDE_PAD, Split, inverse_row, load_row, store_row};
 
-/// The inverse of a kernel's periodic wrap on its own grid.
-pub struct FourierInverse {
+/// The inverse of a kernel's periodic wrap on its own grid, its transforms computed in `T`.
+pub struct FourierInverse<T: Real = f64> {
     nx: usize,
     ny: usize,
     /// Half-spectrum row length `nx / 2 + 1`.
     half: usize,
     /// Distance between column starts in `columns`, `ny + STRIDE_PAD`.
     stride: usize,
-    plans: Plans,
+    plans: Plans<T>,
     /// `1 / (nx ny K_hat)`, column-major: entry `(kx, ky)` at `kx * ny + ky`.
-    inverse_symbol: Vec<f64>,
+    inverse_symbol: Vec<T>,
     /// Work buffer, column-major: entry `(kx, ky)` at `kx * stride + ky`.
-    columns: Vec<Complex<f64>>,
-    row_real: Vec<f64>,
+    columns: Vec<Complex<T>>,
+    row_real: Vec<T>,
     /// The spectra of [`BLOCK`] rows, moved to and from `columns` together so that each
     /// transposed access touches `BLOCK` consecutive entries (as the DC-FFT operator does;
     /// at N = 2048 one entry per access made a periodic apply twice as slow per cell).
-    row_block: Vec<Complex<f64>>,
+    row_block: Vec<Complex<T>>,
     /// The passes split across threads (`None`: one thread).
-    split: Option<Split>,
+    split: Option<Split<T>>,
     /// [`Preconditioner::near_field`].
     near: Vec<f64>,
 }
 
-impl std::fmt::Debug for FourierInverse {
+impl<T: Real> std::fmt::Debug for FourierInverse<T> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("FourierInverse")
             .field("nx", &self.nx)
@@ -64,15 +64,23 @@ fn wrapped_offset(index: usize, n: usize) -> isize {
 }
 
 impl FourierInverse {
-    /// The inverse of `kernel` (an even one, e.g. [`Kernel::normal`]) wrapped onto its grid.
+    /// The inverse of `kernel` (an even one, e.g. [`Kernel::normal`]) wrapped onto its
+    /// grid, in `f64`.
     pub fn new(kernel: &Kernel) -> Self {
+        Self::of(kernel)
+    }
+}
+
+impl<T: Real> FourierInverse<T> {
+    /// The inverse of `kernel` (an even one, e.g. [`Kernel::normal`]) wrapped onto its grid.
+    pub fn of(kernel: &Kernel) -> Self {
         let (nx, ny) = kernel.shape();
         let mut inverse = Self::with_symbol(nx, ny, Vec::new());
         let wrapped: Vec<f64> = (0..nx * ny)
             .map(|i| kernel.value(wrapped_offset(i % nx, nx), wrapped_offset(i / nx, ny)))
             .collect();
         inverse.forward(&wrapped);
-        let symbol: Vec<f64> = inverse.spectrum().map(|c| c.re).collect();
+        let symbol: Vec<f64> = inverse.spectrum().map(|c| c.re.widen()).collect();
         let floor = symbol
             .iter()
             .skip(1)
@@ -83,7 +91,7 @@ impl FourierInverse {
         inverse.inverse_symbol = symbol
             .iter()
             .enumerate()
-            .map(|(k, &s)| if k == 0 { 0.0 } else { scale / s.max(floor) })
+            .map(|(k, &s)| T::narrow(if k == 0 { 0.0 } else { scale / s.max(floor) }))
             .collect();
         inverse.with_near_field()
     }
@@ -102,11 +110,11 @@ impl FourierInverse {
         let q = |k: usize, n: usize, d: f64| {
             std::f64::consts::TAU * wrapped_offset(k, n) as f64 / (n as f64 * d)
         };
-        let mut values = vec![0.0; half * ny];
+        let mut values = vec![T::default(); half * ny];
         for kx in 0..half {
             for ky in 0..ny {
                 if kx + ky > 0 {
-                    values[kx * ny + ky] = scale * symbol(q(kx, nx, dx), q(ky, ny, dy));
+                    values[kx * ny + ky] = T::narrow(scale * symbol(q(kx, nx, dx), q(ky, ny, dy)));
                 }
             }
         }
@@ -131,7 +139,7 @@ impl FourierInverse {
     }
 
     /// The buffers of an `nx` x `ny` grid around `inverse_symbol`.
-    fn with_symbol(nx: usize, ny: usize, inverse_symbol: Vec<f64>) -> Self {
+    fn with_symbol(nx: usize, ny: usize, inverse_symbol: Vec<T>) -> Self {
         let half = nx / 2 + 1;
         let stride = ny + STRIDE_PAD;
         Self {
@@ -142,7 +150,7 @@ impl FourierInverse {
             plans: Plans::new(nx, ny),
             inverse_symbol,
             columns: vec![Complex::default(); half * stride],
-            row_real: vec![0.0; nx],
+            row_real: vec![T::default(); nx],
             row_block: vec![Complex::default(); BLOCK * half],
             split: None,
             near: Vec::new(),
@@ -162,7 +170,7 @@ impl FourierInverse {
     }
 
     /// The spectrum in `columns`, column by column without the padding.
-    fn spectrum(&self) -> impl Iterator<Item = &Complex<f64>> {
+    fn spectrum(&self) -> impl Iterator<Item = &Complex<T>> {
         self.columns
             .chunks_exact(self.stride)
             .flat_map(|column| &column[..self.ny])
@@ -175,8 +183,7 @@ impl FourierInverse {
             let rows = BLOCK.min(ny - first);
             for slot in 0..rows {
                 let iy = first + slot;
-                self.row_real
-                    .copy_from_slice(&input[iy * nx..(iy + 1) * nx]);
+                load_row(&mut self.row_real, &input[iy * nx..(iy + 1) * nx]);
                 self.plans
                     .row_forward
                     .process_with_scratch(
@@ -201,7 +208,7 @@ impl FourierInverse {
     }
 }
 
-impl Preconditioner for FourierInverse {
+impl<T: Real> Preconditioner for FourierInverse<T> {
     /// The mean of the symbol over the whole spectrum (the half stored counts twice but for
     /// the columns that are their own mirror image, `kx = 0` and `kx = nx / 2`).
     fn diagonal(&self) -> f64 {
@@ -211,7 +218,7 @@ impl Preconditioner for FourierInverse {
             .map(|(kx, column)| {
                 let mirrored = kx > 0 && 2 * kx != self.nx;
                 let weight = if mirrored { 2.0 } else { 1.0 };
-                weight * column.iter().sum::<f64>()
+                weight * column.iter().map(|s| s.widen()).sum::<f64>()
             })
             .sum()
     }
@@ -227,7 +234,7 @@ impl Preconditioner for FourierInverse {
         assert_eq!(output.len(), nx * ny, "output does not match the grid");
         if let Some(split) = &mut self.split {
             let symbol = &self.inverse_symbol;
-            let product = |k: usize, column: &mut [Complex<f64>]| {
+            let product = |k: usize, column: &mut [Complex<T>]| {
                 let symbol = &symbol[k * ny..(k + 1) * ny];
                 column.iter_mut().zip(symbol).for_each(|(c, &s)| *c *= s);
             };
@@ -263,11 +270,8 @@ impl Preconditioner for FourierInverse {
             for slot in 0..rows {
                 let spectrum = &mut self.row_block[slot * half..(slot + 1) * half];
                 let iy = first + slot;
-                inverse_row(
-                    &mut self.plans,
-                    spectrum,
-                    &mut output[iy * nx..(iy + 1) * nx],
-                );
+                inverse_row(&mut self.plans, spectrum, &mut self.row_real);
+                store_row(&mut output[iy * nx..(iy + 1) * nx], &self.row_real);
             }
         }
     }

@@ -122,6 +122,8 @@ pub enum Model {
     Materials,
     /// The reciprocating rig: the positions solved along the stroke.
     Reciprocating,
+    /// The floating-point precision the contact's transforms compute in.
+    Precision,
 }
 
 impl Model {
@@ -448,6 +450,7 @@ mod tests {
             (Model::Surface, "surface"),
             (Model::Materials, "materials"),
             (Model::Reciprocating, "reciprocating"),
+            (Model::Precision, "precision"),
         ];
         for (model, name) in names {
             let json = serde_json::to_value(model).expect("serialises");

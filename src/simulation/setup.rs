@@ -6,7 +6,7 @@ use std::num::NonZeroUsize;
 
 use crate::contact::{
     ContactSolver, CoupledSolver, DcFft, ElasticPair, Grid, Hertz, Kernel, NormalSolver,
-    SolverOptions, split_threads,
+    SINGLE_PRECISION_HEADROOM, SINGLE_PRECISION_MIN_TOLERANCE, SolverOptions, split_threads,
 };
 use crate::hardness::TABOR_REPRESENTATIVE_STRAIN;
 use crate::scene::{FieldWarning, Scene, SolverThreads, Switch};
@@ -57,6 +57,9 @@ pub struct Setup {
     pub plasticity: bool,
     /// Whether the friction coupling term is modelled (eq. 7).
     pub coupling: bool,
+    /// Whether the contact's transforms compute in f32 (the tolerance leaves room for its
+    /// round-off, [`SINGLE_PRECISION_MIN_TOLERANCE`]).
+    pub single_precision: bool,
     /// Contact solver settings.
     pub options: SolverOptions,
     /// The decisions, for the result's `models`.
@@ -140,6 +143,7 @@ impl Setup {
         let mut models = Vec::new();
         let plasticity = decide_plasticity(&mut models, scene, plan.hertz(), plan.lowest_yield());
         let coupling = decide_coupling(&mut models, scene, plan.pair(), &solver);
+        let single_precision = decide_precision(&mut models, &solver);
         let radius = plan.sizing_radius_m();
         let spec = scene.disc.surface.as_ref();
         let surface_cell = spec.and_then(|s| wanted_cell_m(s, options.surface));
@@ -169,6 +173,7 @@ impl Setup {
             grid,
             plasticity,
             coupling,
+            single_precision,
             options: solver,
             models,
             warnings,
@@ -241,9 +246,19 @@ impl Setup {
                 self.plan.pair(),
                 self.scene().test.friction_coefficient,
             );
-            Box::new(CoupledSolver::new(&normal, &coupling).threaded(threads))
+            if self.single_precision {
+                Box::new(CoupledSolver::<f32>::of(&normal, &coupling).threaded(threads))
+            } else {
+                Box::new(CoupledSolver::<f64>::of(&normal, &coupling).threaded(threads))
+            }
+        } else if self.single_precision {
+            Box::new(NormalSolver::new(
+                DcFft::<f32>::of(&normal).threaded(threads),
+            ))
         } else {
-            Box::new(NormalSolver::new(DcFft::new(&normal).threaded(threads)))
+            Box::new(NormalSolver::new(
+                DcFft::<f64>::of(&normal).threaded(threads),
+            ))
         }
     }
 }
@@ -302,6 +317,26 @@ fn decide_coupling(
         COUPLING_SENSITIVITY * strength >= options.tolerance,
         measured,
     )
+}
+
+/// The transforms' precision: f32 where the solver's tolerance is at least
+/// [`SINGLE_PRECISION_MIN_TOLERANCE`], f64 below.
+fn decide_precision(models: &mut Vec<ModelChoice>, options: &SolverOptions) -> bool {
+    let single = options.tolerance >= SINGLE_PRECISION_MIN_TOLERANCE;
+    let reason = format!(
+        "the contact's FFTs in {}: tolerance {:.0e} {} {SINGLE_PRECISION_MIN_TOLERANCE:.0e}, \
+         where the f32 apply's round-off (4e-7 of the largest displacement) stays below \
+         1/{SINGLE_PRECISION_HEADROOM} of the tolerance; fields, sums and the wear stay in f64",
+        if single {
+            "single precision (f32)"
+        } else {
+            "double precision (f64)"
+        },
+        options.tolerance,
+        if single { ">=" } else { "<" },
+    );
+    models.push(choice(Model::Precision, single, reason));
+    single
 }
 
 /// The first grid, as planned for the sizing radius `radius`.

@@ -18,7 +18,35 @@ use rustfft::num_complex::Complex;
 pub(crate) use plans::Plans;
 pub use plans::fft_friendly;
 pub use split::{MAX_SPLIT_THREADS, SPLIT_MIN_CELLS, split_threads};
-pub(crate) use split::{Split, periodic_threads};
+pub(crate) use split::{Split, load_row, periodic_threads, store_row};
+
+/// The floating-point type a transform computes in: `f64`, or `f32` where a solve's
+/// tolerance leaves room for its round-off (`DcFft::in_single_precision`). Fields go in and
+/// come out as `f64` either way.
+pub trait Real: rustfft::FftNum + rustfft::num_traits::NumAssign + Default {
+    /// `value` rounded to this type.
+    fn narrow(value: f64) -> Self;
+    /// This value as an `f64`, exactly.
+    fn widen(self) -> f64;
+}
+
+impl Real for f64 {
+    fn narrow(value: f64) -> Self {
+        value
+    }
+    fn widen(self) -> f64 {
+        self
+    }
+}
+
+impl Real for f32 {
+    fn narrow(value: f64) -> Self {
+        value as f32
+    }
+    fn widen(self) -> f64 {
+        f64::from(self)
+    }
+}
 
 /// Rows moved per block between the row and the column layouts.
 pub(crate) const BLOCK: usize = 16;
@@ -27,13 +55,13 @@ pub(crate) const BLOCK: usize = 16;
 pub(crate) const STRIDE_PAD: usize = 8;
 
 /// The complex-to-real transform of one row's half spectrum `row` into `real`.
-pub(crate) fn inverse_row(plans: &mut Plans, row: &mut [Complex<f64>], real: &mut [f64]) {
+pub(crate) fn inverse_row<T: Real>(plans: &mut Plans<T>, row: &mut [Complex<T>], real: &mut [T]) {
     // The DC and (at an even length) Nyquist bins of a real signal are real; round-off
     // leaves tiny imaginary parts that realfft rejects.
-    row[0].im = 0.0;
+    row[0].im = T::default();
     if real.len().is_multiple_of(2) {
         if let Some(nyquist) = row.last_mut() {
-            nyquist.im = 0.0;
+            nyquist.im = T::default();
         }
     }
     plans

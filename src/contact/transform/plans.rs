@@ -8,25 +8,27 @@ use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
+use super::Real;
+
 /// Planned row (real-to-complex and back) and column (complex) transforms of a 2D FFT,
 /// with the scratch they need. A clone shares the transforms and has its own scratch.
 #[derive(Clone)]
-pub(crate) struct Plans {
-    pub(crate) row_forward: Arc<dyn RealToComplex<f64>>,
-    pub(crate) row_inverse: Arc<dyn ComplexToReal<f64>>,
-    pub(crate) col_forward: Arc<dyn Fft<f64>>,
-    pub(crate) col_inverse: Arc<dyn Fft<f64>>,
-    pub(crate) real_scratch: Vec<Complex<f64>>,
-    pub(crate) complex_scratch: Vec<Complex<f64>>,
+pub(crate) struct Plans<T: Real = f64> {
+    pub(crate) row_forward: Arc<dyn RealToComplex<T>>,
+    pub(crate) row_inverse: Arc<dyn ComplexToReal<T>>,
+    pub(crate) col_forward: Arc<dyn Fft<T>>,
+    pub(crate) col_inverse: Arc<dyn Fft<T>>,
+    pub(crate) real_scratch: Vec<Complex<T>>,
+    pub(crate) complex_scratch: Vec<Complex<T>>,
 }
 
-impl Plans {
+impl<T: Real> Plans<T> {
     /// Plans rows of `row_len` reals and columns of `col_len` complex values.
     pub(crate) fn new(row_len: usize, col_len: usize) -> Self {
-        let mut real_planner = RealFftPlanner::<f64>::new();
+        let mut real_planner = RealFftPlanner::<T>::new();
         let row_forward = real_planner.plan_fft_forward(row_len);
         let row_inverse = real_planner.plan_fft_inverse(row_len);
-        let mut planner = FftPlanner::<f64>::new();
+        let mut planner = FftPlanner::<T>::new();
         let col_forward = planner.plan_fft_forward(col_len);
         let col_inverse = planner.plan_fft_inverse(col_len);
         let real_scratch_len = row_forward

@@ -18,7 +18,7 @@ use std::num::NonZeroUsize;
 
 use rustfft::num_complex::Complex;
 
-use super::{BLOCK, Plans, inverse_row};
+use super::{BLOCK, Plans, Real, inverse_row};
 
 /// The most threads an apply may be split across (the bound of the scene's
 /// `numerics.threads`).
@@ -65,21 +65,21 @@ pub(crate) fn periodic_threads(threads: usize, cells: usize) -> usize {
 }
 
 /// The per-thread state and the shared row-spectrum buffer of a split apply.
-pub(crate) struct Split {
-    workers: Vec<Worker>,
-    spectra: Vec<Complex<f64>>,
+pub(crate) struct Split<T: Real = f64> {
+    workers: Vec<Worker<T>>,
+    spectra: Vec<Complex<T>>,
     /// Half-spectrum row length `row_len / 2 + 1`.
     half: usize,
 }
 
 /// The product of column `k` of the spectrum with the kernel's, in place.
-pub(crate) type ColumnProduct<'a> = &'a (dyn Fn(usize, &mut [Complex<f64>]) + Sync);
+pub(crate) type ColumnProduct<'a, T> = &'a (dyn Fn(usize, &mut [Complex<T>]) + Sync);
 
 /// One thread's scratch.
-struct Worker {
-    plans: Plans,
-    row_real: Vec<f64>,
-    row_block: Vec<Complex<f64>>,
+struct Worker<T: Real> {
+    plans: Plans<T>,
+    row_real: Vec<T>,
+    row_block: Vec<Complex<T>>,
 }
 
 /// The sizes of the apply, shared by every thread.
@@ -92,16 +92,16 @@ struct Shape {
     stride: usize,
 }
 
-impl Split {
+impl<T: Real> Split<T> {
     /// Scratch for `threads` threads on `ny` rows transformed at length `row_len` (the
     /// grid's `nx`, or more when zero-padded), with copies of `plans`' transforms.
-    pub(crate) fn new(threads: usize, plans: &Plans, row_len: usize, ny: usize) -> Self {
+    pub(crate) fn new(threads: usize, plans: &Plans<T>, row_len: usize, ny: usize) -> Self {
         let half = row_len / 2 + 1;
         Self {
             workers: (0..threads)
                 .map(|_| Worker {
                     plans: plans.clone(),
-                    row_real: vec![0.0; row_len],
+                    row_real: vec![T::default(); row_len],
                     row_block: vec![Complex::default(); BLOCK * half],
                 })
                 .collect(),
@@ -122,8 +122,8 @@ impl Split {
     pub(crate) fn apply(
         &mut self,
         (nx, ny, col_len, stride): (usize, usize, usize, usize),
-        product: ColumnProduct,
-        columns: &mut [Complex<f64>],
+        product: ColumnProduct<T>,
+        columns: &mut [Complex<T>],
         input: &[f64],
         output: &mut [f64],
     ) {
@@ -184,16 +184,15 @@ where
     });
 }
 
-impl Worker {
+impl<T: Real> Worker<T> {
     /// Real-to-complex transforms of the zero-padded rows of `input` into `spectra`.
-    fn forward_rows(&mut self, shape: Shape, input: &[f64], spectra: &mut [Complex<f64>]) {
+    fn forward_rows(&mut self, shape: Shape, input: &[f64], spectra: &mut [Complex<T>]) {
         let nx = shape.nx;
         for (row, out) in input
             .chunks_exact(nx)
             .zip(spectra.chunks_exact_mut(shape.half))
         {
-            self.row_real[..nx].copy_from_slice(row);
-            self.row_real[nx..].fill(0.0);
+            load_row(&mut self.row_real, row);
             self.plans
                 .row_forward
                 .process_with_scratch(&mut self.row_real, out, &mut self.plans.real_scratch)
@@ -207,10 +206,10 @@ impl Worker {
     fn columns(
         &mut self,
         shape: Shape,
-        product: ColumnProduct,
-        spectra: &[Complex<f64>],
+        product: ColumnProduct<T>,
+        spectra: &[Complex<T>],
         first: usize,
-        columns: &mut [Complex<f64>],
+        columns: &mut [Complex<T>],
     ) {
         let (ny, half, stride) = (shape.ny, shape.half, shape.stride);
         for (b, block) in columns.chunks_mut(BLOCK * stride).enumerate() {
@@ -240,7 +239,7 @@ impl Worker {
     fn inverse_rows(
         &mut self,
         shape: Shape,
-        columns: &[Complex<f64>],
+        columns: &[Complex<T>],
         first: usize,
         output: &mut [f64],
     ) {
@@ -256,14 +255,23 @@ impl Worker {
             }
             for (slot, out) in rows.chunks_exact_mut(nx).enumerate() {
                 let row = &mut self.row_block[slot * half..(slot + 1) * half];
-                if self.row_real.len() == nx {
-                    // Unpadded: the row transforms straight into the output.
-                    inverse_row(&mut self.plans, row, out);
-                } else {
-                    inverse_row(&mut self.plans, row, &mut self.row_real);
-                    out.copy_from_slice(&self.row_real[..nx]);
-                }
+                inverse_row(&mut self.plans, row, &mut self.row_real);
+                store_row(out, &self.row_real);
             }
         }
     }
+}
+
+/// `row` into the start of `padded` in its precision, the rest of `padded` zero.
+pub(crate) fn load_row<T: Real>(padded: &mut [T], row: &[f64]) {
+    let (head, tail) = padded.split_at_mut(row.len());
+    head.iter_mut()
+        .zip(row)
+        .for_each(|(p, &v)| *p = T::narrow(v));
+    tail.fill(T::default());
+}
+
+/// The first `out.len()` values of `real` into `out`.
+pub(crate) fn store_row<T: Real>(out: &mut [f64], real: &[T]) {
+    out.iter_mut().zip(real).for_each(|(o, &v)| *o = v.widen());
 }
