@@ -493,6 +493,13 @@ mod tests {
                 split.apply(&input, &mut b);
                 assert_eq!(a, b);
             }
+            // And in single precision, the split's own code path for each type.
+            let mut one = DcFft::<f32>::of_sum(&normal, &coupling);
+            let mut split = DcFft::<f32>::of_sum(&normal, &coupling).threaded(threads);
+            let (mut a, mut b) = (vec![0.0; grid.len()], vec![0.0; grid.len()]);
+            one.apply(&input, &mut a);
+            split.apply(&input, &mut b);
+            assert_eq!(a, b);
         }
     }
 

@@ -394,6 +394,12 @@ mod tests {
                     split.apply(&input, &mut b);
                     assert_eq!(a, b, "{nx}x{ny} on {threads} threads");
                 }
+                let mut one = FourierInverse::<f32>::of(&k);
+                let mut split = FourierInverse::<f32>::of(&k).threaded(threads);
+                let (mut a, mut b) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
+                one.apply(&input, &mut a);
+                split.apply(&input, &mut b);
+                assert_eq!(a, b, "{nx}x{ny} on {threads} threads, f32");
             }
         }
     }
