@@ -15,8 +15,6 @@
 //! 39%); the whole grid's apply had taken a fifth of the run's samples in a `perf` profile,
 //! and the run's CPU time fell by about a tenth (medians of 5 alternating runs).
 
-use std::collections::HashMap;
-
 use super::error::ContactError;
 use super::grid::{Grid, Window};
 use super::operator::Operator;
@@ -36,6 +34,13 @@ pub const MARGIN_FRACTION: f64 = 0.03;
 pub const MIN_MARGIN: usize = 4;
 /// Growth of a window that turned out too small.
 const ENLARGE: f64 = 1.5;
+/// The window shapes' solvers kept, the least recently used dropped beyond: each holds its
+/// operator's spectra and buffers, and a long rough run meets many shapes as its track
+/// widens (the 2 um example of `docs/scene.md` over 3600 cycles peaked at 1.56 GB keeping
+/// them all). Counted once with a build that logged each solve's and check's shape: 13
+/// shapes over the 4 um rough disc's 600 cycles (1198 lookups), 8 over the 2 um example's
+/// first 300 (597); keeping 4 built no solver twice on either, keeping 2 built 3 and 2 more.
+const KEPT_SHAPES: usize = 4;
 
 /// The window around the loaded cells of `pressure`: their bounding box plus the margin,
 /// each side rounded up to an FFT-friendly size. `None` if no cell is loaded.
@@ -63,12 +68,14 @@ fn enlarged(window: &Window, grid: &Grid) -> Window {
 }
 
 /// The contact solver of one grid, working on windows around the last contact. It builds
-/// the solvers it needs (one for the whole grid, one per window shape) with `factory`.
+/// the solvers it needs (one for the whole grid, one per window shape, the last
+/// [`KEPT_SHAPES`] kept) with `factory`.
 pub struct WindowedSolver<F> {
     grid: Grid,
     factory: F,
     full: Box<dyn ContactSolver>,
-    by_shape: HashMap<(usize, usize), Box<dyn ContactSolver>>,
+    /// The solvers of the shapes used last, the most recent last.
+    by_shape: Vec<((usize, usize), Box<dyn ContactSolver>)>,
     /// Where the next solve looks first: around the last solved contact.
     focus: Option<Window>,
     /// The shares of the grid solved and checked, summed over solves.
@@ -114,7 +121,7 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
             grid,
             full: factory(&grid),
             factory,
-            by_shape: HashMap::new(),
+            by_shape: Vec::new(),
             focus: None,
             fractions: WindowFractions::default(),
         }
@@ -254,14 +261,22 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         Ok((displacement, scale))
     }
 
-    /// The solver of `window`'s shape, built on first use.
+    /// The solver of `window`'s shape: kept from its last use, or built, dropping the least
+    /// recently used beyond [`KEPT_SHAPES`].
     fn solver_of(&mut self, window: &Window) -> Result<&mut Box<dyn ContactSolver>, ContactError> {
-        let sub = Grid::new(window.nx, window.ny, self.grid.dx, self.grid.dy)?;
-        let factory = &mut self.factory;
-        Ok(self
-            .by_shape
-            .entry((window.nx, window.ny))
-            .or_insert_with(|| factory(&sub)))
+        let shape = (window.nx, window.ny);
+        let entry = match self.by_shape.iter().position(|(s, _)| *s == shape) {
+            Some(at) => self.by_shape.remove(at),
+            None => {
+                let sub = Grid::new(window.nx, window.ny, self.grid.dx, self.grid.dy)?;
+                if self.by_shape.len() == KEPT_SHAPES {
+                    self.by_shape.remove(0);
+                }
+                (shape, (self.factory)(&sub))
+            }
+        };
+        self.by_shape.push(entry);
+        Ok(&mut self.by_shape.last_mut().expect("pushed above").1)
     }
 }
 
@@ -327,6 +342,37 @@ mod tests {
                 Box::new(NormalSolver::new(DcFft::new(&normal)))
             }
         }
+    }
+
+    #[test]
+    fn the_least_recently_used_shape_is_dropped_beyond_those_kept() {
+        let built = std::rc::Rc::new(std::cell::Cell::new(0));
+        let counter = std::rc::Rc::clone(&built);
+        let mut inner = factory(false);
+        let grid = Grid::square(64, 64e-6).expect("valid");
+        let mut solver = WindowedSolver::new(grid, move |g: &Grid| {
+            counter.set(counter.get() + 1);
+            inner(g)
+        });
+        let mut use_shape = |n: usize| {
+            let window = Window::centred(&grid, (32, 32), n, n);
+            solver.solver_of(&window).expect("valid");
+        };
+        // The whole grid's, then one per new shape until the kept shapes are full; the
+        // first one again is kept.
+        let sizes: Vec<usize> = (0..=KEPT_SHAPES).map(|k| 8 + 4 * k).collect();
+        for &n in &sizes[..KEPT_SHAPES] {
+            use_shape(n);
+        }
+        use_shape(sizes[0]);
+        assert_eq!(built.get(), 1 + KEPT_SHAPES);
+        // The first was used last, so one more shape drops the second, the least recent,
+        // which is then built anew; the first is still kept.
+        use_shape(sizes[KEPT_SHAPES]);
+        use_shape(sizes[0]);
+        assert_eq!(built.get(), 2 + KEPT_SHAPES);
+        use_shape(sizes[1]);
+        assert_eq!(built.get(), 3 + KEPT_SHAPES);
     }
 
     /// The paper's ball at 5 N over 96 cells across 300 um: the grid, Hertz's contact and
