@@ -36,8 +36,9 @@ pub const MIN_MARGIN: usize = 4;
 const ENLARGE: f64 = 1.5;
 /// The window shapes' solvers kept, the least recently used dropped beyond: each holds its
 /// operator's spectra and buffers, and a long rough run meets many shapes as its track
-/// widens (the 2 um example of `docs/scene.md` over 3600 cycles peaked at 1.56 GB keeping
-/// them all). Counted once with a build that logged each solve's and check's shape: 13
+/// widens: the 2 um example of `docs/scene.md` over 3600 cycles peaked at 1.56 GB keeping
+/// them all, 687 MB keeping 4, with the same results (`/usr/bin/time -f %M tribosim run`).
+/// Counted once with a build that logged each solve's and check's shape: 13
 /// shapes over the 4 um rough disc's 600 cycles (1198 lookups), 8 over the 2 um example's
 /// first 300 (597); keeping 4 built no solver twice on either, keeping 2 built 3 and 2 more.
 const KEPT_SHAPES: usize = 4;
