@@ -47,5 +47,5 @@ pub use solver::{NormalSolver, UPDATE_ROUNDOFF, solve};
 pub use transform::Real;
 pub(crate) use transform::{BLOCK, Plans, STRIDE_PAD};
 pub use transform::{MAX_SPLIT_THREADS, SPLIT_MIN_CELLS, fft_friendly, split_threads};
-pub use window::{MARGIN_FRACTION, MIN_MARGIN, WindowFractions, WindowedSolver};
+pub use window::{KEPT_SHAPES, MARGIN_FRACTION, MIN_MARGIN, WindowFractions, WindowedSolver};
 pub use worn_rows::{WornRows, add_worn_rows};

@@ -41,7 +41,7 @@ const ENLARGE: f64 = 1.5;
 /// Counted once with a build that logged each solve's and check's shape: 13
 /// shapes over the 4 um rough disc's 600 cycles (1198 lookups), 8 over the 2 um example's
 /// first 300 (597); keeping 4 built no solver twice on either, keeping 2 built 3 and 2 more.
-const KEPT_SHAPES: usize = 4;
+pub const KEPT_SHAPES: usize = 4;
 
 /// The window around the loaded cells of `pressure`: their bounding box plus the margin,
 /// each side rounded up to an FFT-friendly size. `None` if no cell is loaded.

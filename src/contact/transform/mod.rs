@@ -18,11 +18,11 @@ use rustfft::num_complex::Complex;
 pub(crate) use plans::Plans;
 pub use plans::fft_friendly;
 pub use split::{MAX_SPLIT_THREADS, SPLIT_MIN_CELLS, split_threads};
-pub(crate) use split::{Split, load_row, periodic_threads, store_row};
+pub(crate) use split::{Split, periodic_threads};
 
 /// The floating-point type a transform computes in: `f64`, or `f32` where a solve's
-/// tolerance leaves room for its round-off (`DcFft::in_single_precision`). Fields go in and
-/// come out as `f64` either way.
+/// tolerance leaves room for its round-off (`SINGLE_PRECISION_MIN_TOLERANCE`). Fields go in
+/// and come out as `f64` either way (`load_row`, `store_row`).
 pub trait Real: rustfft::FftNum + rustfft::num_traits::NumAssign + Default {
     /// `value` rounded to this type.
     fn narrow(value: f64) -> Self;
@@ -68,4 +68,18 @@ pub(crate) fn inverse_row<T: Real>(plans: &mut Plans<T>, row: &mut [Complex<T>],
         .row_inverse
         .process_with_scratch(row, real, &mut plans.real_scratch)
         .expect("imaginary parts of DC and Nyquist zeroed above");
+}
+
+/// `row` into the start of `padded` in its precision, the rest of `padded` zero.
+pub(crate) fn load_row<T: Real>(padded: &mut [T], row: &[f64]) {
+    let (head, tail) = padded.split_at_mut(row.len());
+    head.iter_mut()
+        .zip(row)
+        .for_each(|(p, &v)| *p = T::narrow(v));
+    tail.fill(T::default());
+}
+
+/// The first `out.len()` values of `real` into `out`.
+pub(crate) fn store_row<T: Real>(out: &mut [f64], real: &[T]) {
+    out.iter_mut().zip(real).for_each(|(o, &v)| *o = v.widen());
 }

@@ -11,14 +11,14 @@
 //!
 //! The row spectra go through a row-major buffer (`spectra`, `ny` x `nx + 1` complex
 //! values) between the forward row pass and the column pass, which the one-thread apply does
-//! not need: 16 bytes per cell, allocated only when the operator runs on more than one
-//! thread.
+//! not need: 16 bytes per cell (8 in f32), allocated only when the operator runs on more
+//! than one thread.
 
 use std::num::NonZeroUsize;
 
 use rustfft::num_complex::Complex;
 
-use super::{BLOCK, Plans, Real, inverse_row};
+use super::{BLOCK, Plans, Real, inverse_row, load_row, store_row};
 
 /// The most threads an apply may be split across (the bound of the scene's
 /// `numerics.threads`).
@@ -260,18 +260,4 @@ impl<T: Real> Worker<T> {
             }
         }
     }
-}
-
-/// `row` into the start of `padded` in its precision, the rest of `padded` zero.
-pub(crate) fn load_row<T: Real>(padded: &mut [T], row: &[f64]) {
-    let (head, tail) = padded.split_at_mut(row.len());
-    head.iter_mut()
-        .zip(row)
-        .for_each(|(p, &v)| *p = T::narrow(v));
-    tail.fill(T::default());
-}
-
-/// The first `out.len()` values of `real` into `out`.
-pub(crate) fn store_row<T: Real>(out: &mut [f64], real: &[T]) {
-    out.iter_mut().zip(real).for_each(|(o, &v)| *o = v.widen());
 }
