@@ -410,7 +410,8 @@ pub(super) const TOLERANCE: Field = Field {
           pressures are too rough to wear with",
     meaning: "Relative residual at which the contact solver stops; `auto` is 1e-6 on a \
               smooth disc, 1e-4 on a rough one and 1e-5 on the reciprocating rig \
-              (`docs/accuracy.md`).",
+              (`docs/accuracy.md`). From 1e-4 on, the contact's FFTs compute in single \
+              precision (the result's `precision` model).",
     feeds: "the bounded solve of eqs. 10-12",
 };
 
