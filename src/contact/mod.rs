@@ -33,7 +33,9 @@ pub use check::{Verification, verify};
 pub use coarse::{COARSE_TOLERANCE, COARSEST_CELLS, coarse_start, cold_start};
 pub use coupled::{CoupledSolver, solve_coupled};
 pub use error::{ContactError, ElasticConstant};
-pub use fft::{DcFft, SINGLE_PRECISION_HEADROOM, SINGLE_PRECISION_MIN_TOLERANCE};
+pub use fft::{
+    DcFft, SINGLE_PRECISION_HEADROOM, SINGLE_PRECISION_MIN_TOLERANCE, SINGLE_PRECISION_ROUNDOFF,
+};
 pub use grid::{Grid, Window};
 pub use hertz::Hertz;
 pub use influence::Kernel;

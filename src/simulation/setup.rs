@@ -6,7 +6,8 @@ use std::num::NonZeroUsize;
 
 use crate::contact::{
     ContactSolver, CoupledSolver, DcFft, ElasticPair, Grid, Hertz, Kernel, NormalSolver,
-    SINGLE_PRECISION_HEADROOM, SINGLE_PRECISION_MIN_TOLERANCE, SolverOptions, split_threads,
+    SINGLE_PRECISION_HEADROOM, SINGLE_PRECISION_MIN_TOLERANCE, SINGLE_PRECISION_ROUNDOFF,
+    SolverOptions, split_threads,
 };
 use crate::hardness::TABOR_REPRESENTATIVE_STRAIN;
 use crate::scene::{FieldWarning, Scene, SolverThreads, Switch};
@@ -325,7 +326,7 @@ fn decide_precision(models: &mut Vec<ModelChoice>, options: &SolverOptions) -> b
     let single = options.tolerance >= SINGLE_PRECISION_MIN_TOLERANCE;
     let reason = format!(
         "the contact's FFTs in {}: tolerance {:.0e} {} {SINGLE_PRECISION_MIN_TOLERANCE:.0e}, \
-         where the f32 apply's round-off (4e-7 of the largest displacement) stays below \
+         where the f32 apply's round-off ({SINGLE_PRECISION_ROUNDOFF:.0e} of the largest displacement) stays below \
          1/{SINGLE_PRECISION_HEADROOM} of the tolerance; fields, sums and the wear stay in f64",
         if single {
             "single precision (f32)"
