@@ -25,6 +25,7 @@ mod precondition;
 mod problem;
 pub mod residual;
 pub mod solver;
+mod sums;
 mod transform;
 mod window;
 pub mod worn_rows;

@@ -64,6 +64,14 @@ impl Residual {
         self.worst = self.worst.max(bound.violation(gap));
     }
 
+    /// The residual of the cells of all of `parts`.
+    pub(crate) fn merged(parts: &[Self]) -> Self {
+        parts.iter().fold(Self::default(), |all, part| Self {
+            worst: all.worst.max(part.worst),
+            scale: all.scale.max(part.scale),
+        })
+    }
+
     /// The worst violation relative to the largest displacement.
     pub(crate) fn value(&self) -> f64 {
         self.worst / self.scale
@@ -100,20 +108,38 @@ pub(crate) fn approach(
     separation: &[f64],
     cap: f64,
 ) -> f64 {
-    let mut free = (0.0, 0usize);
-    let mut loaded = (0.0, 0usize);
-    for ((&p, &u), &h) in pressure.iter().zip(displacement).zip(separation) {
-        if p > 0.0 {
-            loaded = (loaded.0 + u + h, loaded.1 + 1);
-            if p < cap {
-                free = (free.0 + u + h, free.1 + 1);
-            }
+    // Sums and counts in four lanes, each cell counted by a select, not a branch: on a
+    // rough disc the loaded and free cells interleave, and a branch per cell mispredicted.
+    // In `perf` samples of the 4 um rough disc over 600 cycles (`docs/accuracy.md`), the
+    // branchy loop was about 2% of the run.
+    let (mut free, mut free_n, mut loaded, mut loaded_n) = ([0.0; 4], [0.0; 4], [0.0; 4], [0.0; 4]);
+    let whole = pressure.len() - pressure.len() % 4;
+    let mut add = |k: usize, p: f64, level: f64| {
+        let (is_loaded, is_free) = (p > 0.0, (p > 0.0) & (p < cap));
+        loaded[k] += if is_loaded { level } else { 0.0 };
+        loaded_n[k] += if is_loaded { 1.0 } else { 0.0 };
+        free[k] += if is_free { level } else { 0.0 };
+        free_n[k] += if is_free { 1.0 } else { 0.0 };
+    };
+    for first in (0..whole).step_by(4) {
+        let range = first..first + 4;
+        let (p, u, h) = (
+            &pressure[range.clone()],
+            &displacement[range.clone()],
+            &separation[range],
+        );
+        for k in 0..4 {
+            add(k, p[k], u[k] + h[k]);
         }
     }
-    if free.1 > 0 {
-        free.0 / free.1 as f64
+    for i in whole..pressure.len() {
+        add(0, pressure[i], displacement[i] + separation[i]);
+    }
+    let total = |lanes: [f64; 4]| lanes.iter().sum::<f64>();
+    if total(free_n) > 0.0 {
+        total(free) / total(free_n)
     } else {
-        loaded.0 / loaded.1.max(1) as f64
+        total(loaded) / total(loaded_n).max(1.0)
     }
 }
 

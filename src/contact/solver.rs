@@ -70,18 +70,17 @@ use super::operator::Operator;
 use super::problem::{
     ContactProblem, ContactSolution, ContactSolver, Preconditioning, SolverOptions,
 };
-use super::residual::{Bound, Residual, approach};
 use super::worn_rows::WornRows;
 
 mod bounds;
 mod free_set;
+mod measure;
 mod progress;
-mod sums;
 
+use super::sums::{dot, dot2, free_dots, sum, update_direction};
 use bounds::{check_edges, rescale_to_load, step_cell, violator_step};
 use free_set::FreeSetCorrection;
 use progress::{Progress, restarts_conjugacy};
-use sums::{dot, dot2, free_dots, sum, update_direction};
 
 /// Relative load error accepted at convergence. Summing N^2 pressures in f64 errs by up to
 /// N^2 * 1.1e-16 in the worst case (1.2e-10 at N = 1024), typically sqrt(N^2) times that;
@@ -145,31 +144,7 @@ pub fn solve(
     } else {
         operator
     };
-    let mut state = PolonskyKeer::start(operator, problem, options, warm_start)?;
-    for iteration in 1..=options.max_iterations {
-        let delta = state.measure();
-        if state.residual <= options.tolerance {
-            match state.converged(operator, delta, iteration - 1, options.tolerance)? {
-                Some(solution) => return Ok(solution),
-                None => continue,
-            }
-        }
-        if state.progress.stalled(state.residual) && state.fall_back(operator) {
-            continue;
-        }
-        let num = state.direction(operator);
-        if num <= 0.0 {
-            state.steepest_descent(operator);
-            continue;
-        }
-        let tau = state.step_length(operator, num);
-        state.advance(operator, tau);
-    }
-    Err(ContactError::NotConverged {
-        iterations: options.max_iterations,
-        residual: state.residual,
-        tolerance: options.tolerance,
-    })
+    PolonskyKeer::start(operator, problem, options, warm_start)?.iterate(operator, options)
 }
 
 /// The state of one solve between iterations. The work vectors are allocated once, at the
@@ -303,76 +278,36 @@ impl<'a> PolonskyKeer<'a> {
         })
     }
 
-    /// One fused pass: the approach, the gap, the free mask, the gap on the free cells
-    /// (into `r`, unused until the next apply), the load, the relative residual, and the
-    /// free cells' count and sum of the old direction that [`Self::direction`] needs.
-    /// Returns the approach.
-    ///
-    /// The last two sums ride on this pass rather than taking two of their own, as the other
-    /// sums ride on [`dot2`] and [`update_direction`]: the passes are memory-bound at
-    /// N = 2048 (4.2M cells). Measured by `perf record` of `cargo test --release --test
-    /// stability_rough -- --ignored --nocapture bench_rough_solve` (a count of samples, so
-    /// load-independent): the solver's own samples per sample of the FFT library's fell
-    /// from 1.29 to 1.00 at N = 2048, a fifth of the passes' time, and from 0.50 to 0.47 on
-    /// the Hertz N = 256 solve (`--test contact -- --ignored hertz_256_solve_time`).
-    fn measure(&mut self) -> f64 {
-        let cap = self.cap;
-        let delta = approach(&self.p, &self.u, self.separation, cap);
-        let (p, u, h, t) = (&self.p[..], &self.u[..], self.separation, &self.t[..]);
-        let (g, free, r) = (&mut self.g[..], &mut self.free[..], &mut self.r[..]);
-        let (mut residual, mut load, mut free_cells) = (Residual::default(), 0.0, 0usize);
-        // The cells that joined or left the free set, for the preconditioner's correction.
-        let mut correction = self.correction.as_mut();
-        // Returns `free * t` of the cell, summed as `dot` sums (four accumulators, over
-        // slices of four so the inner loop has no bounds checks).
-        let mut cell = |i: usize,
-                        (pi, ui, hi, ti): (f64, f64, f64, f64),
-                        out: (&mut f64, &mut f64, &mut f64)| {
-            let gi = ui + hi - delta;
-            *out.0 = gi;
-            load += pi;
-            let bound = Bound::of(pi, cap);
-            residual.add(bound, ui, gi);
-            let is_free = bound == Bound::Free;
-            let fi = if is_free { 1.0 } else { 0.0 };
-            free_cells += usize::from(is_free);
-            if let Some(correction) = correction.as_mut().filter(|_| (*out.1 > 0.5) != is_free) {
-                correction.record(i, is_free);
+    /// The iterations, until the solution or the iteration limit.
+    fn iterate(
+        &mut self,
+        operator: &mut dyn Operator,
+        options: &SolverOptions,
+    ) -> Result<ContactSolution, ContactError> {
+        for iteration in 1..=options.max_iterations {
+            let delta = self.measure();
+            if self.residual <= options.tolerance {
+                match self.converged(operator, delta, iteration - 1, options.tolerance)? {
+                    Some(solution) => return Ok(solution),
+                    None => continue,
+                }
             }
-            *out.1 = fi;
-            *out.2 = fi * gi;
-            fi * ti
-        };
-        let whole = p.len() - p.len() % 4;
-        let mut acc = [0.0; 4];
-        for first in (0..whole).step_by(4) {
-            let range = first..first + 4;
-            let (p, u, h, t) = (
-                &p[range.clone()],
-                &u[range.clone()],
-                &h[range.clone()],
-                &t[range.clone()],
-            );
-            let (g, free, r) = (
-                &mut g[range.clone()],
-                &mut free[range.clone()],
-                &mut r[range],
-            );
-            for k in 0..4 {
-                let fields = (p[k], u[k], h[k], t[k]);
-                acc[k] += cell(first + k, fields, (&mut g[k], &mut free[k], &mut r[k]));
+            if self.progress.stalled(self.residual) && self.fall_back(operator) {
+                continue;
             }
+            let num = self.direction(operator);
+            if num <= 0.0 {
+                self.steepest_descent(operator);
+                continue;
+            }
+            let tau = self.step_length(operator, num);
+            self.advance(operator, tau);
         }
-        let mut tail = 0.0;
-        for i in whole..p.len() {
-            let fields = (p[i], u[i], h[i], t[i]);
-            tail += cell(i, fields, (&mut g[i], &mut free[i], &mut r[i]));
-        }
-        self.free_t = acc.iter().sum::<f64>() + tail;
-        self.free_cells = free_cells as f64;
-        self.residual = residual.value();
-        self.load = load;
-        delta
+        Err(ContactError::NotConverged {
+            iterations: options.max_iterations,
+            residual: self.residual,
+            tolerance: options.tolerance,
+        })
     }
 
     /// The residual met the tolerance. The solution, if the load is carried and `u` is fresh
@@ -529,19 +464,27 @@ impl<'a> PolonskyKeer<'a> {
         // `perf` samples of cold Hertz N = 256 solves (coarse start included), the solver's
         // own per sample of the FFT library's fell from 0.64 to 0.57.
         let (mut highest, mut load) = ([0.0f64; 4], [0.0; 4]);
-        for i in 0..p.len() {
+        let (cells, whole) = (p.len(), p.len() - p.len() % 4);
+        let mut cell = |i: usize, lane: usize| {
             if let Some(by) = step_cell(&mut p[i], (t[i], g[i]), (tau, rate, cap), &mut entered) {
                 changes.push((i, by));
             }
             u[i] -= tau * r[i];
-            let (pi, lane) = (p[i], i % 4);
+            let pi = p[i];
             highest[lane] = if pi > highest[lane] {
                 pi
             } else {
                 highest[lane]
             };
             load[lane] += pi;
+        };
+        // Lanes fixed per position in slices of four, so they stay in registers.
+        for first in (0..whole).step_by(4) {
+            for lane in 0..4 {
+                cell(first + lane, lane);
+            }
         }
+        (whole..cells).for_each(|i| cell(i, 0));
         let highest = highest.iter().fold(0.0f64, |m, &v| m.max(v));
         let load = load.iter().sum::<f64>();
         self.updates += 1;

@@ -23,6 +23,7 @@
 //! preconditioner stays `K`'s inverse.
 
 use super::operator::{Operator, Preconditioner};
+use super::sums::sum;
 
 /// An operator `K` plus the wear `W` its pressure wears in the passes of one solve.
 pub struct WornRows<'a> {
@@ -87,7 +88,7 @@ pub fn add_worn_rows(per_row_sum: f64, nx: usize, pressure: &[f64], output: &mut
         return;
     }
     for (row, out) in pressure.chunks_exact(nx).zip(output.chunks_exact_mut(nx)) {
-        let worn = per_row_sum * row.iter().sum::<f64>();
+        let worn = per_row_sum * sum(row);
         if worn != 0.0 {
             out.iter_mut().for_each(|u| *u += worn);
         }

@@ -5,7 +5,7 @@
 /// Dot product with four independent accumulators: a single running sum is a serial chain
 /// of additions (kept on the stack), a third of the solver's own time at N = 256 in a profile of
 /// `tribosim bench contact`.
-pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let mut acc = [0.0; 4];
     let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
     let tail: f64 = a4
@@ -24,7 +24,7 @@ pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
 
 /// `(a.b, c.d)` in one pass, each summed as [`dot`] sums it (so equal to two calls to the
 /// last bit): the grids are read once where two passes read `t` or `z` twice.
-pub(super) fn dot2((a, b): (&[f64], &[f64]), (c, d): (&[f64], &[f64])) -> (f64, f64) {
+pub(crate) fn dot2((a, b): (&[f64], &[f64]), (c, d): (&[f64], &[f64])) -> (f64, f64) {
     let (mut ab, mut cd) = ([0.0; 4], [0.0; 4]);
     let whole = a.len() - a.len() % 4;
     for first in (0..whole).step_by(4) {
@@ -49,7 +49,7 @@ pub(super) fn dot2((a, b): (&[f64], &[f64]), (c, d): (&[f64], &[f64])) -> (f64, 
 
 /// `(sum free r z, sum free z)` in one pass, each summed as [`dot`] sums: [`dot2`]'s sums
 /// where `r` holds values off the free set that must not count.
-pub(super) fn free_dots(free: &[f64], r: &[f64], z: &[f64]) -> (f64, f64) {
+pub(crate) fn free_dots(free: &[f64], r: &[f64], z: &[f64]) -> (f64, f64) {
     let (mut rz, mut fz) = ([0.0; 4], [0.0; 4]);
     let whole = free.len() - free.len() % 4;
     for first in (0..whole).step_by(4) {
@@ -71,7 +71,7 @@ pub(super) fn free_dots(free: &[f64], r: &[f64], z: &[f64]) -> (f64, f64) {
 
 /// `t = free (source + beta t - mean)`, the conjugate direction over the free cells,
 /// returning `g.t` summed as [`dot`] sums it, in the same pass.
-pub(super) fn update_direction(
+pub(crate) fn update_direction(
     t: &mut [f64],
     source: &[f64],
     free: &[f64],
@@ -105,7 +105,7 @@ pub(super) fn update_direction(
 }
 
 /// Sum with four independent accumulators, as [`dot`].
-pub(super) fn sum(a: &[f64]) -> f64 {
+pub(crate) fn sum(a: &[f64]) -> f64 {
     let mut acc = [0.0; 4];
     let chunks = a.chunks_exact(4);
     let tail: f64 = chunks.remainder().iter().sum();
