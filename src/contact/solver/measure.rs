@@ -10,8 +10,9 @@ impl PolonskyKeer<'_> {
     /// Returns the approach.
     ///
     /// The last two sums ride on this pass rather than taking two of their own, as the other
-    /// sums ride on [`dot2`] and [`update_direction`]: the passes are memory-bound at
-    /// N = 2048 (4.2M cells). Measured by `perf record` of `cargo test --release --test
+    /// sums ride on [`dot2`](crate::contact::sums::dot2) and
+    /// [`update_direction`](crate::contact::sums::update_direction): the passes are
+    /// memory-bound at N = 2048 (4.2M cells). Measured by `perf record` of `cargo test --release --test
     /// stability_rough -- --ignored --nocapture bench_rough_solve` (a count of samples, so
     /// load-independent): the solver's own samples per sample of the FFT library's fell
     /// from 1.29 to 1.00 at N = 2048, a fifth of the passes' time, and from 0.50 to 0.47 on
