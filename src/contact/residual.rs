@@ -108,18 +108,19 @@ pub(crate) fn approach(
     separation: &[f64],
     cap: f64,
 ) -> f64 {
-    // Sums and counts in four lanes, each cell counted by a select, not a branch: on a
-    // rough disc the loaded and free cells interleave, and a branch per cell mispredicted.
-    // In `perf` samples of the 4 um rough disc over 600 cycles (`docs/accuracy.md`), the
-    // branchy loop was about 2% of the run.
+    // Sums and counts in four lanes, each cell's membership a 0/1 factor (the level is
+    // finite): on a rough disc the loaded and free cells interleave, and a branch per cell
+    // mispredicted. In `perf` samples of the 4 um rough disc over 600 cycles
+    // (`docs/accuracy.md`), the branchy loop was about 2% of the run.
     let (mut free, mut free_n, mut loaded, mut loaded_n) = ([0.0; 4], [0.0; 4], [0.0; 4], [0.0; 4]);
     let whole = pressure.len() - pressure.len() % 4;
     let mut add = |k: usize, p: f64, level: f64| {
-        let (is_loaded, is_free) = (p > 0.0, (p > 0.0) & (p < cap));
-        loaded[k] += if is_loaded { level } else { 0.0 };
-        loaded_n[k] += if is_loaded { 1.0 } else { 0.0 };
-        free[k] += if is_free { level } else { 0.0 };
-        free_n[k] += if is_free { 1.0 } else { 0.0 };
+        let is_loaded = if p > 0.0 { 1.0 } else { 0.0 };
+        let is_free = if p < cap { is_loaded } else { 0.0 };
+        loaded[k] += is_loaded * level;
+        loaded_n[k] += is_loaded;
+        free[k] += is_free * level;
+        free_n[k] += is_free;
     };
     for first in (0..whole).step_by(4) {
         let range = first..first + 4;

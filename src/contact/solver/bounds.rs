@@ -50,26 +50,32 @@ pub(super) fn rescale_to_load(pressure: &mut [f64], cap: f64, target: f64, raw_g
 }
 
 /// The load of the capped cells, the load of the free ones and their count, in four lanes
-/// with each cell counted by a select, not a branch: on a rough disc the bounds interleave
-/// cell by cell, and the branchy loop with one running sum was about 5% of the 4 um disc's
-/// run in `perf` samples (`docs/accuracy.md`, "Rough wear: where the time goes").
+/// with each cell's bound a 0/1 factor: on a rough disc the bounds interleave cell by cell,
+/// and the branchy loop with one running sum was about 5% of the 4 um disc's run in `perf`
+/// samples (`docs/accuracy.md`, "Rough wear: the solver's passes"). Selects in place of
+/// the factors compiled to branches again: 0.993 of the branchy loop's CPU time against
+/// 0.960 (`scripts/rough_ab.py`, 5 pairs each).
 fn bound_sums(pressure: &[f64], cap: f64) -> (f64, f64, f64) {
     let (mut capped, mut free, mut count) = ([0.0; 4], [0.0; 4], [0.0; 4]);
     let chunks = pressure.chunks_exact(4);
     let tail = chunks.remainder();
     let mut add = |k: usize, p: f64| {
-        // Selects, not products with a 0/1 factor: without yielding the cap is infinite.
-        let is_free = (p > 0.0) & (p < cap);
-        capped[k] += if p >= cap { cap } else { 0.0 };
-        free[k] += if is_free { p } else { 0.0 };
-        count[k] += if is_free { 1.0 } else { 0.0 };
+        let at_cap = if p >= cap { 1.0 } else { 0.0 };
+        let is_free = if (p > 0.0) & (p < cap) { 1.0 } else { 0.0 };
+        capped[k] += at_cap;
+        free[k] += is_free * p;
+        count[k] += is_free;
     };
     for x in chunks {
         x.iter().enumerate().for_each(|(k, &p)| add(k, p));
     }
     tail.iter().for_each(|&p| add(0, p));
     let total = |lanes: [f64; 4]| lanes.iter().sum::<f64>();
-    (total(capped), total(free), total(count))
+    // Capped cells counted, then times the cap: without yielding the cap is infinite, and
+    // a factor of 0 times it is not 0.
+    let at_cap = total(capped);
+    let capped = if at_cap > 0.0 { at_cap * cap } else { 0.0 };
+    (capped, total(free), total(count))
 }
 
 fn grow_contact(pressure: &mut [f64], cap: f64, mut deficit: f64, raw_gap: &[f64]) {
