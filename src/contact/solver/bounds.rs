@@ -52,9 +52,10 @@ pub(super) fn rescale_to_load(pressure: &mut [f64], cap: f64, target: f64, raw_g
 /// The load of the capped cells, the load of the free ones and their count, in four lanes
 /// with each cell's bound a 0/1 factor: on a rough disc the bounds interleave cell by cell,
 /// and the branchy loop with one running sum was about 5% of the 4 um disc's run in `perf`
-/// samples (`docs/accuracy.md`, "Rough wear: the solver's passes"). Selects in place of
-/// the factors compiled to branches again: 0.993 of the branchy loop's CPU time against
-/// 0.960 (`scripts/rough_ab.py`, 5 pairs each).
+/// samples (`docs/accuracy.md`, "Rough wear: the solver's passes, and the levers measured
+/// and not taken"). Selects in place of the factors compiled to branches again: the run
+/// took 0.993 of 29571a1's CPU time with them, 0.975 with the factors
+/// (`scripts/rough_ab.py`, 5 pairs each).
 fn bound_sums(pressure: &[f64], cap: f64) -> (f64, f64, f64) {
     let (mut capped, mut free, mut count) = ([0.0; 4], [0.0; 4], [0.0; 4]);
     let chunks = pressure.chunks_exact(4);
