@@ -14,7 +14,8 @@ use common::physics::{
 };
 use tribosim::contact::{
     ContactError, ContactProblem, ContactSolution, DcFft, DenseOperator, ElasticConstant, Grid,
-    Kernel, Material, Operator, SolverOptions, UPDATE_ROUNDOFF, solve, verify,
+    Kernel, KnownStart, Material, Operator, SolverOptions, UPDATE_ROUNDOFF, WornRows, solve,
+    solve_known, verify,
 };
 
 struct Solved {
@@ -481,5 +482,77 @@ fn an_updated_displacement_drifts_from_a_fresh_one_by_round_off_only() {
                 solution.iterations
             );
         }
+    }
+}
+
+/// The paper's sphere on 128 cells at 5 N under a 900 MPa cap, with a pass's wear of
+/// `pass_wear_per_pa` on every row (about 0.3 um on the most loaded row at 5e-14 m/Pa,
+/// against 0.6 um of approach: the term moves the answer).
+fn worn_problem(s: &Solved, pass_wear_per_pa: f64) -> ContactProblem<'_> {
+    ContactProblem {
+        grid: s.grid,
+        separation: &s.separation,
+        load_n: LOAD_N,
+        yield_pressure_pa: 900e6,
+        pass_wear_per_pa,
+    }
+}
+
+#[test]
+fn a_start_of_known_displacement_skips_the_start_apply_only() {
+    let s = solve_sphere(128, DOMAIN_M, LOAD_N, 900e6).expect("converges");
+    let mut op = DcFft::new(&Kernel::normal(&s.grid, &paper_pair()));
+    let problem = worn_problem(&s, 5e-14);
+    let options = SolverOptions::default();
+    let start = &s.solution.pressure;
+    let from_pressure = solve(&mut op, &problem, &options, Some(start)).expect("converges");
+    let mut displacement = vec![0.0; start.len()];
+    op.apply(start, &mut displacement);
+    let known = KnownStart {
+        pressure: start,
+        displacement: &displacement,
+    };
+    let from_known = solve_known(&mut op, &problem, &options, known).expect("converges");
+    assert!(from_known.iterations > 2, "the wear moved the answer");
+    // The same path: only the start's apply is left out.
+    assert_eq!(from_known.iterations, from_pressure.iterations);
+    assert_eq!(
+        from_known.operator_applies + 1,
+        from_pressure.operator_applies
+    );
+    let mut worn = WornRows::new(&mut op, problem.pass_wear_per_pa, s.grid.dx);
+    let check = verify(&mut worn, &problem, &from_known);
+    assert!(
+        check.passes(check_tolerance(&options), LOAD_CHECK),
+        "{check:?}"
+    );
+}
+
+#[test]
+fn a_known_start_off_the_load_or_the_cap_is_applied_afresh() {
+    let s = solve_sphere(128, DOMAIN_M, LOAD_N, 900e6).expect("converges");
+    let mut op = DcFft::new(&Kernel::normal(&s.grid, &paper_pair()));
+    let options = SolverOptions::default();
+    let displacement = vec![0.0; s.grid.len()];
+    // A wrong displacement: were it used, the solve would end elsewhere or fail the check.
+    let known = KnownStart {
+        pressure: &s.solution.pressure,
+        displacement: &displacement,
+    };
+    let lower_cap = ContactProblem {
+        yield_pressure_pa: 850e6,
+        ..worn_problem(&s, 0.0)
+    };
+    let more_load = ContactProblem {
+        load_n: 1.01 * LOAD_N,
+        ..worn_problem(&s, 0.0)
+    };
+    for problem in [lower_cap, more_load] {
+        let solution = solve_known(&mut op, &problem, &options, known).expect("converges");
+        let check = verify(&mut op, &problem, &solution);
+        assert!(
+            check.passes(check_tolerance(&options), LOAD_CHECK),
+            "{check:?}"
+        );
     }
 }

@@ -13,8 +13,9 @@ use common::physics::{
     DOMAIN_M, LOAD_CHECK, LOAD_N, check_tolerance, paper_hertz as hertz, paper_pair,
 };
 use tribosim::contact::{
-    ContactProblem, ContactSolution, DcFft, DenseOperator, ElasticPair, Grid, Kernel, Material,
-    Operator, SolverOptions, SumOperator, solve_coupled, verify,
+    ContactProblem, ContactSolution, ContactSolver, CoupledSolver, DcFft, DenseOperator,
+    ElasticPair, Grid, Kernel, Material, Operator, SolverOptions, SumOperator, WindowedSolver,
+    WornRows, solve_coupled, verify,
 };
 
 /// Materials with nu1 = nu2 = 0 and G2 = 3 G1 give delta_nu = (G2 - G1) / (G1 + G2) = 0.5.
@@ -149,4 +150,65 @@ fn coupled_solver_takes_the_direct_route_when_it_converges_and_falls_back_when_n
             solution.iterations
         );
     }
+}
+
+/// The windowed solver of the paper's pair with its coupling term (friction 0.45) on
+/// `grid`, its first solve focused on the loaded cells of `focus`.
+fn windowed(
+    grid: Grid,
+    focus: &[f64],
+) -> WindowedSolver<impl FnMut(&Grid) -> Box<dyn ContactSolver>> {
+    let pair = paper_pair();
+    let mut solver = WindowedSolver::new(grid, move |g: &Grid| -> Box<dyn ContactSolver> {
+        let normal = Kernel::normal(g, &pair);
+        Box::new(CoupledSolver::new(
+            &normal,
+            &Kernel::coupling(g, &pair, 0.45),
+        ))
+    });
+    solver.focus_on(focus);
+    solver
+}
+
+#[test]
+fn a_solve_from_the_checked_pressure_starts_from_the_checks_displacement() {
+    // The paper's first cycle (cap 2455 MPa / 2.8) in a window, then the next cycle's
+    // contact (a higher cap, a pass's wear on every row) from its pressure.
+    let pair = paper_pair();
+    let grid = Grid::square(96, 300e-6).expect("valid");
+    let separation = grid.sample(|x, y| hertz(&pair, LOAD_N).separation_m(x, y));
+    let problem = |yield_pressure_pa, pass_wear_per_pa| ContactProblem {
+        grid,
+        separation: &separation,
+        load_n: LOAD_N,
+        yield_pressure_pa,
+        pass_wear_per_pa,
+    };
+    let (first, next) = (problem(2455e6 / 2.8, 0.0), problem(2500e6 / 2.8, 5e-14));
+    let options = SolverOptions::default();
+    let a = hertz(&pair, LOAD_N).contact_radius_m();
+    let disc = grid.sample(|x, y| if x.hypot(y) < a { 1.0 } else { 0.0 });
+    let mut carrying = windowed(grid, &disc);
+    let start = carrying.solve(&first, &options, None).expect("converges");
+    let carried = carrying
+        .solve(&next, &options, Some(&start.pressure))
+        .expect("converges");
+    // A solver that checked nothing yet, in the same window: it applies to start.
+    let mut fresh = windowed(grid, &start.pressure);
+    let applied = fresh
+        .solve(&next, &options, Some(&start.pressure))
+        .expect("converges");
+    assert!(carried.iterations > 2, "the next cycle's contact moved");
+    assert_eq!(carried.iterations, applied.iterations);
+    assert_eq!(carried.operator_applies + 1, applied.operator_applies);
+    let mut full = CoupledSolver::new(
+        &Kernel::normal(&grid, &pair),
+        &Kernel::coupling(&grid, &pair, 0.45),
+    );
+    let mut worn = WornRows::new(full.operator(), next.pass_wear_per_pa, grid.dx);
+    let check = verify(&mut worn, &next, &carried);
+    assert!(
+        check.passes(check_tolerance(&options), LOAD_CHECK),
+        "{check:?}"
+    );
 }

@@ -22,9 +22,9 @@ use super::error::ContactError;
 use super::fft::DcFft;
 use super::influence::Kernel;
 use super::operator::Operator;
-use super::problem::{ContactProblem, ContactSolution, ContactSolver, SolverOptions};
+use super::problem::{ContactProblem, ContactSolution, ContactSolver, KnownStart, SolverOptions};
 use super::residual::{approach, complementarity_residual};
-use super::solver::solve;
+use super::solver::{solve, solve_known};
 use super::transform::Real;
 
 /// Outer iterations allowed; each is a warm-started inner solve.
@@ -211,13 +211,54 @@ impl<T: Real> ContactSolver for CoupledSolver<T> {
         options: &SolverOptions,
         warm_start: Option<&[f64]>,
     ) -> Result<ContactSolution, ContactError> {
+        self.solve_from(problem, options, warm_start, None)
+    }
+
+    /// On the direct route the known displacement is the summed operator's, and the solve
+    /// skips its start's apply; the fixed point starts from the pressure alone.
+    fn solve_known(
+        &mut self,
+        problem: &ContactProblem,
+        options: &SolverOptions,
+        start: KnownStart<'_>,
+    ) -> Result<ContactSolution, ContactError> {
+        let warm = Some(start.pressure);
+        self.solve_from(problem, options, warm, Some(start.displacement))
+    }
+
+    /// The full operator `K_n + K_c`, applied in one pass.
+    fn operator(&mut self) -> &mut dyn Operator {
+        &mut self.summed
+    }
+}
+
+impl<T: Real> CoupledSolver<T> {
+    /// [`ContactSolver::solve`], from `warm_start` and, where known, its displacement under
+    /// the summed operator.
+    fn solve_from(
+        &mut self,
+        problem: &ContactProblem,
+        options: &SolverOptions,
+        warm_start: Option<&[f64]>,
+        known: Option<&[f64]>,
+    ) -> Result<ContactSolution, ContactError> {
         let mut spent = 0;
         if let Route::Direct { normal, coupling } = &self.route {
             let direct = SolverOptions {
                 max_iterations: DIRECT_BUDGET.min(options.max_iterations),
                 ..*options
             };
-            match solve(&mut self.summed, problem, &direct, warm_start) {
+            let outcome = match (warm_start, known) {
+                (Some(pressure), Some(displacement)) => {
+                    let start = KnownStart {
+                        pressure,
+                        displacement,
+                    };
+                    solve_known(&mut self.summed, problem, &direct, start)
+                }
+                _ => solve(&mut self.summed, problem, &direct, warm_start),
+            };
+            match outcome {
                 Err(ContactError::NotConverged { iterations, .. }) => {
                     spent = iterations;
                     self.route = Route::FixedPoint {
@@ -241,10 +282,5 @@ impl<T: Real> ContactSolver for CoupledSolver<T> {
         )?;
         solution.iterations += spent;
         Ok(solution)
-    }
-
-    /// The full operator `K_n + K_c`, applied in one pass.
-    fn operator(&mut self) -> &mut dyn Operator {
-        &mut self.summed
     }
 }

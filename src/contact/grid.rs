@@ -200,6 +200,11 @@ impl Window {
         self.y0..self.y0 + self.ny
     }
 
+    /// Whether every cell of `other` lies inside this window.
+    pub fn holds(&self, other: &Self) -> bool {
+        self.union(other) == *self
+    }
+
     /// Whether the window is the whole of `grid`.
     pub fn covers(&self, grid: &Grid) -> bool {
         self.nx == grid.nx && self.ny == grid.ny

@@ -44,9 +44,11 @@ pub use material::{ElasticPair, Material};
 pub use operator::{DenseOperator, NEAR_REACH, Operator, Preconditioner, SumOperator};
 pub use periodic::PeriodicHalfSpace;
 pub use precondition::FourierInverse;
-pub use problem::{ContactProblem, ContactSolution, ContactSolver, Preconditioning, SolverOptions};
+pub use problem::{
+    ContactProblem, ContactSolution, ContactSolver, KnownStart, Preconditioning, SolverOptions,
+};
 pub use residual::complementarity_residual;
-pub use solver::{NormalSolver, UPDATE_ROUNDOFF, solve};
+pub use solver::{NormalSolver, UPDATE_ROUNDOFF, solve, solve_known};
 pub use transform::Real;
 pub(crate) use transform::{BLOCK, Plans, STRIDE_PAD};
 pub use transform::{MAX_SPLIT_THREADS, SPLIT_MIN_CELLS, fft_friendly, split_threads};

@@ -170,6 +170,18 @@ impl ContactSolution {
     }
 }
 
+/// A warm start whose displacement is known: `displacement = K pressure` on the problem's
+/// grid, by the solver's own operator, without the wear term of
+/// [`ContactProblem::pass_wear_per_pa`] (which the solve adds). A solve from it skips the
+/// apply its start would otherwise take.
+#[derive(Debug, Clone, Copy)]
+pub struct KnownStart<'a> {
+    /// The start's pressure per cell, Pa.
+    pub pressure: &'a [f64],
+    /// `K pressure` per cell, m.
+    pub displacement: &'a [f64],
+}
+
 /// A way of solving contact problems on one grid.
 pub trait ContactSolver {
     /// Solves `problem`, optionally warm-started from `warm_start` (e.g. the previous wear
@@ -181,6 +193,17 @@ pub trait ContactSolver {
         options: &SolverOptions,
         warm_start: Option<&[f64]>,
     ) -> Result<ContactSolution, ContactError>;
+
+    /// Solves `problem` from `start`, whose displacement is known; a solver that cannot use
+    /// it starts from the pressure alone.
+    fn solve_known(
+        &mut self,
+        problem: &ContactProblem,
+        options: &SolverOptions,
+        start: KnownStart<'_>,
+    ) -> Result<ContactSolution, ContactError> {
+        self.solve(problem, options, Some(start.pressure))
+    }
 
     /// The full operator whose complementarity conditions the solutions meet (the normal
     /// kernel, plus the coupling kernel when the solver models it): what an independent

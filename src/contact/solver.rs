@@ -68,9 +68,9 @@ use super::error::ContactError;
 use super::grid::Grid;
 use super::operator::Operator;
 use super::problem::{
-    ContactProblem, ContactSolution, ContactSolver, Preconditioning, SolverOptions,
+    ContactProblem, ContactSolution, ContactSolver, KnownStart, Preconditioning, SolverOptions,
 };
-use super::worn_rows::WornRows;
+use super::worn_rows::{WornRows, add_worn_rows};
 
 mod bounds;
 mod free_set;
@@ -122,6 +122,15 @@ impl<O: Operator> ContactSolver for NormalSolver<O> {
         solve(&mut self.operator, problem, options, warm_start)
     }
 
+    fn solve_known(
+        &mut self,
+        problem: &ContactProblem,
+        options: &SolverOptions,
+        start: KnownStart<'_>,
+    ) -> Result<ContactSolution, ContactError> {
+        solve_known(&mut self.operator, problem, options, start)
+    }
+
     fn operator(&mut self) -> &mut dyn Operator {
         &mut self.operator
     }
@@ -136,6 +145,30 @@ pub fn solve(
     options: &SolverOptions,
     warm_start: Option<&[f64]>,
 ) -> Result<ContactSolution, ContactError> {
+    solve_from(operator, problem, options, warm_start, None)
+}
+
+/// [`solve`] from `start`, whose displacement is known: the start's apply is skipped when
+/// the start is within `[0, Y]` and at the load (the solve would otherwise have moved it).
+pub fn solve_known(
+    operator: &mut dyn Operator,
+    problem: &ContactProblem,
+    options: &SolverOptions,
+    start: KnownStart<'_>,
+) -> Result<ContactSolution, ContactError> {
+    let warm = Some(start.pressure);
+    solve_from(operator, problem, options, warm, Some(start.displacement))
+}
+
+/// [`solve`] from `warm_start` and, where known, its displacement `K warm_start` without
+/// the wear term.
+fn solve_from(
+    operator: &mut dyn Operator,
+    problem: &ContactProblem,
+    options: &SolverOptions,
+    warm_start: Option<&[f64]>,
+    known: Option<&[f64]>,
+) -> Result<ContactSolution, ContactError> {
     problem.validate(options)?;
     let mut worn;
     let operator: &mut dyn Operator = if problem.pass_wear_per_pa > 0.0 {
@@ -144,7 +177,14 @@ pub fn solve(
     } else {
         operator
     };
-    PolonskyKeer::start(operator, problem, options, warm_start)?.iterate(operator, options)
+    // The known displacement under this operator: plus the wear term, as its apply adds.
+    let known = known.zip(warm_start).map(|(displacement, pressure)| {
+        let mut u = displacement.to_vec();
+        let per_row_sum = problem.pass_wear_per_pa * problem.grid.dx;
+        add_worn_rows(per_row_sum, problem.grid.nx, pressure, &mut u);
+        u
+    });
+    PolonskyKeer::start(operator, problem, options, warm_start, known)?.iterate(operator, options)
 }
 
 /// The state of one solve between iterations. The work vectors are allocated once, at the
@@ -212,12 +252,14 @@ struct PolonskyKeer<'a> {
 
 impl<'a> PolonskyKeer<'a> {
     /// The uniform pressure, or the warm start clipped to `[0, Y]`, at the load, and its
-    /// displacement. Refuses a load the domain cannot carry at the cap.
+    /// displacement: `known` (`K warm_start` under `operator`) when the warm start needed
+    /// neither, else one apply. Refuses a load the domain cannot carry at the cap.
     fn start(
         operator: &mut dyn Operator,
         problem: &ContactProblem<'a>,
         options: &SolverOptions,
         warm_start: Option<&[f64]>,
+        known: Option<Vec<f64>>,
     ) -> Result<Self, ContactError> {
         let grid = problem.grid;
         let (n, h, cap) = (grid.len(), problem.separation, problem.yield_pressure_pa);
@@ -229,14 +271,25 @@ impl<'a> PolonskyKeer<'a> {
             });
         }
         let warm = warm_start.filter(|w| w.len() == n && w.iter().any(|&v| v > 0.0));
-        let mut p = match warm {
-            Some(w) => w.iter().map(|&v| v.clamp(0.0, cap)).collect(),
-            None => vec![target / n as f64; n],
+        let as_is = warm.filter(|w| {
+            w.iter().all(|v| (0.0..=cap).contains(v))
+                && (sum(w) - target).abs() <= LOAD_TOLERANCE * target
+        });
+        let (p, u, applies) = match (as_is, known.filter(|u| u.len() == n)) {
+            (Some(w), Some(u)) => (w.to_vec(), u, 0),
+            _ => {
+                let mut p = match warm {
+                    Some(w) => w.iter().map(|&v| v.clamp(0.0, cap)).collect(),
+                    None => vec![target / n as f64; n],
+                };
+                // Before the first apply the displacement is unknown: order by the
+                // separation alone.
+                rescale_to_load(&mut p, cap, target, h);
+                let mut u = vec![0.0; n];
+                operator.apply(&p, &mut u);
+                (p, u, 1)
+            }
         };
-        // Before the first apply the displacement is unknown: order by the separation alone.
-        rescale_to_load(&mut p, cap, target, h);
-        let mut u = vec![0.0; n];
-        operator.apply(&p, &mut u);
         let inverse = operator.preconditioner();
         let preconditioned = inverse.is_some();
         let correction = inverse
@@ -264,7 +317,7 @@ impl<'a> PolonskyKeer<'a> {
             fell_back: false,
             warm: warm.is_some(),
             restarted: false,
-            applies: 1,
+            applies,
             updates: 0,
             changes: Vec::new(),
             entry_rate: 0.0,
