@@ -269,9 +269,15 @@ def finish(args, rows):
         f"errors within {TARGETS['volume']:g} in volume and deepest point, "
         f"{TARGETS['WAC']:g} in the WAC, {TARGETS['E']:g} mV in E.\n\n"
         + table(rows)
-        + "\n\n"
-        + choice(rows)
     )
+    # The paragraph compares the candidates: only a run of them all writes it and the
+    # section (`--only` prints its rows alone).
+    if len(rows) < len(CANDIDATES):
+        print(text)
+        if args.markdown:
+            sys.exit("--markdown needs every candidate: leave out --only")
+        return
+    text += "\n\n" + choice(rows)
     print(text)
     if args.markdown:
         write_section(args.markdown, text)
