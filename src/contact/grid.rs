@@ -125,9 +125,16 @@ impl Window {
     /// does.
     pub fn bounding(grid: &Grid, test: impl Fn(usize) -> bool) -> Option<Self> {
         let (mut x0, mut x1, mut y0, mut y1) = (usize::MAX, 0, usize::MAX, 0);
-        for i in (0..grid.len()).filter(|&i| test(i)) {
-            let (ix, iy) = (i % grid.nx, i / grid.nx);
-            (x0, x1, y0, y1) = (x0.min(ix), x1.max(ix), y0.min(iy), y1.max(iy));
+        // Row by row, each row tested from both ends to its first and last hit only: a
+        // windowed solve takes two boxes a solve over the whole grid, and a test of every
+        // cell was 1% of the 4 um rough disc's `perf` samples for each.
+        for iy in 0..grid.ny {
+            let at = |ix: usize| test(iy * grid.nx + ix);
+            let Some(first) = (0..grid.nx).find(|&ix| at(ix)) else {
+                continue;
+            };
+            let last = (first..grid.nx).rfind(|&ix| at(ix)).unwrap_or(first);
+            (x0, x1, y0, y1) = (x0.min(first), x1.max(last), y0.min(iy), y1.max(iy));
         }
         (x0 != usize::MAX).then_some(Self {
             x0,

@@ -14,6 +14,10 @@
 //! `solve_window` model) that box holds 60% of the grid's cells on average (the window
 //! 39%); the whole grid's apply had taken a fifth of the run's samples in a `perf` profile,
 //! and the run's CPU time fell by about a tenth (medians of 5 alternating runs).
+//!
+//! The check also computes the next solve's window, the last contact's box plus the margin,
+//! so that a solve from the checked pressure starts from the check's displacement
+//! ([`carried`]) without an apply of its own.
 
 use super::error::ContactError;
 use super::grid::{Grid, Window};
@@ -22,6 +26,10 @@ use super::problem::{ContactProblem, ContactSolution, ContactSolver, KnownStart,
 use super::residual::displacement_scale;
 use super::transform::fft_friendly;
 use super::worn_rows::add_worn_rows;
+
+mod carried;
+
+use carried::Carried;
 
 /// Margin around the last contact's bounding box, as a fraction of its extent... Every
 /// apply of a solve costs the window's cells, and a warm solve's contact differs from the
@@ -83,29 +91,6 @@ pub struct WindowedSolver<F> {
     fractions: WindowFractions,
     /// The last check's displacement, the start of a solve from the pressure it checked.
     carried: Option<Carried>,
-}
-
-/// A checked pressure and its displacement `K p` (without the wear term) on the cells the
-/// check computed: a solve from that very pressure in a window among them needs no apply
-/// to start. On the 4 um rough disc of `docs/accuracy.md` (600 cycles, every one solved from
-/// the last pressure) that apply was 7% of the applies' cells.
-#[derive(Debug)]
-struct Carried {
-    pressure: Vec<f64>,
-    displacement: Vec<f64>,
-    over: Window,
-}
-
-impl Carried {
-    /// The known start of a solve from `warm` on `window`, if this is its displacement.
-    fn start_on(&self, grid: &Grid, window: &Window, warm: &[f64]) -> Option<Vec<f64>> {
-        let same = warm.len() == self.pressure.len()
-            && warm
-                .iter()
-                .zip(&self.pressure)
-                .all(|(a, b)| a.to_bits() == b.to_bits());
-        (same && self.over.holds(window)).then(|| window.extract(grid, &self.displacement))
-    }
 }
 
 /// The cells a windowed solver worked on, as shares of the grid's, summed over solves.
@@ -184,7 +169,8 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
     }
 
     /// Solves `problem` on `window` and checks the answer on the cells that could touch
-    /// ([`Self::reach`]). `None` when the window turned out too small.
+    /// ([`Self::reach`]), focusing the next solve on its contact. `None` when the window
+    /// turned out too small.
     fn solve_in(
         &mut self,
         window: Window,
@@ -223,8 +209,9 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         };
         let pressure = window.embed(&grid, &solution.pressure);
         // The next solve's window too, so that it starts from the check's displacement.
-        let next = around(&grid, &pressure).map_or(window, |next| next.union(&window));
-        let reach = self.reach(&next, problem.separation, &solution, options.tolerance);
+        let next = around(&grid, &pressure);
+        let both = next.map_or(window, |next| next.union(&window));
+        let reach = self.reach(&both, problem.separation, &solution, options.tolerance);
         let elastic = self.displacement_over(&reach, &pressure)?;
         let mut displacement = elastic.clone();
         add_worn_rows(
@@ -243,6 +230,7 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         if penetrates {
             return Ok(None);
         }
+        self.focus = next;
         self.carried = Some(Carried {
             pressure: pressure.clone(),
             displacement: elastic,
@@ -343,14 +331,16 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> ContactSolver for WindowedSolver
                     solved: 1.0,
                     checked: 1.0,
                 };
-                break self.full.solve(problem, options, warm_start)?;
+                let solution = self.full.solve(problem, options, warm_start)?;
+                self.focus = around(&grid, &solution.pressure);
+                break solution;
             };
+            // A window's solve focuses the next one itself, on the box its check covered.
             match self.solve_in(w, problem, options, warm_start)? {
                 Some(solution) => break solution,
                 None => window = Some(enlarged(&w, &grid)),
             }
         };
-        self.focus = around(&grid, &solution.pressure);
         Ok(solution)
     }
 

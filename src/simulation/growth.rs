@@ -2,7 +2,7 @@
 //! domain grows before the pressure reaches its edge (where the solve would fail, since the
 //! half-space outside the domain would have carried load too).
 
-use crate::contact::Grid;
+use crate::contact::{Grid, Window};
 
 use super::sizing::fitted_cells;
 
@@ -26,14 +26,18 @@ pub(super) fn near_edges(grid: &Grid, pressure: &[f64]) -> (bool, bool) {
         (GROW_AT_FRACTION * half).min(half - GROW_AT_EDGE_CELLS * d)
     };
     let (limit_x, limit_y) = (limit(grid.nx, grid.dx), limit(grid.ny, grid.dy));
-    let mut near = (false, false);
-    for (i, &p) in pressure.iter().enumerate() {
-        if p > 0.0 {
-            near.0 |= grid.x(i % grid.nx).abs() > limit_x;
-            near.1 |= grid.y(i / grid.nx).abs() > limit_y;
-        }
-    }
-    near
+    // The loaded cells farthest from the centre are on their box's edges.
+    Window::loaded(grid, pressure).map_or((false, false), |loaded| {
+        let far_x = grid
+            .x(loaded.x0)
+            .abs()
+            .max(grid.x(loaded.x0 + loaded.nx - 1).abs());
+        let far_y = grid
+            .y(loaded.y0)
+            .abs()
+            .max(grid.y(loaded.y0 + loaded.ny - 1).abs());
+        (far_x > limit_x, far_y > limit_y)
+    })
 }
 
 /// The grid with the same cells and about `GROWTH` times the side along the crowded axes, or
