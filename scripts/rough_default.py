@@ -267,8 +267,7 @@ def finish(args, rows):
         f"with the default numerics, the median of {PAIRS} alternating pairs (each pair's "
         f"ratio in brackets). Targets: at most {MOST_TIMES_SMOOTH:g} times the smooth disc; "
         f"errors within {TARGETS['volume']:g} in volume and deepest point, "
-        f"{TARGETS['WAC']:g} in the WAC, {TARGETS['E']:g} mV in E.\n\n"
-        + table(rows)
+        f"{TARGETS['WAC']:g} in the WAC, {TARGETS['E']:g} mV in E.\n\n" + table(rows)
     )
     # The paragraph compares the candidates: only a run of them all writes it and the
     # section (`--only` prints its rows alone).
