@@ -271,11 +271,13 @@ impl<'a> PolonskyKeer<'a> {
             });
         }
         let warm = warm_start.filter(|w| w.len() == n && w.iter().any(|&v| v > 0.0));
+        let known = known.filter(|u| u.len() == n);
         let as_is = warm.filter(|w| {
-            w.iter().all(|v| (0.0..=cap).contains(v))
+            known.is_some()
+                && w.iter().all(|v| (0.0..=cap).contains(v))
                 && (sum(w) - target).abs() <= LOAD_TOLERANCE * target
         });
-        let (p, u, applies) = match (as_is, known.filter(|u| u.len() == n)) {
+        let (p, u, applies) = match (as_is, known) {
             (Some(w), Some(u)) => (w.to_vec(), u, 0),
             _ => {
                 let mut p = match warm {
