@@ -24,7 +24,7 @@ use super::influence::Kernel;
 use super::operator::Operator;
 use super::problem::{ContactProblem, ContactSolution, ContactSolver, KnownStart, SolverOptions};
 use super::residual::{approach, complementarity_residual};
-use super::solver::{solve, solve_known};
+use super::solver::{solve, solve_from};
 use super::transform::Real;
 
 /// Outer iterations allowed; each is a warm-started inner solve.
@@ -248,17 +248,7 @@ impl<T: Real> CoupledSolver<T> {
                 max_iterations: DIRECT_BUDGET.min(options.max_iterations),
                 ..*options
             };
-            let outcome = match (warm_start, known) {
-                (Some(pressure), Some(displacement)) => {
-                    let start = KnownStart {
-                        pressure,
-                        displacement,
-                    };
-                    solve_known(&mut self.summed, problem, &direct, start)
-                }
-                _ => solve(&mut self.summed, problem, &direct, warm_start),
-            };
-            match outcome {
+            match solve_from(&mut self.summed, problem, &direct, warm_start, known) {
                 Err(ContactError::NotConverged { iterations, .. }) => {
                     spent = iterations;
                     self.route = Route::FixedPoint {

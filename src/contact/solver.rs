@@ -70,7 +70,7 @@ use super::operator::Operator;
 use super::problem::{
     ContactProblem, ContactSolution, ContactSolver, KnownStart, Preconditioning, SolverOptions,
 };
-use super::worn_rows::{WornRows, add_worn_rows};
+use super::worn_rows::WornRows;
 
 mod bounds;
 mod free_set;
@@ -161,8 +161,8 @@ pub fn solve_known(
 }
 
 /// [`solve`] from `warm_start` and, where known, its displacement `K warm_start` without
-/// the wear term.
-fn solve_from(
+/// the wear term (`None`: one apply computes it).
+pub(super) fn solve_from(
     operator: &mut dyn Operator,
     problem: &ContactProblem,
     options: &SolverOptions,
@@ -170,20 +170,19 @@ fn solve_from(
     known: Option<&[f64]>,
 ) -> Result<ContactSolution, ContactError> {
     problem.validate(options)?;
+    let mut known = known.zip(warm_start).map(|(u, p)| (u.to_vec(), p));
     let mut worn;
     let operator: &mut dyn Operator = if problem.pass_wear_per_pa > 0.0 {
         worn = WornRows::new(operator, problem.pass_wear_per_pa, problem.grid.dx);
+        // The known displacement under this operator: plus the wear term its apply adds.
+        if let Some((u, pressure)) = known.as_mut() {
+            worn.add_wear(pressure, u);
+        }
         &mut worn
     } else {
         operator
     };
-    // The known displacement under this operator: plus the wear term, as its apply adds.
-    let known = known.zip(warm_start).map(|(displacement, pressure)| {
-        let mut u = displacement.to_vec();
-        let per_row_sum = problem.pass_wear_per_pa * problem.grid.dx;
-        add_worn_rows(per_row_sum, problem.grid.nx, pressure, &mut u);
-        u
-    });
+    let known = known.map(|(u, _)| u);
     PolonskyKeer::start(operator, problem, options, warm_start, known)?.iterate(operator, options)
 }
 

@@ -41,6 +41,12 @@ impl<'a> WornRows<'a> {
             per_row_sum: pass_wear_per_pa * dx_m,
         }
     }
+
+    /// Adds the wear term of `pressure` to `output`: what [`Operator::apply`] adds to the
+    /// inner operator's displacement.
+    pub fn add_wear(&self, pressure: &[f64], output: &mut [f64]) {
+        add_worn_rows(self.per_row_sum, self.inner.shape().0, pressure, output);
+    }
 }
 
 impl Operator for WornRows<'_> {
@@ -50,7 +56,7 @@ impl Operator for WornRows<'_> {
 
     fn apply(&mut self, input: &[f64], output: &mut [f64]) {
         self.inner.apply(input, output);
-        add_worn_rows(self.per_row_sum, self.inner.shape().0, input, output);
+        self.add_wear(input, output);
     }
 
     fn preconditioner(&mut self) -> Option<&mut dyn Preconditioner> {
