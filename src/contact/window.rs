@@ -213,7 +213,7 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         let both = next.map_or(window, |next| next.union(&window));
         let reach = self.reach(&both, problem.separation, &solution, options.tolerance);
         let elastic = self.displacement_over(&reach, &pressure)?;
-        let mut displacement = elastic.clone();
+        let mut displacement = reach.embed(&grid, &elastic);
         add_worn_rows(
             problem.pass_wear_per_pa * grid.dx,
             grid.nx,
@@ -232,7 +232,8 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         }
         self.focus = next;
         self.carried = Some(Carried {
-            pressure: pressure.clone(),
+            pressure: solution.pressure,
+            solved: window,
             displacement: elastic,
             over: reach,
         });
@@ -274,22 +275,20 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         )
     }
 
-    /// `K pressure` on the cells of `reach`, zero elsewhere.
+    /// `K pressure` on the cells of `reach` (row by row, `reach.nx` to a row).
     fn displacement_over(
         &mut self,
         reach: &Window,
         pressure: &[f64],
     ) -> Result<Vec<f64>, ContactError> {
         let grid = self.grid;
-        let mut displacement = vec![0.0; grid.len()];
+        let mut displacement = vec![0.0; reach.nx * reach.ny];
         if reach.covers(&grid) {
             self.full.operator().apply(pressure, &mut displacement);
         } else {
-            let mut part = vec![0.0; reach.nx * reach.ny];
             self.solver_of(reach)?
                 .operator()
-                .apply(&reach.extract(&grid, pressure), &mut part);
-            reach.place(&grid, &part, &mut displacement);
+                .apply(&reach.extract(&grid, pressure), &mut displacement);
         }
         Ok(displacement)
     }

@@ -70,12 +70,24 @@ impl WarmStart {
         self.pressure.clear();
     }
 
-    /// Records the pressure of `cycle` and its gap; a solve from before a regrid (another
-    /// size) cannot be extrapolated from and is forgotten.
-    pub(super) fn push(&mut self, cycle: u64, pressure: Vec<f64>, gap: &[f64]) {
+    /// Whether [`Self::push`] needs the solve's gap: only an extrapolating start keeps `q`.
+    pub(super) fn needs_gap(&self) -> bool {
+        self.extrapolates
+    }
+
+    /// Records the pressure of `cycle` and, when the start extrapolates, its gap (`None`
+    /// otherwise: a rough disc's start uses neither the gap nor `q`); a solve from before a
+    /// regrid (another size) cannot be extrapolated from and is forgotten.
+    pub(super) fn push(&mut self, cycle: u64, pressure: Vec<f64>, gap: Option<&[f64]>) {
         let size = pressure.len();
         let c = self.stiffness;
-        let signed = pressure.iter().zip(gap).map(|(&p, &g)| p - c * g).collect();
+        let signed = match gap {
+            Some(gap) => pressure.iter().zip(gap).map(|(&p, &g)| p - c * g).collect(),
+            None => {
+                assert!(!self.extrapolates, "an extrapolating start needs the gap");
+                Vec::new()
+            }
+        };
         self.pressure = pressure;
         self.before = self
             .last
@@ -117,12 +129,12 @@ mod tests {
         // c = 0.1 * 10 / 1 = 1 Pa/m: q = p - g.
         let mut warm = WarmStart::new(10.0, 1.0, false);
         assert!(warm.guess(1, 10.0).is_none());
-        warm.push(1, vec![1.0, 4.0], &[0.0, 0.0]);
+        warm.push(1, vec![1.0, 4.0], Some(&[0.0, 0.0]));
         assert_eq!(warm.guess(2, 10.0), Some(vec![1.0, 4.0]));
-        warm.push(3, vec![2.0, 2.0], &[0.0, 0.0]);
+        warm.push(3, vec![2.0, 2.0], Some(&[0.0, 0.0]));
         // Two cycles on from cycle 3 at the slope of cycles 1 to 3, clipped to [0, 10].
         assert_eq!(warm.guess(5, 10.0), Some(vec![3.0, 0.0]));
-        warm.push(5, vec![1.0, 1.0, 1.0], &[0.0; 3]);
+        warm.push(5, vec![1.0, 1.0, 1.0], Some(&[0.0; 3]));
         assert_eq!(warm.guess(6, 10.0), Some(vec![1.0, 1.0, 1.0]));
         warm.forget();
         assert!(warm.guess(7, 10.0).is_none());
@@ -131,8 +143,8 @@ mod tests {
     #[test]
     fn a_rough_disc_starts_from_the_last_pressure() {
         let mut warm = WarmStart::new(10.0, 1.0, true);
-        warm.push(1, vec![1.0, 4.0], &[0.0, 0.0]);
-        warm.push(3, vec![2.0, 12.0], &[0.5, -0.5]);
+        warm.push(1, vec![1.0, 4.0], Some(&[0.0, 0.0]));
+        warm.push(3, vec![2.0, 12.0], Some(&[0.5, -0.5]));
         // Extrapolated, cycle 5 would start from [2, 10] (q = p - g: [1.5, 12.5] at cycle
         // 3); rough, from the last pressure under the cap, the gaps left out.
         assert_eq!(warm.guess(5, 10.0), Some(vec![2.0, 10.0]));
@@ -143,8 +155,8 @@ mod tests {
     fn a_closing_gap_enters_the_guess_and_an_opening_one_stays_out() {
         let mut warm = WarmStart::new(10.0, 1.0, false);
         // Both cells unloaded; the first one's gap closes by 2 per cycle, the second's opens.
-        warm.push(1, vec![0.0, 0.0], &[3.0, 1.0]);
-        warm.push(2, vec![0.0, 0.0], &[1.0, 2.0]);
+        warm.push(1, vec![0.0, 0.0], Some(&[3.0, 1.0]));
+        warm.push(2, vec![0.0, 0.0], Some(&[1.0, 2.0]));
         // Cycle 3 extrapolates the first gap to -1: pressure c * 1 = 1.
         assert_eq!(warm.guess(3, 10.0), Some(vec![1.0, 0.0]));
         assert_eq!(warm.last(), Some(&[0.0, 0.0][..]));

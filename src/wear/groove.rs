@@ -105,13 +105,6 @@ impl Groove {
         heights
     }
 
-    /// [`Self::roughness_m`] at cell `i` of `grid` alone.
-    fn roughness_at(&self, grid: &Grid, i: usize) -> f64 {
-        self.roughness_row(grid, i / grid.nx)
-            .nth(i % grid.nx)
-            .expect("a cell of the grid")
-    }
-
     /// [`Self::roughness_m`] along row `iy` of `grid`: the row's ceiling and roughness are
     /// looked up once, not per cell.
     fn roughness_row(&self, grid: &Grid, iy: usize) -> impl Iterator<Item = f64> + '_ {
@@ -153,18 +146,29 @@ impl Groove {
         separation: &[f64],
         cap: f64,
     ) -> bool {
-        // Only the capped cells' heights are needed: most cycles have none.
+        // Only the capped rows' heights are needed: most rows of a grown grid, and most
+        // cycles of a smooth disc, have none. Looked up cell by cell (the row's iterator
+        // advanced to the cell), they were 3.8% of the samples of 100 cycles of the 2 um
+        // example on a 300 um domain (`perf record -F 99 --call-graph dwarf`).
         let mut ceiling = self.ceiling_m.clone();
         let mut yielded = false;
-        for (i, &p) in solution.pressure.iter().enumerate() {
-            if p >= cap {
-                let gap = solution.displacement[i] + separation[i] - solution.approach_m;
-                yielded |= gap < 0.0;
-                // A capped cell the solver left a hair short of contact was pressed to its
-                // own surface.
-                let level = self.roughness_at(grid, i) + gap.min(0.0);
-                let row = &mut ceiling[i / grid.nx];
-                *row = row.min(level);
+        let rows = solution.pressure.chunks_exact(grid.nx).enumerate();
+        for (iy, pressure) in rows.filter(|(_, row)| row.iter().any(|&p| p >= cap)) {
+            let cells = iy * grid.nx..(iy + 1) * grid.nx;
+            let (u, h) = (&solution.displacement[cells.clone()], &separation[cells]);
+            for (((&p, &u), &h), r) in pressure
+                .iter()
+                .zip(u)
+                .zip(h)
+                .zip(self.roughness_row(grid, iy))
+            {
+                if p >= cap {
+                    let gap = u + h - solution.approach_m;
+                    yielded |= gap < 0.0;
+                    // A capped cell the solver left a hair short of contact was pressed to
+                    // its own surface.
+                    ceiling[iy] = ceiling[iy].min(r + gap.min(0.0));
+                }
             }
         }
         for (iy, level) in ceiling.into_iter().enumerate() {

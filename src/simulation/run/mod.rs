@@ -223,7 +223,10 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         self.record(cycle, &solution, (cap, pass_wear_per_pa), reading, on_cycle);
         self.wear_skipped(cycle, step, &pass, reading.as_ref());
         // The gap of the solve, for the warm start's extrapolation of cells entering contact.
-        let gap = solution.gap_m(&separation);
+        let gap = self
+            .history
+            .needs_gap()
+            .then(|| solution.gap_m(&separation));
         self.grow_if_crowded(cycle, solution.pressure, gap);
         Ok(step)
     }
@@ -297,7 +300,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 .map(|i| f64::from(u8::from(self.grid.is_edge(i))))
                 .collect();
             // The history is forgotten right after: no gap to keep.
-            let no_gap = vec![0.0; self.grid.len()];
+            let no_gap = self.history.needs_gap().then(|| vec![0.0; self.grid.len()]);
             self.grow_if_crowded(cycle, edge_ring, no_gap);
             self.history.forget();
             if (self.grid.nx, self.grid.ny) != before {
@@ -417,8 +420,9 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
     }
 
     /// Grows an auto domain whose contact came near its edge, carrying the pressure and the
-    /// groove over; keeps the pressure and its `gap` for the next warm start.
-    fn grow_if_crowded(&mut self, cycle: u64, mut pressure: Vec<f64>, mut gap: Vec<f64>) {
+    /// groove over; keeps the pressure and its `gap` (where the warm start needs it) for the
+    /// next warm start.
+    fn grow_if_crowded(&mut self, cycle: u64, mut pressure: Vec<f64>, mut gap: Option<Vec<f64>>) {
         let crowded = near_edges(&self.grid, &pressure);
         let wider = (self.grows && (crowded.0 || crowded.1))
             .then(|| widen(&self.grid, crowded))
@@ -431,7 +435,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 ny: self.grid.ny,
             };
             pressure = old.embed(&wider, &pressure);
-            gap = old.embed(&wider, &gap);
+            gap = gap.map(|gap| old.embed(&wider, &gap));
             self.groove = self.groove.widened(&wider);
             self.grid = wider;
             self.solver.grow(wider, &pressure);
@@ -449,7 +453,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
                 ),
             });
         }
-        self.history.push(cycle, pressure, &gap);
+        self.history.push(cycle, pressure, gap.as_deref());
     }
 
     /// The result: the last pressure map, the run's own model choices and the totals.
