@@ -144,6 +144,16 @@ impl Window {
         })
     }
 
+    /// The window moved by `x0` columns and `y0` rows: a window of a window's cells as a
+    /// window of the grid the outer one lies in, when `(x0, y0)` is the outer one's corner.
+    pub fn shifted(&self, x0: usize, y0: usize) -> Self {
+        Self {
+            x0: self.x0 + x0,
+            y0: self.y0 + y0,
+            ..*self
+        }
+    }
+
     /// The whole of `grid`.
     pub fn whole(grid: &Grid) -> Self {
         Self {
