@@ -152,6 +152,16 @@ mod tests {
     }
 
     #[test]
+    fn only_an_extrapolating_start_needs_the_gap() {
+        let mut rough = WarmStart::new(10.0, 1.0, true);
+        assert!(!rough.needs_gap());
+        rough.push(1, vec![1.0, 4.0], None);
+        assert_eq!(rough.guess(2, 10.0), Some(vec![1.0, 4.0]));
+        assert_eq!(rough.last(), Some(&[1.0, 4.0][..]));
+        assert!(WarmStart::new(10.0, 1.0, false).needs_gap());
+    }
+
+    #[test]
     fn a_closing_gap_enters_the_guess_and_an_opening_one_stays_out() {
         let mut warm = WarmStart::new(10.0, 1.0, false);
         // Both cells unloaded; the first one's gap closes by 2 per cycle, the second's opens.
