@@ -219,8 +219,8 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         let elastic = self.displacement_over(&reach, &pressure)?;
         let mut displacement = reach.embed(&grid, &elastic);
         add_worn_rows(
-            problem.pass_wear_per_pa * grid.dx,
-            grid.nx,
+            problem.pass_wear_per_pa,
+            &grid,
             &pressure,
             &mut displacement,
         );

@@ -22,6 +22,7 @@
 //! ([`WornRows`]) and the check of a windowed solve adds it ([`add_worn_rows`]). The
 //! preconditioner stays `K`'s inverse.
 
+use super::grid::Grid;
 use super::operator::{Operator, Preconditioner};
 use super::sums::sum;
 
@@ -38,14 +39,14 @@ impl<'a> WornRows<'a> {
     pub fn new(inner: &'a mut dyn Operator, pass_wear_per_pa: f64, dx_m: f64) -> Self {
         Self {
             inner,
-            per_row_sum: pass_wear_per_pa * dx_m,
+            per_row_sum: per_row_sum(pass_wear_per_pa, dx_m),
         }
     }
 
     /// Adds the wear term of `pressure` to `output`: what [`Operator::apply`] adds to the
     /// inner operator's displacement.
     pub fn add_wear(&self, pressure: &[f64], output: &mut [f64]) {
-        add_worn_rows(self.per_row_sum, self.inner.shape().0, pressure, output);
+        add_rows(self.per_row_sum, self.inner.shape().0, pressure, output);
     }
 }
 
@@ -87,9 +88,26 @@ impl Operator for WornRows<'_> {
     }
 }
 
+/// `s dx`: the depth `pass_wear_per_pa` (`s`) wears per unit of a row's pressure sum on
+/// cells `dx_m` long along the sliding direction, m/Pa.
+fn per_row_sum(pass_wear_per_pa: f64, dx_m: f64) -> f64 {
+    pass_wear_per_pa * dx_m
+}
+
+/// Adds the wear `W p` of [`WornRows`] of `pass_wear_per_pa` on `grid` to `output`: each
+/// row's sum of `pressure` times [`per_row_sum`], on every cell of that row.
+pub fn add_worn_rows(pass_wear_per_pa: f64, grid: &Grid, pressure: &[f64], output: &mut [f64]) {
+    add_rows(
+        per_row_sum(pass_wear_per_pa, grid.dx),
+        grid.nx,
+        pressure,
+        output,
+    );
+}
+
 /// Adds `per_row_sum` times each row's sum of `pressure` (rows of `nx` cells) to every cell
-/// of that row of `output`: the wear `W p` of [`WornRows`].
-pub fn add_worn_rows(per_row_sum: f64, nx: usize, pressure: &[f64], output: &mut [f64]) {
+/// of that row of `output`.
+fn add_rows(per_row_sum: f64, nx: usize, pressure: &[f64], output: &mut [f64]) {
     if per_row_sum == 0.0 {
         return;
     }
@@ -203,12 +221,7 @@ mod tests {
         let plain_solution = solver.solve(&unworn, &options, None).expect("converges");
 
         let mut worn_separation = separation.clone();
-        add_worn_rows(
-            per_pa * grid.dx,
-            grid.nx,
-            &worn_solution.pressure,
-            &mut worn_separation,
-        );
+        add_worn_rows(per_pa, &grid, &worn_solution.pressure, &mut worn_separation);
         let after_pass = ContactProblem {
             separation: &worn_separation,
             ..unworn

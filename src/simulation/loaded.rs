@@ -63,12 +63,7 @@ pub fn elastic_displacement<'a>(
         return Cow::Borrowed(&solution.displacement);
     }
     let mut elastic = solution.displacement.clone();
-    add_worn_rows(
-        -pass_wear_per_pa * grid.dx,
-        grid.nx,
-        &solution.pressure,
-        &mut elastic,
-    );
+    add_worn_rows(-pass_wear_per_pa, grid, &solution.pressure, &mut elastic);
     Cow::Owned(elastic)
 }
 
