@@ -274,6 +274,10 @@ impl<T: Real> Operator for DcFft<T> {
         self.nonnegative
     }
 
+    fn threads(&self) -> usize {
+        DcFft::threads(self)
+    }
+
     fn add_sparse(&mut self, cells: &[(usize, f64)], output: &mut [f64]) -> bool {
         self.sparse
             .as_ref()
@@ -513,11 +517,11 @@ mod tests {
     }
 
     #[test]
-    fn a_periodic_transform_splits_from_four_times_the_dc_fft_threshold() {
-        // Its transform has the cells of a DC-FFT grid of a quarter of them.
+    fn a_periodic_transform_splits_from_the_dc_fft_threshold() {
+        // The preconditioner's transforms run on the apply's window.
         if let Some(min) = SPLIT_MIN_CELLS {
-            assert_eq!(periodic_threads(3, 4 * min), 3);
-            assert_eq!(periodic_threads(3, 4 * min - 1), 1);
+            assert_eq!(periodic_threads(3, min), 3);
+            assert_eq!(periodic_threads(3, min - 1), 1);
         }
         let grid = Grid::square(32, 32e-6).expect("valid");
         let op = DcFft::new(&Kernel::normal(&grid, &pair(0.21, 0.28, 205e9))).threaded(2);

@@ -10,6 +10,7 @@
 //! wears (the implicit update of [`worn_rows`]). [`residual`] holds the complementarity conditions they all
 //! meet, and [`verify`] checks a solution against them independently.
 
+mod blocks;
 pub mod check;
 mod coarse;
 pub mod coupled;

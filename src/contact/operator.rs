@@ -34,6 +34,12 @@ pub trait Operator {
         false
     }
 
+    /// The threads an apply is split over, which the solver's passes over the grid take
+    /// too, in fixed blocks; 1 (the default) where the operator does not split.
+    fn threads(&self) -> usize {
+        1
+    }
+
     /// Whether every coefficient is nonnegative, so a nonnegative pressure displaces every
     /// cell by a nonnegative amount: a cell the separation alone keeps open stays open.
     /// `false` (the default) when the operator does not know.

@@ -24,8 +24,8 @@ pub struct PeriodicHalfSpace {
 impl PeriodicHalfSpace {
     /// The operator on `nx` x `ny` cells of `dx` x `dy` m, for the reduced modulus
     /// `reduced_modulus_pa` (E*, eq. 6), on the automatic thread count of
-    /// [`split_threads`] for a transform of its length (`periodic_threads`: from 1024 x
-    /// 1024 cells; no scene chooses one for it) as the only run solving (its callers, the
+    /// [`split_threads`] for a transform of its length (`periodic_threads`: from
+    /// [`crate::contact::SPLIT_MIN_CELLS`]; no scene chooses one for it) as the only run solving (its callers, the
     /// tests and the benchmark, run one at a time; [`Self::threaded`] chooses another).
     pub fn new(nx: usize, ny: usize, dx: f64, dy: f64, reduced_modulus_pa: f64) -> Self {
         let e = reduced_modulus_pa;
@@ -74,6 +74,10 @@ impl Operator for PeriodicHalfSpace {
 
     fn is_periodic(&self) -> bool {
         true
+    }
+
+    fn threads(&self) -> usize {
+        PeriodicHalfSpace::threads(self)
     }
 }
 

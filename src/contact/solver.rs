@@ -64,6 +64,7 @@
 //! hundredth of the tolerance (`DRIFT_SHARE`): at the scene's default tolerance, never.
 //! On the paper scene the confirmation apply cost one of 7.3 iterations a solve.
 
+use super::blocks::Blocks;
 use super::error::ContactError;
 use super::grid::Grid;
 use super::operator::Operator;
@@ -72,15 +73,16 @@ use super::problem::{
 };
 use super::worn_rows::WornRows;
 
+mod advance;
 mod bounds;
 mod free_set;
 mod measure;
 mod progress;
 
 use super::sums::{dot, dot2, free_dots, sum, update_direction};
-use bounds::{check_edges, rescale_to_load, step_cell, violator_step};
+use bounds::{check_edges, rescale_to_load, violator_step};
 use free_set::FreeSetCorrection;
-use progress::{Progress, restarts_conjugacy};
+use progress::Progress;
 
 /// Relative load error accepted at convergence. Summing N^2 pressures in f64 errs by up to
 /// N^2 * 1.1e-16 in the worst case (1.2e-10 at N = 1024), typically sqrt(N^2) times that;
@@ -190,6 +192,8 @@ pub(super) fn solve_from(
 /// start.
 struct PolonskyKeer<'a> {
     grid: Grid,
+    /// How the passes over the grid are cut, and whether other threads take some.
+    blocks: Blocks,
     separation: &'a [f64],
     cap: f64,
     /// The load in pressure units: `W / cell area`, the sum the pressures must reach.
@@ -262,6 +266,7 @@ impl<'a> PolonskyKeer<'a> {
     ) -> Result<Self, ContactError> {
         let grid = problem.grid;
         let (n, h, cap) = (grid.len(), problem.separation, problem.yield_pressure_pa);
+        let blocks = Blocks::of(n, operator.threads());
         let target = problem.load_n / grid.cell_area();
         if target >= cap * n as f64 {
             return Err(ContactError::LoadExceedsCapacity {
@@ -285,7 +290,7 @@ impl<'a> PolonskyKeer<'a> {
                 };
                 // Before the first apply the displacement is unknown: order by the
                 // separation alone.
-                rescale_to_load(&mut p, cap, target, h);
+                rescale_to_load(blocks, &mut p, (cap, target), h);
                 let mut u = vec![0.0; n];
                 operator.apply(&p, &mut u);
                 (p, u, 1)
@@ -298,6 +303,7 @@ impl<'a> PolonskyKeer<'a> {
             .map(|inverse| FreeSetCorrection::new(inverse, grid));
         Ok(Self {
             grid,
+            blocks,
             separation: h,
             cap,
             target,
@@ -376,7 +382,7 @@ impl<'a> PolonskyKeer<'a> {
     ) -> Result<Option<ContactSolution>, ContactError> {
         if (self.load - self.target).abs() > LOAD_TOLERANCE * self.target {
             // Round-off in many small steps moved the load: restore it exactly.
-            rescale_to_load(&mut self.p, self.cap, self.target, &self.g);
+            self.rescale();
             self.recompute(operator);
             return Ok(None);
         }
@@ -401,6 +407,11 @@ impl<'a> PolonskyKeer<'a> {
         }))
     }
 
+    /// Restores the load by [`rescale_to_load`]'s shift.
+    fn rescale(&mut self) {
+        rescale_to_load(self.blocks, &mut self.p, (self.cap, self.target), &self.g);
+    }
+
     /// `u = K p`, from scratch.
     fn recompute(&mut self, operator: &mut dyn Operator) {
         operator.apply(&self.p, &mut self.u);
@@ -420,11 +431,11 @@ impl<'a> PolonskyKeer<'a> {
                     Some(correction) => {
                         correction.apply(inverse, &self.free, &mut self.r, &mut self.z);
                         // `r` now holds the correction's input off the free set too.
-                        free_dots(&self.free, &self.r, &self.z)
+                        free_dots(self.blocks, &self.free, &self.r, &self.z)
                     }
                     None => {
                         inverse.apply(&self.r, &mut self.z);
-                        dot2((&self.r, &self.z), (&self.free, &self.z))
+                        dot2(self.blocks, (&self.r, &self.z), (&self.free, &self.z))
                     }
                 }
             }
@@ -446,7 +457,8 @@ impl<'a> PolonskyKeer<'a> {
         } else {
             &self.g
         };
-        update_direction(&mut self.t, source, &self.free, &self.g, beta, t_mean)
+        let fields = (&source[..], &self.free[..], &self.g[..]);
+        update_direction(self.blocks, &mut self.t, fields, beta, t_mean)
     }
 
     /// The free cells cannot move: at most one is free (a load-preserving step over one cell
@@ -469,7 +481,7 @@ impl<'a> PolonskyKeer<'a> {
             let uniform = self.target / self.p.len() as f64;
             self.p.fill(uniform);
         }
-        rescale_to_load(&mut self.p, self.cap, self.target, &self.g);
+        self.rescale();
         self.recompute(operator);
         self.restart = true;
     }
@@ -480,7 +492,7 @@ impl<'a> PolonskyKeer<'a> {
     fn step_length(&mut self, operator: &mut dyn Operator, num: f64) -> f64 {
         operator.apply(&self.t, &mut self.r);
         self.applies += 1;
-        let (den, tt) = dot2((&self.t, &self.r), (&self.t, &self.t));
+        let (den, tt) = dot2(self.blocks, (&self.t, &self.r), (&self.t, &self.t));
         let tau = if den > 0.0 { num / den } else { self.tau_last };
         if tau > 0.0 {
             self.tau_last = tau;
@@ -504,58 +516,13 @@ impl<'a> PolonskyKeer<'a> {
         tau
     }
 
-    /// Step, truncation at the bounds, re-entry of wrongly bounded cells; `u` follows the
-    /// step, and the cells moved otherwise are recorded for [`Self::restore_load`].
-    fn advance(&mut self, operator: &mut dyn Operator, tau: f64) {
-        let (cap, rate) = (self.cap, self.entry_rate);
-        let (p, u) = (&mut self.p[..], &mut self.u[..]);
-        let (t, r, g) = (&self.t[..], &self.r[..], &self.g[..]);
-        let changes = &mut self.changes;
-        changes.clear();
-        let mut entered = false;
-        // The largest pressure and the load in four lanes: one running maximum (with
-        // `f64::max`'s NaN test) and one sum are serial chains through every cell. In
-        // `perf` samples of cold Hertz N = 256 solves (coarse start included), the solver's
-        // own per sample of the FFT library's fell from 0.64 to 0.57.
-        let (mut highest, mut load) = ([0.0f64; 4], [0.0; 4]);
-        let (cells, whole) = (p.len(), p.len() - p.len() % 4);
-        let mut cell = |i: usize, lane: usize| {
-            if let Some(by) = step_cell(&mut p[i], (t[i], g[i]), (tau, rate, cap), &mut entered) {
-                changes.push((i, by));
-            }
-            u[i] -= tau * r[i];
-            let pi = p[i];
-            highest[lane] = if pi > highest[lane] {
-                pi
-            } else {
-                highest[lane]
-            };
-            load[lane] += pi;
-        };
-        // Lanes fixed per position in slices of four, so they stay in registers.
-        for first in (0..whole).step_by(4) {
-            for lane in 0..4 {
-                cell(first + lane, lane);
-            }
-        }
-        (whole..cells).for_each(|i| cell(i, 0));
-        let highest = highest.iter().fold(0.0f64, |m, &v| m.max(v));
-        let load = load.iter().sum::<f64>();
-        self.updates += 1;
-        if !self.changes.is_empty() {
-            self.restore_load(operator, highest, load);
-        }
-        let (moved, corrected) = (self.changes.len(), self.correction.is_some());
-        self.restart = entered && restarts_conjugacy(moved, self.free_cells, corrected);
-    }
-
     /// Brings the load back to the target after the recorded changes (`highest`: the
     /// largest pressure now, `load` their sum). With no cell at the cap before or after, the rescale is one
     /// factor `s` on every pressure, so `u = K p` becomes `s (u + K d)` with `d` the
     /// recorded changes: a sparse update where the operator offers one (with no cap to
     /// reach, a scale clips nothing, so it cannot cascade as it did under the cap). Otherwise
     /// the load is restored by [`rescale_to_load`]'s shift and `u` recomputed.
-    fn restore_load(&mut self, operator: &mut dyn Operator, highest: f64, load: f64) {
+    pub(super) fn restore_load(&mut self, operator: &mut dyn Operator, highest: f64, load: f64) {
         let scale = self.target / load;
         if highest < self.cap
             && scale * highest < self.cap
@@ -566,7 +533,7 @@ impl<'a> PolonskyKeer<'a> {
             self.updates += 1;
             return;
         }
-        rescale_to_load(&mut self.p, self.cap, self.target, &self.g);
+        self.rescale();
         self.recompute(operator);
     }
 }

@@ -1,6 +1,9 @@
 //! The solver's reductions over the grid, each with four independent accumulators, and the
 //! passes that fold a reduction into an update: the passes are memory-bound on large grids,
-//! so a sum rides on a pass that reads its data anyway.
+//! so a sum rides on a pass that reads its data anyway. The passes of the solve's
+//! iterations go block by block ([`Blocks`]).
+
+use super::blocks::{Blocks, lanes_total};
 
 /// Dot product with four independent accumulators: a single running sum is a serial chain
 /// of additions (kept on the stack), a third of the solver's own time at N = 256 in a profile of
@@ -22,9 +25,36 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     acc.iter().sum::<f64>() + tail
 }
 
-/// `(a.b, c.d)` in one pass, each summed as [`dot`] sums it (so equal to two calls to the
-/// last bit): the grids are read once where two passes read `t` or `z` twice.
-pub(crate) fn dot2((a, b): (&[f64], &[f64]), (c, d): (&[f64], &[f64])) -> (f64, f64) {
+/// Four lanes and the tail beyond the last whole slice of four: one block's share of a sum.
+type Lanes = ([f64; 4], f64);
+
+/// The sum of the blocks' [`Lanes`], in order, as [`dot`] finishes its own: for one block,
+/// that block's sum to the last bit.
+fn finish(parts: impl IntoIterator<Item = Lanes>) -> f64 {
+    let (lanes, tails): (Vec<_>, Vec<_>) = parts.into_iter().unzip();
+    lanes_total(lanes).iter().sum::<f64>() + tails.iter().fold(0.0, |all, tail| all + tail)
+}
+
+/// `(a.b, c.d)` in one pass, each summed as [`dot`] sums it block by block (so, on one
+/// block, equal to two calls to the last bit): the grids are read once where two passes
+/// read `t` or `z` twice.
+pub(crate) fn dot2(
+    blocks: Blocks,
+    (a, b): (&[f64], &[f64]),
+    (c, d): (&[f64], &[f64]),
+) -> (f64, f64) {
+    let parts = blocks
+        .ranges(a.len())
+        .map(|r| (&a[r.clone()], &b[r.clone()], &c[r.clone()], &d[r]))
+        .collect();
+    let (ab, cd): (Vec<_>, Vec<_>) = blocks
+        .each(parts, |(a, b, c, d)| dot2_lanes((a, b), (c, d)))
+        .into_iter()
+        .unzip();
+    (finish(ab), finish(cd))
+}
+
+fn dot2_lanes((a, b): (&[f64], &[f64]), (c, d): (&[f64], &[f64])) -> (Lanes, Lanes) {
     let (mut ab, mut cd) = ([0.0; 4], [0.0; 4]);
     let whole = a.len() - a.len() % 4;
     for first in (0..whole).step_by(4) {
@@ -41,15 +71,24 @@ pub(crate) fn dot2((a, b): (&[f64], &[f64]), (c, d): (&[f64], &[f64])) -> (f64, 
     }
     let tail_ab: f64 = (whole..a.len()).map(|i| a[i] * b[i]).sum();
     let tail_cd: f64 = (whole..a.len()).map(|i| c[i] * d[i]).sum();
-    (
-        ab.iter().sum::<f64>() + tail_ab,
-        cd.iter().sum::<f64>() + tail_cd,
-    )
+    ((ab, tail_ab), (cd, tail_cd))
 }
 
 /// `(sum free r z, sum free z)` in one pass, each summed as [`dot`] sums: [`dot2`]'s sums
 /// where `r` holds values off the free set that must not count.
-pub(crate) fn free_dots(free: &[f64], r: &[f64], z: &[f64]) -> (f64, f64) {
+pub(crate) fn free_dots(blocks: Blocks, free: &[f64], r: &[f64], z: &[f64]) -> (f64, f64) {
+    let parts = blocks
+        .ranges(free.len())
+        .map(|range| (&free[range.clone()], &r[range.clone()], &z[range]))
+        .collect();
+    let (rz, fz): (Vec<_>, Vec<_>) = blocks
+        .each(parts, |(free, r, z)| free_dots_lanes(free, r, z))
+        .into_iter()
+        .unzip();
+    (finish(rz), finish(fz))
+}
+
+fn free_dots_lanes(free: &[f64], r: &[f64], z: &[f64]) -> (Lanes, Lanes) {
     let (mut rz, mut fz) = ([0.0; 4], [0.0; 4]);
     let whole = free.len() - free.len() % 4;
     for first in (0..whole).step_by(4) {
@@ -63,22 +102,34 @@ pub(crate) fn free_dots(free: &[f64], r: &[f64], z: &[f64]) -> (f64, f64) {
     }
     let tail_rz: f64 = (whole..free.len()).map(|i| r[i] * free[i] * z[i]).sum();
     let tail_fz: f64 = (whole..free.len()).map(|i| free[i] * z[i]).sum();
-    (
-        rz.iter().sum::<f64>() + tail_rz,
-        fz.iter().sum::<f64>() + tail_fz,
-    )
+    ((rz, tail_rz), (fz, tail_fz))
 }
 
 /// `t = free (source + beta t - mean)`, the conjugate direction over the free cells,
 /// returning `g.t` summed as [`dot`] sums it, in the same pass.
 pub(crate) fn update_direction(
+    blocks: Blocks,
     t: &mut [f64],
-    source: &[f64],
-    free: &[f64],
-    g: &[f64],
+    (source, free, g): (&[f64], &[f64], &[f64]),
     beta: f64,
     mean: f64,
 ) -> f64 {
+    let parts = blocks
+        .ranges(g.len())
+        .zip(t.chunks_mut(blocks.len))
+        .map(|(r, t)| (t, &source[r.clone()], &free[r.clone()], &g[r]))
+        .collect();
+    finish(blocks.each(parts, |(t, source, free, g)| {
+        direction_lanes(t, (source, free, g), beta, mean)
+    }))
+}
+
+fn direction_lanes(
+    t: &mut [f64],
+    (source, free, g): (&[f64], &[f64], &[f64]),
+    beta: f64,
+    mean: f64,
+) -> Lanes {
     let whole = g.len() - g.len() % 4;
     let mut acc = [0.0; 4];
     // Slices of four, so the inner loop has no bounds checks and vectorises (an indexed
@@ -101,7 +152,7 @@ pub(crate) fn update_direction(
         t[i] = free[i] * (source[i] + beta * t[i] - mean);
         tail += g[i] * t[i];
     }
-    acc.iter().sum::<f64>() + tail
+    (acc, tail)
 }
 
 /// Sum with four independent accumulators, as [`dot`].

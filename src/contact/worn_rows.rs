@@ -64,6 +64,10 @@ impl Operator for WornRows<'_> {
         self.inner.preconditioner()
     }
 
+    fn threads(&self) -> usize {
+        self.inner.threads()
+    }
+
     fn add_sparse(&mut self, cells: &[(usize, f64)], output: &mut [f64]) -> bool {
         if !self.inner.add_sparse(cells, output) {
             return false;

@@ -472,10 +472,10 @@ pub(super) const THREADS: Field = Field {
     unit: "threads",
     range: Range::AutoOrWhole(1, crate::contact::MAX_SPLIT_THREADS as u64),
     why: "more threads than cores only wait for each other",
-    meaning: "Threads of each contact solve's FFT passes; the results do not depend on it. \
-              `auto`: one below 512 x 512 cells, where the split does not pay, else the \
-              cores the process may use divided among the service's workers \
-              (`docs/operations.md`).",
+    meaning: "Threads of each contact solve's FFT passes and of the solver's passes over \
+              the grid; the results do not depend on it. `auto`: one below 384 x 384 \
+              cells, where the split does not pay, else the cores the process may use \
+              divided among the service's workers (`docs/operations.md`).",
     feeds: "the apply of K in eqs. 10-12 (no value changes)",
 };
 

@@ -1,6 +1,7 @@
 //! The bounds' side of the solver: restoring the load, the fallback step when the free
 //! cells cannot move, and the refusal of a contact that reaches the domain edge.
 
+use super::super::blocks::{Blocks, lanes_total};
 use super::super::error::ContactError;
 use super::super::grid::Grid;
 use super::super::operator::Operator;
@@ -22,9 +23,22 @@ use super::super::sums::dot;
 /// 150 cycles, took 955 iterations scaled and 112 shifted (both with the uniform restart of
 /// `progress`); the paper scene's 464 solves take 2181 iterations against 2180, with the
 /// same results to 1e-8.
-pub(super) fn rescale_to_load(pressure: &mut [f64], cap: f64, target: f64, raw_gap: &[f64]) {
+pub(super) fn rescale_to_load(
+    blocks: Blocks,
+    pressure: &mut [f64],
+    (cap, target): (f64, f64),
+    raw_gap: &[f64],
+) {
     loop {
-        let (capped, free, shifted) = bound_sums(pressure, cap);
+        let parts = pressure.chunks(blocks.len).collect();
+        let sums = blocks.each(parts, |p| bound_sums(p, cap));
+        let total = |pick: fn(&[[f64; 4]; 3]) -> [f64; 4]| {
+            lanes_total(sums.iter().map(pick)).iter().sum::<f64>()
+        };
+        let (capped, free, shifted) = (total(|s| s[0]), total(|s| s[1]), total(|s| s[2]));
+        // Capped cells counted, then times the cap: without yielding the cap is infinite,
+        // and a factor of 0 times it is not 0.
+        let capped = if capped > 0.0 { capped * cap } else { 0.0 };
         if capped >= target {
             let scale = target / (capped + free);
             pressure.iter_mut().for_each(|p| *p *= scale);
@@ -35,28 +49,36 @@ pub(super) fn rescale_to_load(pressure: &mut [f64], cap: f64, target: f64, raw_g
             return;
         }
         let shift = (target - capped - free) / shifted;
-        let mut clipped = false;
-        for p in pressure.iter_mut() {
-            // `&`, not `&&`: no branch per cell, as in `bound_sums`.
-            let inside = (*p > 0.0) & (*p < cap);
-            let moved = *p + shift;
-            clipped |= inside & ((moved < 0.0) | (moved > cap));
-            *p = if inside { moved.clamp(0.0, cap) } else { *p };
-        }
-        if !clipped {
+        let parts = pressure.chunks_mut(blocks.len).collect();
+        let clipped = blocks.each(parts, |p| shift_free(p, shift, cap));
+        if !clipped.contains(&true) {
             return;
         }
     }
 }
 
-/// The load of the capped cells, the load of the free ones and their count, in four lanes
-/// with each cell's bound a 0/1 factor: on a rough disc the bounds interleave cell by cell,
+/// Shifts the cells of `pressure` strictly between 0 and `cap` by `shift`, clipped to the
+/// bounds; whether any was clipped.
+fn shift_free(pressure: &mut [f64], shift: f64, cap: f64) -> bool {
+    let mut clipped = false;
+    for p in pressure.iter_mut() {
+        // `&`, not `&&`: no branch per cell, as in `bound_sums`.
+        let inside = (*p > 0.0) & (*p < cap);
+        let moved = *p + shift;
+        clipped |= inside & ((moved < 0.0) | (moved > cap));
+        *p = if inside { moved.clamp(0.0, cap) } else { *p };
+    }
+    clipped
+}
+
+/// The count of the capped cells, the load of the free ones and their count, each in four
+/// lanes with each cell's bound a 0/1 factor: on a rough disc the bounds interleave cell by cell,
 /// and the branchy loop with one running sum was about 5% of the 4 um disc's run in `perf`
 /// samples (`docs/accuracy.md`, "Rough wear: the solver's passes, and the levers measured
 /// and not taken"). Selects in place of the factors compiled to branches again: the run
 /// took 0.993 of 29571a1's CPU time with them, 0.975 with the factors
 /// (`scripts/rough_ab.py`, 5 pairs each).
-fn bound_sums(pressure: &[f64], cap: f64) -> (f64, f64, f64) {
+fn bound_sums(pressure: &[f64], cap: f64) -> [[f64; 4]; 3] {
     let (mut capped, mut free, mut count) = ([0.0; 4], [0.0; 4], [0.0; 4]);
     let chunks = pressure.chunks_exact(4);
     let tail = chunks.remainder();
@@ -71,12 +93,7 @@ fn bound_sums(pressure: &[f64], cap: f64) -> (f64, f64, f64) {
         x.iter().enumerate().for_each(|(k, &p)| add(k, p));
     }
     tail.iter().for_each(|&p| add(0, p));
-    let total = |lanes: [f64; 4]| lanes.iter().sum::<f64>();
-    // Capped cells counted, then times the cap: without yielding the cap is infinite, and
-    // a factor of 0 times it is not 0.
-    let at_cap = total(capped);
-    let capped = if at_cap > 0.0 { at_cap * cap } else { 0.0 };
-    (capped, total(free), total(count))
+    [capped, free, count]
 }
 
 fn grow_contact(pressure: &mut [f64], cap: f64, mut deficit: f64, raw_gap: &[f64]) {
@@ -212,7 +229,7 @@ mod tests {
         // 0.2 short: a third each would carry the first cell past the cap, so it is clipped
         // there and the two others share the rest, 0.075 each; the unloaded cell stays so.
         let mut p = [0.95, 0.5, 0.1, 0.0];
-        rescale_to_load(&mut p, 1.0, 1.75, &[0.0; 4]);
+        rescale_to_load(Blocks::of(4, 1), &mut p, (1.0, 1.75), &[0.0; 4]);
         let expected = [1.0, 0.575, 0.175, 0.0];
         assert!(
             p.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-15),
@@ -220,7 +237,7 @@ mod tests {
         );
         // Too much load: the shift lowers them and a cell it would take below zero stops at 0.
         let mut p = [0.5, 0.3, 0.05];
-        rescale_to_load(&mut p, 1.0, 0.55, &[0.0; 3]);
+        rescale_to_load(Blocks::of(3, 1), &mut p, (1.0, 0.55), &[0.0; 3]);
         let expected = [0.375, 0.175, 0.0];
         assert!(
             p.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-15),

@@ -1,7 +1,26 @@
 //! The solver's pass over the grid at the start of each iteration.
 
+use super::super::blocks::lanes_total;
 use super::super::residual::{Bound, Residual, approach};
 use super::PolonskyKeer;
+
+/// One block's share of [`PolonskyKeer::measure`]'s sums, in four lanes (a cell's lane is
+/// its index modulo four; the cells past the last whole slice of four go to lane 0).
+#[derive(Default)]
+struct Measured {
+    residual: [Residual; 4],
+    load: [f64; 4],
+    free_cells: usize,
+    /// `free * t`, summed as `dot` sums (four lanes and the tail apart).
+    free_t: ([f64; 4], f64),
+    /// The cells that joined (`true`) or left the free set, in order, when recorded.
+    moved: Vec<(usize, bool)>,
+}
+
+/// The fields a block reads: pressure, displacement, separation and the old direction.
+type Reads<'a> = (&'a [f64], &'a [f64], &'a [f64], &'a [f64]);
+/// The fields a block writes: the gap, the free mask and the gap on the free cells.
+type Writes<'a> = (&'a mut [f64], &'a mut [f64], &'a mut [f64]);
 
 impl PolonskyKeer<'_> {
     /// One fused pass: the approach, the gap, the free mask, the gap on the free cells
@@ -18,64 +37,106 @@ impl PolonskyKeer<'_> {
     /// from 1.29 to 1.00 at N = 2048, a fifth of the passes' time, and from 0.50 to 0.47 on
     /// the Hertz N = 256 solve (`--test contact -- --ignored hertz_256_solve_time`).
     pub(super) fn measure(&mut self) -> f64 {
-        let cap = self.cap;
-        let delta = approach(&self.p, &self.u, self.separation, cap);
+        let (cap, blocks, record) = (self.cap, self.blocks, self.correction.is_some());
+        let delta = approach(blocks, &self.p, &self.u, self.separation, cap);
         let (p, u, h, t) = (&self.p[..], &self.u[..], self.separation, &self.t[..]);
-        let (g, free, r) = (&mut self.g[..], &mut self.free[..], &mut self.r[..]);
-        // The residual's maxima and the load in four lanes, as the sums: each is a serial
-        // chain through every cell otherwise.
-        let (mut residual, mut load, mut free_cells) = ([Residual::default(); 4], [0.0; 4], 0usize);
-        // The cells that joined or left the free set, for the preconditioner's correction.
-        let mut correction = self.correction.as_mut();
-        // Returns `free * t` of the cell, summed as `dot` sums (four accumulators, over
-        // slices of four so the inner loop has no bounds checks).
-        let mut cell = |(i, lane): (usize, usize),
-                        (pi, ui, hi, ti): (f64, f64, f64, f64),
-                        out: (&mut f64, &mut f64, &mut f64)| {
-            let gi = ui + hi - delta;
-            *out.0 = gi;
-            load[lane] += pi;
-            let bound = Bound::of(pi, cap);
-            residual[lane].add(bound, ui, gi);
-            let is_free = bound == Bound::Free;
-            let fi = if is_free { 1.0 } else { 0.0 };
-            free_cells += usize::from(is_free);
-            if let Some(correction) = correction.as_mut().filter(|_| (*out.1 > 0.5) != is_free) {
-                correction.record(i, is_free);
-            }
-            *out.1 = fi;
-            *out.2 = fi * gi;
-            fi * ti
-        };
-        let whole = p.len() - p.len() % 4;
-        let mut acc = [0.0; 4];
-        for first in (0..whole).step_by(4) {
-            let range = first..first + 4;
-            let (p, u, h, t) = (
-                &p[range.clone()],
-                &u[range.clone()],
-                &h[range.clone()],
-                &t[range.clone()],
-            );
-            let (g, free, r) = (
-                &mut g[range.clone()],
-                &mut free[range.clone()],
-                &mut r[range],
-            );
-            for k in 0..4 {
-                let fields = (p[k], u[k], h[k], t[k]);
-                acc[k] += cell((first + k, k), fields, (&mut g[k], &mut free[k], &mut r[k]));
+        let len = blocks.len;
+        let parts = blocks
+            .ranges(p.len())
+            .zip(self.g.chunks_mut(len))
+            .zip(self.free.chunks_mut(len).zip(self.r.chunks_mut(len)))
+            .map(|((range, g), (free, r))| {
+                let reads = (
+                    &p[range.clone()],
+                    &u[range.clone()],
+                    &h[range.clone()],
+                    &t[range.clone()],
+                );
+                (range.start, reads, (g, free, r))
+            })
+            .collect();
+        let measured = blocks.each(parts, |(first, reads, writes)| {
+            measure_block(first, reads, writes, (delta, cap), record)
+        });
+        let mut residual = Vec::with_capacity(4 * measured.len());
+        let (mut load, mut free_t) = (Vec::new(), Vec::new());
+        self.free_cells = 0.0;
+        for block in measured {
+            residual.extend(block.residual);
+            load.push(block.load);
+            free_t.push(block.free_t);
+            self.free_cells += block.free_cells as f64;
+            if let Some(correction) = self.correction.as_mut() {
+                block
+                    .moved
+                    .into_iter()
+                    .for_each(|(i, joined)| correction.record(i, joined));
             }
         }
-        let mut tail = 0.0;
-        for i in whole..p.len() {
-            let fields = (p[i], u[i], h[i], t[i]);
-            tail += cell((i, 0), fields, (&mut g[i], &mut free[i], &mut r[i]));
-        }
-        self.free_t = acc.iter().sum::<f64>() + tail;
-        self.free_cells = free_cells as f64;
+        let (lanes, tails): (Vec<_>, Vec<_>) = free_t.into_iter().unzip();
+        self.free_t = lanes_total(lanes).iter().sum::<f64>() + tails.iter().fold(0.0, |a, t| a + t);
         self.residual = Residual::merged(&residual).value();
-        self.load = load.iter().sum();
+        self.load = lanes_total(load).iter().sum();
         delta
     }
+}
+
+/// [`PolonskyKeer::measure`] on one block whose first cell is `first` (the approach
+/// `delta` and the cap given), recording the cells that joined or left the free set when
+/// `record`.
+fn measure_block(
+    first: usize,
+    (p, u, h, t): Reads,
+    (g, free, r): Writes,
+    (delta, cap): (f64, f64),
+    record: bool,
+) -> Measured {
+    let mut out = Measured::default();
+    // Returns `free * t` of the cell, summed as `dot` sums (four accumulators, over
+    // slices of four so the inner loop has no bounds checks).
+    let mut cell = |(i, lane): (usize, usize),
+                    (pi, ui, hi, ti): (f64, f64, f64, f64),
+                    written: (&mut f64, &mut f64, &mut f64)| {
+        let gi = ui + hi - delta;
+        *written.0 = gi;
+        out.load[lane] += pi;
+        let bound = Bound::of(pi, cap);
+        out.residual[lane].add(bound, ui, gi);
+        let is_free = bound == Bound::Free;
+        let fi = if is_free { 1.0 } else { 0.0 };
+        out.free_cells += usize::from(is_free);
+        if record && (*written.1 > 0.5) != is_free {
+            out.moved.push((first + i, is_free));
+        }
+        *written.1 = fi;
+        *written.2 = fi * gi;
+        fi * ti
+    };
+    let whole = p.len() - p.len() % 4;
+    let mut acc = [0.0; 4];
+    for start in (0..whole).step_by(4) {
+        let range = start..start + 4;
+        let (p, u, h, t) = (
+            &p[range.clone()],
+            &u[range.clone()],
+            &h[range.clone()],
+            &t[range.clone()],
+        );
+        let (g, free, r) = (
+            &mut g[range.clone()],
+            &mut free[range.clone()],
+            &mut r[range],
+        );
+        for k in 0..4 {
+            let fields = (p[k], u[k], h[k], t[k]);
+            acc[k] += cell((start + k, k), fields, (&mut g[k], &mut free[k], &mut r[k]));
+        }
+    }
+    let mut tail = 0.0;
+    for i in whole..p.len() {
+        let fields = (p[i], u[i], h[i], t[i]);
+        tail += cell((i, 0), fields, (&mut g[i], &mut free[i], &mut r[i]));
+    }
+    out.free_t = (acc, tail);
+    out
 }

@@ -137,7 +137,12 @@ impl PolonskyKeer<'_> {
         self.restarted = true;
         let n = self.p.len();
         self.p.fill(self.target / n as f64);
-        rescale_to_load(&mut self.p, self.cap, self.target, self.separation);
+        rescale_to_load(
+            self.blocks,
+            &mut self.p,
+            (self.cap, self.target),
+            self.separation,
+        );
         self.recompute(operator);
         self.progress = Progress::new(false);
         self.restart = true;

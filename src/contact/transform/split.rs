@@ -25,13 +25,18 @@ use super::{BLOCK, Plans, Real, inverse_row, load_row, store_row};
 pub const MAX_SPLIT_THREADS: usize = 64;
 
 /// Grid cells from which an automatic thread count splits an apply, or `None`: never.
-/// `tribosim bench threads` on the idle 2-core machine (load average 1.1): two threads
-/// take 1/1.61, 1/1.61 and 1/1.65 of one thread's time at N = 512, 1024 and 2048, and gain
-/// nothing at 256 (1.03, rounds 0.90-1.91), where each pass is too short to pay for the
-/// threads' start and join. Under load from other work the split lost (0.67-0.86 at
-/// N >= 512, load average 6-8): the second thread waits for a busy core, which is why the
-/// service gives each of its workers one core's share.
-pub const SPLIT_MIN_CELLS: Option<usize> = Some(512 * 512);
+/// The passes run on a pool whose threads stay up between them (rayon's), where a thread
+/// spawned per pass cost about 60 us. `tribosim bench threads` on the idle 2-core machine:
+/// two threads take 1/1.37 of one thread's time at N = 256 and 1/1.71 at 512 (with a
+/// thread spawned per pass, 1/0.78 and 1/1.47). From 384 x 384 cells the 2 um rough example
+/// of `docs/scene.md` splits from its first windows: its first 300 cycles took 0.70 of the
+/// wall time of the spawned split from 512 x 512 (`docs/accuracy.md`, "Rough wear: the
+/// solver's passes on two threads"). The 4 um rough disc's windows, under 250 x 250 cells,
+/// stay on one thread: a split spends more CPU time than it saves wall time, and that
+/// disc's CPU time is what the rough default is measured by. Under load from other work the
+/// split lost (0.67-0.86 at N >= 512, load average 6-8): the second thread waits for a busy
+/// core, which is why the service gives each of its workers one core's share.
+pub const SPLIT_MIN_CELLS: Option<usize> = Some(384 * 384);
 
 /// The threads of an apply on `cells` cells: `requested`, or (automatic, `None`) one below
 /// [`SPLIT_MIN_CELLS`] and, from there on, the cores the process may use divided among the
@@ -53,11 +58,13 @@ pub fn split_threads(
 }
 
 /// The threads of an unpadded (periodic) transform of `cells` cells beside an apply split
-/// `threads` ways: `threads` once the transform is as long as the DC-FFT's on a grid of
-/// [`SPLIT_MIN_CELLS`] (whose padded transform has four times its cells), else one. By
-/// that measurement, shorter passes do not pay for the threads' start and join.
+/// `threads` ways: `threads` from [`SPLIT_MIN_CELLS`] on, as the apply's, else one: the
+/// preconditioner's transforms run on the same window as the apply. With the pool's
+/// threads, the apply and these transforms split from 131,072 cells instead of 512 x 512
+/// and 1024 x 1024 took 0.976 of the wall time (`scripts/rough_ab.py --scene
+/// scenes/bench-rough-2um-300um.json`, 3 pairs, against the spawned split).
 pub(crate) fn periodic_threads(threads: usize, cells: usize) -> usize {
-    if SPLIT_MIN_CELLS.is_some_and(|min| cells >= 4 * min) {
+    if SPLIT_MIN_CELLS.is_some_and(|min| cells >= min) {
         threads
     } else {
         1
@@ -167,16 +174,16 @@ impl<T: Real> Split<T> {
     }
 }
 
-/// Runs `job` on every item, the first on this thread and the others on scoped threads.
+/// Runs `job` on every item, the first on this thread and the others on the pool's.
 fn in_parallel<I: Iterator + Send>(mut items: I, job: impl Fn(I::Item) + Sync)
 where
     I::Item: Send,
 {
     let job = &job;
-    std::thread::scope(|scope| {
+    rayon::scope(|scope| {
         let first = items.next();
         for item in items {
-            scope.spawn(move || job(item));
+            scope.spawn(move |_| job(item));
         }
         if let Some(item) = first {
             job(item);
