@@ -31,9 +31,10 @@ pub const MAX_SPLIT_THREADS: usize = 64;
 /// thread spawned per pass, 1/0.78 and 1/1.47). From 384 x 384 cells the 2 um rough example
 /// of `docs/scene.md` splits from its first windows: its first 300 cycles took 0.70 of the
 /// wall time of the spawned split from 512 x 512 (`docs/accuracy.md`, "Rough wear: the
-/// solver's passes on two threads"). The 4 um rough disc's windows, under 250 x 250 cells,
-/// stay on one thread: a split spends more CPU time than it saves wall time, and that
-/// disc's CPU time is what the rough default is measured by. Under load from other work the
+/// solver's passes on two threads"), for 1.10 of the CPU time. The 4 um rough disc's
+/// windows stay below it, on one thread, the same to the bit: there the split would gain
+/// less (1/1.37 at N = 256) for that CPU time, by which the rough default is measured
+/// (`docs/accuracy.md`, "the default by speed against error"). Under load from other work the
 /// split lost (0.67-0.86 at N >= 512, load average 6-8): the second thread waits for a busy
 /// core, which is why the service gives each of its workers one core's share.
 pub const SPLIT_MIN_CELLS: Option<usize> = Some(384 * 384);
