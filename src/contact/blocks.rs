@@ -77,15 +77,26 @@ impl Blocks {
     }
 }
 
-/// Four lanes summed block by block in order: lane `k` of the result is the sum of the
-/// blocks' lanes `k`.
-pub(crate) fn lanes_total(blocks: impl IntoIterator<Item = [f64; 4]>) -> [f64; 4] {
-    blocks.into_iter().fold([0.0; 4], |mut all, lanes| {
+/// Four lanes and the tail beyond the last whole slice of four: one block's share of a sum.
+pub(crate) type Lanes = ([f64; 4], f64);
+
+/// The blocks' four lanes summed lane by lane in order, then the four: for one block, its
+/// `lanes.iter().sum()` to the last bit (each lane of the total starts from `+0.0`).
+pub(crate) fn lanes_sum(blocks: impl IntoIterator<Item = [f64; 4]>) -> f64 {
+    let total = blocks.into_iter().fold([0.0; 4], |mut all, lanes| {
         for k in 0..4 {
             all[k] += lanes[k];
         }
         all
-    })
+    });
+    total.iter().sum()
+}
+
+/// [`lanes_sum`] of the blocks' [`Lanes`] plus their tails: for one block, its
+/// `lanes.iter().sum() + tail` to the last bit.
+pub(crate) fn lanes_and_tails_sum(blocks: impl IntoIterator<Item = Lanes>) -> f64 {
+    let (lanes, tails): (Vec<_>, Vec<_>) = blocks.into_iter().unzip();
+    lanes_sum(lanes) + tails.iter().fold(0.0, |all, tail| all + tail)
 }
 
 #[cfg(test)]

@@ -12,7 +12,7 @@
 //! on zero cells and `max(g_i, 0)` on capped cells: the worst complementarity violation,
 //! cell by cell, relative to the largest elastic displacement.
 
-use super::blocks::{Blocks, lanes_total};
+use super::blocks::{Blocks, lanes_sum};
 
 /// Where a cell's pressure sits against its bounds `0 <= p <= Y`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -122,9 +122,7 @@ pub(crate) fn approach(
         })
         .collect();
     let sums = blocks.each(parts, |(p, u, h)| approach_sums(p, u, h, cap));
-    let total = |pick: fn(&[[f64; 4]; 4]) -> [f64; 4]| {
-        lanes_total(sums.iter().map(pick)).iter().sum::<f64>()
-    };
+    let total = |pick: fn(&[[f64; 4]; 4]) -> [f64; 4]| lanes_sum(sums.iter().map(pick));
     let (free, free_n) = (total(|s| s[0]), total(|s| s[1]));
     if free_n > 0.0 {
         free / free_n

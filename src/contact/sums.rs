@@ -3,7 +3,7 @@
 //! so a sum rides on a pass that reads its data anyway. The passes of the solve's
 //! iterations go block by block ([`Blocks`]).
 
-use super::blocks::{Blocks, lanes_total};
+use super::blocks::{Blocks, Lanes, lanes_and_tails_sum};
 
 /// Dot product with four independent accumulators: a single running sum is a serial chain
 /// of additions (kept on the stack), a third of the solver's own time at N = 256 in a profile of
@@ -25,16 +25,6 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     acc.iter().sum::<f64>() + tail
 }
 
-/// Four lanes and the tail beyond the last whole slice of four: one block's share of a sum.
-type Lanes = ([f64; 4], f64);
-
-/// The sum of the blocks' [`Lanes`], in order, as [`dot`] finishes its own: for one block,
-/// that block's sum to the last bit.
-fn finish(parts: impl IntoIterator<Item = Lanes>) -> f64 {
-    let (lanes, tails): (Vec<_>, Vec<_>) = parts.into_iter().unzip();
-    lanes_total(lanes).iter().sum::<f64>() + tails.iter().fold(0.0, |all, tail| all + tail)
-}
-
 /// `(a.b, c.d)` in one pass, each summed as [`dot`] sums it block by block (so, on one
 /// block, equal to two calls to the last bit): the grids are read once where two passes
 /// read `t` or `z` twice.
@@ -51,7 +41,7 @@ pub(crate) fn dot2(
         .each(parts, |(a, b, c, d)| dot2_lanes((a, b), (c, d)))
         .into_iter()
         .unzip();
-    (finish(ab), finish(cd))
+    (lanes_and_tails_sum(ab), lanes_and_tails_sum(cd))
 }
 
 fn dot2_lanes((a, b): (&[f64], &[f64]), (c, d): (&[f64], &[f64])) -> (Lanes, Lanes) {
@@ -85,7 +75,7 @@ pub(crate) fn free_dots(blocks: Blocks, free: &[f64], r: &[f64], z: &[f64]) -> (
         .each(parts, |(free, r, z)| free_dots_lanes(free, r, z))
         .into_iter()
         .unzip();
-    (finish(rz), finish(fz))
+    (lanes_and_tails_sum(rz), lanes_and_tails_sum(fz))
 }
 
 fn free_dots_lanes(free: &[f64], r: &[f64], z: &[f64]) -> (Lanes, Lanes) {
@@ -119,7 +109,7 @@ pub(crate) fn update_direction(
         .zip(t.chunks_mut(blocks.len))
         .map(|(r, t)| (t, &source[r.clone()], &free[r.clone()], &g[r]))
         .collect();
-    finish(blocks.each(parts, |(t, source, free, g)| {
+    lanes_and_tails_sum(blocks.each(parts, |(t, source, free, g)| {
         direction_lanes(t, (source, free, g), beta, mean)
     }))
 }

@@ -1,7 +1,7 @@
 //! The solver's step over the grid: each cell stepped along the direction, truncated at
 //! the bound it crosses or re-entering, and the displacement updated along.
 
-use super::super::blocks::lanes_total;
+use super::super::blocks::lanes_sum;
 use super::super::operator::Operator;
 use super::PolonskyKeer;
 use super::bounds::step_cell;
@@ -51,9 +51,7 @@ impl PolonskyKeer<'_> {
             .iter()
             .flat_map(|s| s.highest)
             .fold(0.0f64, |m, v| m.max(v));
-        let load = lanes_total(stepped.iter().map(|s| s.load))
-            .iter()
-            .sum::<f64>();
+        let load = lanes_sum(stepped.iter().map(|s| s.load));
         let entered = stepped.iter().any(|s| s.entered);
         self.updates += 1;
         if !self.changes.is_empty() {

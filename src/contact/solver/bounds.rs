@@ -1,7 +1,7 @@
 //! The bounds' side of the solver: restoring the load, the fallback step when the free
 //! cells cannot move, and the refusal of a contact that reaches the domain edge.
 
-use super::super::blocks::{Blocks, lanes_total};
+use super::super::blocks::{Blocks, lanes_sum};
 use super::super::error::ContactError;
 use super::super::grid::Grid;
 use super::super::operator::Operator;
@@ -32,9 +32,7 @@ pub(super) fn rescale_to_load(
     loop {
         let parts = pressure.chunks(blocks.len).collect();
         let sums = blocks.each(parts, |p| bound_sums(p, cap));
-        let total = |pick: fn(&[[f64; 4]; 3]) -> [f64; 4]| {
-            lanes_total(sums.iter().map(pick)).iter().sum::<f64>()
-        };
+        let total = |pick: fn(&[[f64; 4]; 3]) -> [f64; 4]| lanes_sum(sums.iter().map(pick));
         let (capped, free, shifted) = (total(|s| s[0]), total(|s| s[1]), total(|s| s[2]));
         // Capped cells counted, then times the cap: without yielding the cap is infinite,
         // and a factor of 0 times it is not 0.

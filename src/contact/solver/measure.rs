@@ -1,6 +1,6 @@
 //! The solver's pass over the grid at the start of each iteration.
 
-use super::super::blocks::lanes_total;
+use super::super::blocks::{Lanes, lanes_and_tails_sum, lanes_sum};
 use super::super::residual::{Bound, Residual, approach};
 use super::PolonskyKeer;
 
@@ -12,7 +12,7 @@ struct Measured {
     load: [f64; 4],
     free_cells: usize,
     /// `free * t`, summed as `dot` sums (four lanes and the tail apart).
-    free_t: ([f64; 4], f64),
+    free_t: Lanes,
     /// The cells that joined (`true`) or left the free set, in order, when recorded.
     moved: Vec<(usize, bool)>,
 }
@@ -73,10 +73,9 @@ impl PolonskyKeer<'_> {
                     .for_each(|(i, joined)| correction.record(i, joined));
             }
         }
-        let (lanes, tails): (Vec<_>, Vec<_>) = free_t.into_iter().unzip();
-        self.free_t = lanes_total(lanes).iter().sum::<f64>() + tails.iter().fold(0.0, |a, t| a + t);
+        self.free_t = lanes_and_tails_sum(free_t);
         self.residual = Residual::merged(&residual).value();
-        self.load = lanes_total(load).iter().sum();
+        self.load = lanes_sum(load);
         delta
     }
 }
