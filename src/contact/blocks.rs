@@ -54,6 +54,11 @@ impl Blocks {
         }
     }
 
+    /// Whether a field of `cells` cells is one block.
+    pub(crate) fn is_one(&self, cells: usize) -> bool {
+        self.len >= cells
+    }
+
     /// The cells of each block, in order.
     pub(crate) fn ranges(&self, cells: usize) -> impl Iterator<Item = Range<usize>> + use<> {
         let len = self.len;

@@ -14,7 +14,9 @@ impl PolonskyKeer<'_> {
         let (blocks, params) = (self.blocks, (tau, self.entry_rate, self.cap));
         let (t, r, g) = (&self.t[..], &self.r[..], &self.g[..]);
         self.changes.clear();
-        let stepped = if blocks.parallel {
+        // Several blocks are stepped and summed block by block on one thread as on two
+        // (`Blocks::each` runs them in turn), so the load's bits do not depend on the threads.
+        let stepped = if !blocks.is_one(t.len()) {
             let parts: Vec<_> = blocks
                 .ranges(t.len())
                 .zip(
