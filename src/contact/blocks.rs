@@ -16,10 +16,11 @@ use super::transform::SPLIT_MIN_CELLS;
 
 /// Fields of this many cells or more are passed over in [`BLOCKS`] blocks: from the size at
 /// which the contact's FFT passes split across threads ([`SPLIT_MIN_CELLS`]), so that a
-/// solve split at all splits its own passes too. Below, a pass is too short to pay for
-/// handing blocks to other threads: with the pool's threads kept up between passes, a
-/// fused pass over six fields took 0.66 of one thread's time at 30,000 cells and 0.52 at
-/// 300,000 (`rayon::join` of two halves, measured once on the idle 2-core machine).
+/// solve split at all splits its own passes too, and a solve below it (the paper scene, the
+/// 4 um rough disc's windows) keeps the one-pass sums to the bit. With the blocks and the
+/// pool, the 300 um domain of `docs/accuracy.md` ran in 0.885 of the wall time of the
+/// applies split by spawned threads from 512 x 512 cells alone (`scripts/rough_ab.py A B
+/// --scene scenes/bench-rough-2um-300um.json --pairs 3`).
 pub(crate) const BLOCKED_MIN_CELLS: usize = match SPLIT_MIN_CELLS {
     Some(cells) => cells,
     None => usize::MAX,
