@@ -27,13 +27,12 @@ import concurrent.futures
 import datetime
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rough_default import OUTPUTS, REFERENCE, TARGETS, errors, scene  # noqa: E402
-from rough_levers import write_section  # noqa: E402
+from rough_levers import run_scene, write_section  # noqa: E402
 
 HEADING = "## Rough wear: the tolerance over five discs"
 SEEDS = [1, 2, 3, 4, 5]
@@ -64,19 +63,12 @@ def seeded(numerics, seed, load_n=None):
 
 
 def run(binary, the_scene, workdir, name):
-    """Runs the scene; its result's scene, summary and plastic area per cycle."""
-    path = os.path.join(workdir, name + ".json")
-    with open(path, "w") as f:
-        json.dump(the_scene, f)
-    out = path + ".out"
-    subprocess.run(
-        [binary, "run", path, "-o", out],
-        check=True,
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-    )
-    with open(out) as f:
-        result = json.load(f)
+    """Runs the scene in its own folder (`run_scene` names its files by counting the
+    folder's, which two runs at once would race on); its result's scene, summary and
+    plastic area per cycle."""
+    folder = os.path.join(workdir, name)
+    os.mkdir(folder)
+    result = run_scene(binary, the_scene, folder)
     plastic = [c["plastic_area_mm2"] for c in result["cycles"]]
     return {"scene": result["scene"], "summary": result["summary"], "plastic_mm2": plastic}
 
