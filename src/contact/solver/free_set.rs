@@ -67,11 +67,17 @@ impl FreeSetCorrection {
 
     /// Records that `cell` joined (`true`) or left the free set, as the solver classifies
     /// the cells. Past as many cells as [`Self::follow`] updates one by one, the list stops
-    /// growing: the next apply sums afresh anyway.
+    /// growing ([`Self::most_recorded`]): the next apply sums afresh anyway.
     pub(super) fn record(&mut self, cell: usize, joined: bool) {
         if self.moved.len() <= self.most_moved() {
             self.moved.push((cell, if joined { 1.0 } else { -1.0 }));
         }
+    }
+
+    /// The most cells [`Self::record`] keeps between applies: one past [`Self::most_moved`],
+    /// which tells [`Self::follow`] to sum afresh. A pass may stop collecting there.
+    pub(super) fn most_recorded(&self) -> usize {
+        self.most_moved() + 1
     }
 
     /// The most moved cells [`Self::follow`] updates by the near field: beyond, an apply of

@@ -3,6 +3,7 @@
 use super::super::blocks::{Lanes, lanes_and_tails_sum, lanes_sum};
 use super::super::residual::{Bound, Residual, approach};
 use super::PolonskyKeer;
+use super::free_set::FreeSetCorrection;
 
 /// One block's share of [`PolonskyKeer::measure`]'s sums, in four lanes (a cell's lane is
 /// its index modulo four; the cells past the last whole slice of four go to lane 0).
@@ -13,7 +14,8 @@ struct Measured {
     free_cells: usize,
     /// `free * t`, summed as `dot` sums (four lanes and the tail apart).
     free_t: Lanes,
-    /// The cells that joined (`true`) or left the free set, in order, when recorded.
+    /// The first cells that joined (`true`) or left the free set, in order, as many as
+    /// were asked for.
     moved: Vec<(usize, bool)>,
 }
 
@@ -37,7 +39,12 @@ impl PolonskyKeer<'_> {
     /// from 1.29 to 1.00 at N = 2048, a fifth of the passes' time, and from 0.50 to 0.47 on
     /// the Hertz N = 256 solve (`--test contact -- --ignored hertz_256_solve_time`).
     pub(super) fn measure(&mut self) -> f64 {
-        let (cap, blocks, record) = (self.cap, self.blocks, self.correction.is_some());
+        let (cap, blocks) = (self.cap, self.blocks);
+        // The moved cells a block collects: no more than the correction keeps.
+        let record = self
+            .correction
+            .as_ref()
+            .map_or(0, FreeSetCorrection::most_recorded);
         let delta = approach(blocks, &self.p, &self.u, self.separation, cap);
         let (p, u, h, t) = (&self.p[..], &self.u[..], self.separation, &self.t[..]);
         let len = blocks.len;
@@ -81,14 +88,14 @@ impl PolonskyKeer<'_> {
 }
 
 /// [`PolonskyKeer::measure`] on one block whose first cell is `first` (the approach
-/// `delta` and the cap given), recording the cells that joined or left the free set when
-/// `record`.
+/// `delta` and the cap given), recording the first `record` cells that joined or left the
+/// free set.
 fn measure_block(
     first: usize,
     (p, u, h, t): Reads,
     (g, free, r): Writes,
     (delta, cap): (f64, f64),
-    record: bool,
+    record: usize,
 ) -> Measured {
     let mut out = Measured::default();
     // Returns `free * t` of the cell, summed as `dot` sums (four accumulators, over
@@ -104,7 +111,7 @@ fn measure_block(
         let is_free = bound == Bound::Free;
         let fi = if is_free { 1.0 } else { 0.0 };
         out.free_cells += usize::from(is_free);
-        if record && (*written.1 > 0.5) != is_free {
+        if (*written.1 > 0.5) != is_free && out.moved.len() < record {
             out.moved.push((first + i, is_free));
         }
         *written.1 = fi;
