@@ -32,7 +32,8 @@ pub const MAX_SPLIT_THREADS: usize = 64;
 /// of `docs/scene.md` splits from its first windows: its first 300 cycles took 0.70 of the
 /// wall time of the spawned split from 512 x 512 (`docs/accuracy.md`, "Rough wear: the
 /// solver's passes on two threads"), for 1.10 of the CPU time. The 4 um rough disc's
-/// windows stay below it, on one thread, the same to the bit: there the split would gain
+/// windows stay below it, on one thread (seed 1's results are the same to the bit; seeds 2
+/// and 5 reach it late in their 600 cycles): there the split would gain
 /// less (1/1.37 at N = 256) for that CPU time, by which the rough default is measured
 /// (`docs/accuracy.md`, "the default by speed against error"). Under load from other work the
 /// split lost (0.67-0.86 at N >= 512, load average 6-8): the second thread waits for a busy
