@@ -54,4 +54,4 @@ pub use transform::Real;
 pub(crate) use transform::{BLOCK, Plans, STRIDE_PAD};
 pub use transform::{MAX_SPLIT_THREADS, SPLIT_MIN_CELLS, fft_friendly, split_threads};
 pub use window::{KEPT_SHAPES, MARGIN_FRACTION, MIN_MARGIN, WindowFractions, WindowedSolver};
-pub use worn_rows::{WornRows, add_worn_rows};
+pub use worn_rows::{WornRows, add_worn_rows, worn_row_depths_m};

@@ -109,14 +109,35 @@ pub fn add_worn_rows(pass_wear_per_pa: f64, grid: &Grid, pressure: &[f64], outpu
     );
 }
 
+/// The depth `W p` of [`WornRows`] of `pass_wear_per_pa` wears on each row of `grid`, m,
+/// in order (every cell of a row the same): what [`add_worn_rows`] adds to the row's cells.
+pub fn worn_row_depths_m(
+    pass_wear_per_pa: f64,
+    grid: &Grid,
+    pressure: &[f64],
+) -> impl Iterator<Item = f64> {
+    row_depths(per_row_sum(pass_wear_per_pa, grid.dx), grid.nx, pressure)
+}
+
+/// `per_row_sum` times each row's sum of `pressure` (rows of `nx` cells), in order.
+fn row_depths(per_row_sum: f64, nx: usize, pressure: &[f64]) -> impl Iterator<Item = f64> {
+    pressure.chunks_exact(nx).map(move |row| {
+        if per_row_sum == 0.0 {
+            0.0
+        } else {
+            per_row_sum * sum(row)
+        }
+    })
+}
+
 /// Adds `per_row_sum` times each row's sum of `pressure` (rows of `nx` cells) to every cell
 /// of that row of `output`.
 fn add_rows(per_row_sum: f64, nx: usize, pressure: &[f64], output: &mut [f64]) {
     if per_row_sum == 0.0 {
         return;
     }
-    for (row, out) in pressure.chunks_exact(nx).zip(output.chunks_exact_mut(nx)) {
-        let worn = per_row_sum * sum(row);
+    let rows = row_depths(per_row_sum, nx, pressure).zip(output.chunks_exact_mut(nx));
+    for (worn, out) in rows {
         if worn != 0.0 {
             out.iter_mut().for_each(|u| *u += worn);
         }

@@ -5,9 +5,7 @@
 //! elastic approach. `docs/paper.md` compares the groove with the paper's statements and
 //! reports the loaded surface beside it: that the paper's figures plot it is a conjecture.
 
-use std::borrow::Cow;
-
-use crate::contact::{ContactSolution, Grid, Material, add_worn_rows};
+use crate::contact::{ContactSolution, Grid, Material, worn_row_depths_m};
 use crate::wear::Groove;
 
 use super::Setup;
@@ -36,35 +34,42 @@ pub fn loaded_profile_m(
     displacement: &[f64],
     share: f64,
 ) -> Vec<f64> {
+    loaded_depths_m(groove, grid, displacement, std::iter::repeat(0.0), share).collect()
+}
+
+/// The deepest point of [`loaded_profile_m`] under `solution`, m. A solve that included its
+/// pass's wear (`pass_wear_per_pa`, [`crate::contact::worn_rows`]) reports `K p` plus that
+/// wear, which is no dent of the disc's: each row's is taken off its largest displacement.
+/// The wear is the same along a row, and rounding is monotonic, so this is the largest of
+/// the row's displacements less the wear to the last bit, without a copy of the grid's.
+pub fn loaded_max_depth_m(
+    groove: &Groove,
+    grid: &Grid,
+    solution: &ContactSolution,
+    pass_wear_per_pa: f64,
+    share: f64,
+) -> f64 {
+    let worn = worn_row_depths_m(pass_wear_per_pa, grid, &solution.pressure);
+    loaded_depths_m(groove, grid, &solution.displacement, worn, share).fold(0.0, f64::max)
+}
+
+/// The groove's depth per row plus `share` of the row's largest `displacement` less its
+/// `worn` depth (at least zero), m.
+fn loaded_depths_m<'a>(
+    groove: &'a Groove,
+    grid: &Grid,
+    displacement: &'a [f64],
+    worn: impl Iterator<Item = f64> + 'a,
+    share: f64,
+) -> impl Iterator<Item = f64> + 'a {
+    let peaks = displacement
+        .chunks_exact(grid.nx)
+        .map(|row| row.iter().fold(f64::NEG_INFINITY, |m, &u| m.max(u)));
     groove
         .depth_m()
         .iter()
-        .zip(displacement.chunks_exact(grid.nx))
-        .map(|(depth, row)| depth + share * row.iter().fold(0.0_f64, |m, &u| m.max(u)))
-        .collect()
-}
-
-/// The deepest point of [`loaded_profile_m`], m.
-pub fn loaded_max_depth_m(groove: &Groove, grid: &Grid, displacement: &[f64], share: f64) -> f64 {
-    loaded_profile_m(groove, grid, displacement, share)
-        .into_iter()
-        .fold(0.0, f64::max)
-}
-
-/// The pair's elastic displacement in `solution`: a solve that included its pass's wear
-/// (`pass_wear_per_pa`, [`crate::contact::worn_rows`]) reports `K p` plus that wear, which is
-/// no dent of the disc's.
-pub fn elastic_displacement<'a>(
-    solution: &'a ContactSolution,
-    grid: &Grid,
-    pass_wear_per_pa: f64,
-) -> Cow<'a, [f64]> {
-    if pass_wear_per_pa == 0.0 {
-        return Cow::Borrowed(&solution.displacement);
-    }
-    let mut elastic = solution.displacement.clone();
-    add_worn_rows(-pass_wear_per_pa, grid, &solution.pressure, &mut elastic);
-    Cow::Owned(elastic)
+        .zip(peaks.zip(worn))
+        .map(move |(depth, (peak, worn))| depth + share * (peak - worn).max(0.0))
 }
 
 /// The pair's displacement `K p` at every cell of `grid` under `pressure`, with the

@@ -34,9 +34,7 @@ mod stalls;
 use super::balance::{balance, overdrawn};
 use super::electrochemistry::{Cell, Reading, Surface, fill_corrosion};
 use super::growth::{GROW_AT_EDGE_CELLS, GROW_AT_FRACTION, near_edges, widen};
-use super::loaded::{
-    disc_share, elastic_displacement, full_displacement, loaded_max_depth_m, loaded_profile_m,
-};
+use super::loaded::{disc_share, full_displacement, loaded_max_depth_m, loaded_profile_m};
 use super::ocp_trace::ocp_trace;
 use super::provenance::Provenance;
 use super::stepping::{Stepper, step_stop};
@@ -373,7 +371,8 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             loaded_max_depth_um: loaded_max_depth_m(
                 &self.groove,
                 grid,
-                &elastic_displacement(solution, grid, pass_wear_per_pa),
+                solution,
+                pass_wear_per_pa,
                 self.share,
             ) * 1e6,
             max_pressure_mpa: solution.max_pressure_pa() / 1e6,
