@@ -19,6 +19,8 @@
 //! so that a solve from the checked pressure starts from the check's displacement
 //! ([`carried`]) without an apply of its own.
 
+use std::ops::Range;
+
 use super::error::ContactError;
 use super::grid::{Grid, Window};
 use super::operator::Operator;
@@ -91,6 +93,8 @@ pub struct WindowedSolver<F> {
     fractions: WindowFractions,
     /// The last check's displacement, the start of a solve from the pressure it checked.
     carried: Option<Carried>,
+    /// The rows of the last solve's window (every row after a solve on the whole grid).
+    solved_rows: Range<usize>,
 }
 
 /// The cells a windowed solver worked on, as shares of the grid's, summed over solves.
@@ -136,6 +140,7 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
             focus: None,
             fractions: WindowFractions::default(),
             carried: None,
+            solved_rows: 0..grid.ny,
         }
     }
 
@@ -159,6 +164,7 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         self.grid = wider;
         self.full = (self.factory)(&wider);
         self.carried = None;
+        self.solved_rows = 0..wider.ny;
         self.focus_on(pressure);
     }
 
@@ -166,6 +172,13 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
     /// report).
     pub fn fractions(&self) -> WindowFractions {
         self.fractions
+    }
+
+    /// The rows that may carry the last solution's pressure: those of the window it was
+    /// solved on (every row of the grid after a solve on the whole grid). Every cell of the
+    /// other rows carries none, so a pass over the pressure can skip them.
+    pub fn loaded_rows(&self) -> Range<usize> {
+        self.solved_rows.clone()
     }
 
     /// Solves `problem` on `window` and checks the answer on the cells that could touch
@@ -218,12 +231,12 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         let reach = self.reach(&both, problem.separation, &solution, options.tolerance);
         let elastic = self.displacement_over(&reach, &pressure)?;
         let mut displacement = reach.embed(&grid, &elastic);
-        // Only the window's rows carry pressure, so only they wear: the rows beyond would
-        // add nothing, after a pass over three quarters of the late 2 um example's grid.
+        // Only the window's rows carry pressure, so only they wear: the rows beyond (about a
+        // third of the 2 um example's grown grid, late in its run) would add nothing.
         let rows = window.y0 * grid.nx..(window.y0 + window.ny) * grid.nx;
         add_worn_rows(
             problem.pass_wear_per_pa,
-            &Grid::new(grid.nx, window.ny, grid.dx, grid.dy)?,
+            &grid,
             &pressure[rows.clone()],
             &mut displacement[rows],
         );
@@ -238,6 +251,7 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
             return Ok(None);
         }
         self.focus = next;
+        self.solved_rows = window.rows();
         self.carried = Some(Carried {
             pressure: solution.pressure,
             solved: window,
@@ -339,6 +353,7 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> ContactSolver for WindowedSolver
                 };
                 let solution = self.full.solve(problem, options, warm_start)?;
                 self.focus = around(&grid, &solution.pressure);
+                self.solved_rows = 0..grid.ny;
                 break solution;
             };
             // A window's solve focuses the next one itself, on the box its check covered.

@@ -99,7 +99,8 @@ fn per_row_sum(pass_wear_per_pa: f64, dx_m: f64) -> f64 {
 }
 
 /// Adds the wear `W p` of [`WornRows`] of `pass_wear_per_pa` on `grid` to `output`: each
-/// row's sum of `pressure` times `s dx`, on every cell of that row.
+/// row's sum of `pressure` times `s dx`, on every cell of that row. `pressure` and `output`
+/// are the same rows of `grid`: all of them, or a band whose other rows carry no pressure.
 pub fn add_worn_rows(pass_wear_per_pa: f64, grid: &Grid, pressure: &[f64], output: &mut [f64]) {
     add_rows(
         per_row_sum(pass_wear_per_pa, grid.dx),

@@ -22,13 +22,11 @@ use crate::contact::{
     ContactError, ContactProblem, ContactSolution, ContactSolver, Grid, Window, WindowedSolver,
     cold_start,
 };
-use crate::corrosion::ContactGeometry;
-use crate::corrosion::spots::SpotRows;
 use crate::hardness::pass_strain;
 use crate::scene::{CycleStep, DomainSize, Spots, Tolerance};
-use crate::surface::count_islands;
 use crate::wear::Groove;
 
+mod band;
 mod stalls;
 
 use super::balance::{balance, overdrawn};
@@ -43,6 +41,7 @@ use super::{
     CycleRecord, Model, ModelChoice, Plan, PressureMap, Profile, RunOptions, Setup,
     SimulationError, SimulationResult,
 };
+use band::Band;
 use stalls::Stalls;
 
 /// Cycles at which the depth profile is kept when solved (paper Figs. 12 and 15 use 10 and
@@ -217,8 +216,18 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             wear.depth_scale(cycle..cycle + 1, setup.plan.hardness()),
         );
         // Corrosion (eq. 18, Faraday), the record, then the cycles the solve stands for.
-        let reading = self.corrode(cycle, &solution, (hardness_pa, cap))?;
-        self.record(cycle, &solution, (cap, pass_wear_per_pa), reading, on_cycle);
+        let band = Band::of(&self.grid, &solution.pressure, self.solver.loaded_rows());
+        let in_contact = band.in_contact();
+        let reading = self.corrode(cycle, (&band, &in_contact), (hardness_pa, cap))?;
+        let islands = band.islands(&in_contact);
+        self.record(
+            cycle,
+            &solution,
+            islands,
+            (cap, pass_wear_per_pa),
+            reading,
+            on_cycle,
+        );
         self.wear_skipped(cycle, step, &pass, reading.as_ref());
         // The gap of the solve, for the warm start's extrapolation of cells entering contact.
         let gap = self
@@ -312,34 +321,26 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         Ok((solution, separation))
     }
 
-    /// Eq. 18 and Faraday for this cycle, when the scene has a corrosion section.
+    /// Eq. 18 and Faraday for this cycle, when the scene has a corrosion section, from the
+    /// pressure on the loaded `band` and its cells `in_contact`.
     fn corrode(
         &mut self,
         cycle: u64,
-        solution: &ContactSolution,
+        (band, in_contact): (&Band, &[bool]),
         (hardness_pa, cap): (f64, f64),
     ) -> Result<Option<Reading>, SimulationError> {
         let scene = self.setup.scene();
         let Some(cell) = self.cell.as_mut() else {
             return Ok(None);
         };
-        let in_contact: Vec<bool> = solution.pressure.iter().map(|&p| p > 0.0).collect();
-        let grid = &self.grid;
-        let spots = cell.settings().spots().map(|kind| {
-            let of = |mask: &[bool]| SpotRows::of(mask, grid.nx, grid.dx, grid.dy, grid.y(0));
-            match kind {
-                Spots::Capped => of(&solution
-                    .pressure
-                    .iter()
-                    .map(|&p| p >= cap)
-                    .collect::<Vec<_>>()),
-                Spots::InContact => of(&in_contact),
-            }
+        let spots = cell.settings().spots().map(|kind| match kind {
+            Spots::Capped => band.spot_rows(&band.capped(cap)),
+            Spots::InContact => band.spot_rows(in_contact),
         });
         let surface = Surface {
             spots,
             groove: &self.groove,
-            contact: ContactGeometry::of(&in_contact, grid.nx, grid.dx, grid.dy),
+            contact: band.geometry(in_contact),
             load_n: scene.load_n(),
             hardness_pa,
             track_length_m: scene.track_length_m(),
@@ -350,11 +351,12 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
     }
 
     /// The cycle's record, to the caller and the result; the first pressure map and the
-    /// profiles of the chosen cycles.
+    /// profiles of the chosen cycles. `islands`: the contact's 4-connected groups of cells.
     fn record(
         &mut self,
         cycle: u64,
         solution: &ContactSolution,
+        islands: usize,
         (cap, pass_wear_per_pa): (f64, f64),
         reading: Option<Reading>,
         on_cycle: &mut dyn FnMut(&CycleRecord),
@@ -362,7 +364,6 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
         let (setup, grid) = (self.setup, &self.grid);
         let n = cycle as f64;
         let track_length = setup.scene().track_length_m();
-        let contact: Vec<bool> = solution.pressure.iter().map(|&p| p > 0.0).collect();
         let groove_m3 = self.groove.area_m2() * track_length;
         let mut record = CycleRecord {
             cycle,
@@ -377,7 +378,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             ) * 1e6,
             max_pressure_mpa: solution.max_pressure_pa() / 1e6,
             contact_area_mm2: solution.contact_area_m2(grid) * 1e6,
-            contact_islands: count_islands(&contact, grid.nx),
+            contact_islands: islands,
             plastic_area_mm2: solution.plastic_area_m2(grid, cap) * 1e6,
             hardness_mpa: setup.plan.hardness().hardness_pa(n) / 1e6,
             yield_pressure_mpa: cap.is_finite().then_some(cap / 1e6),
