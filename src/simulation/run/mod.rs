@@ -54,7 +54,7 @@ const PROFILE_CYCLES: [u64; 16] = [
 /// [`SimulationError::Cancelled`] once `cancel` is set (checked once per solved cycle).
 pub fn run(
     plan: &Plan,
-    on_cycle: &mut dyn FnMut(&CycleRecord),
+    on_cycle: &mut (dyn FnMut(&CycleRecord) + Send),
     cancel: &AtomicBool,
 ) -> Result<SimulationResult, SimulationError> {
     run_with(plan, &RunOptions::default(), on_cycle, cancel)
@@ -64,7 +64,7 @@ pub fn run(
 pub fn run_with(
     plan: &Plan,
     options: &RunOptions,
-    on_cycle: &mut dyn FnMut(&CycleRecord),
+    on_cycle: &mut (dyn FnMut(&CycleRecord) + Send),
     cancel: &AtomicBool,
 ) -> Result<SimulationResult, SimulationError> {
     run_setup(&Setup::new(plan, options)?, on_cycle, cancel)
@@ -73,9 +73,14 @@ pub fn run_with(
 /// [`run`] of a scene already set up, e.g. with its solver options changed.
 pub fn run_setup(
     setup: &Setup,
-    on_cycle: &mut dyn FnMut(&CycleRecord),
+    on_cycle: &mut (dyn FnMut(&CycleRecord) + Send),
     cancel: &AtomicBool,
 ) -> Result<SimulationResult, SimulationError> {
+    if setup.loop_on_pool() && rayon::current_thread_index().is_none() {
+        // `rayon::scope` runs its closure on one of the pool's threads (rayon's docs, "A
+        // note on threading"), where this call goes on.
+        return rayon::scope(|_| run_setup(setup, on_cycle, cancel));
+    }
     if let Some(stroke) = setup.scene().stroke() {
         return super::stroke_run::run_stroke(setup, stroke, on_cycle, cancel);
     }
