@@ -73,7 +73,7 @@ impl<'s> Band<'s> {
 mod tests {
     use super::*;
 
-    /// A field of 6 x 8 cells loaded on rows 2 to 4 only: the band of rows 1 to 5 finds
+    /// A field of 6 x 8 cells loaded on rows 2 to 4 only: the band of rows 1 to 4 finds
     /// what the whole grid finds, the spots at the same places.
     #[test]
     fn a_band_holding_the_loaded_rows_reads_what_the_whole_grid_reads() {
