@@ -251,8 +251,18 @@ impl Window {
 
     /// `field` (the window's cells, row-major) placed in a field of `grid`, zero outside.
     pub fn embed(&self, grid: &Grid, field: &[f64]) -> Vec<f64> {
-        let mut out = vec![0.0; grid.len()];
-        self.place(grid, field, &mut out);
+        // Written once, in order, into memory the allocator reuses: a zeroed allocation
+        // (`vec![0.0; n]`) of a whole grid is handed back to the system and faulted in
+        // again page by page on every call, and the window then written over it.
+        let mut out = Vec::with_capacity(grid.len());
+        out.resize(self.y0 * grid.nx, 0.0);
+        let after = grid.nx - self.x0 - self.nx;
+        for row in field.chunks_exact(self.nx) {
+            out.resize(out.len() + self.x0, 0.0);
+            out.extend_from_slice(row);
+            out.resize(out.len() + after, 0.0);
+        }
+        out.resize(grid.len(), 0.0);
         out
     }
 
