@@ -95,43 +95,55 @@ impl Groove {
     /// The roughness as yielding has left it, `min(r, c)`, at each cell of `grid` (the grid
     /// the groove is on): m above the original mean plane, the groove `D` left out.
     pub fn roughness_m(&self, grid: &Grid) -> Vec<f64> {
-        // Row by row into a buffer of the final length: collecting the rows' `flat_map`
-        // grew the vector as it went, with no exact size hint (`perf`: most of the time
-        // of building the separation, 3% of a paper-scene run).
-        let mut heights = Vec::with_capacity(grid.len());
-        for iy in 0..grid.ny {
-            heights.extend(self.roughness_row(grid, iy));
-        }
-        heights
-    }
-
-    /// [`Self::roughness_m`] along row `iy` of `grid`: the row's ceiling and roughness are
-    /// looked up once, not per cell.
-    fn roughness_row(&self, grid: &Grid, iy: usize) -> impl Iterator<Item = f64> + '_ {
-        let c = self.ceiling_m[iy];
-        let row = self.roughness.as_ref().map(|r| (r.row(iy, grid.ny), r.nx));
-        let nx = grid.nx;
-        (0..nx).map(move |ix| match row {
-            Some((heights, period)) => heights[periodic_index(ix, nx, period)].min(c),
-            None => c.min(0.0),
-        })
+        self.rows_of(grid, |_, row, out| out.extend_from_slice(row))
     }
 
     /// The separation of the undeformed surfaces: the ball's height plus the disc's depth
     /// below the original mean plane at each cell, `D - min(r, c)` (eq. 17; removed disc
     /// material widens the gap, an asperity narrows it).
     pub fn separation(&self, ball: &[f64], grid: &Grid) -> Vec<f64> {
-        let mut h = self.roughness_m(grid);
-        for ((row, &d), ball) in h
-            .chunks_exact_mut(grid.nx)
-            .zip(&self.worn_m)
-            .zip(ball.chunks_exact(grid.nx))
-        {
-            for (v, &b) in row.iter_mut().zip(ball) {
-                *v = b + (d - *v);
-            }
+        self.rows_of(grid, |iy, row, out| {
+            let (d, ball) = (self.worn_m[iy], &ball[iy * grid.nx..][..grid.nx]);
+            out.extend(row.iter().zip(ball).map(|(&r, &b)| b + (d - r)));
+        })
+    }
+
+    /// A field of `grid` built row by row: `push(iy, roughness, out)` appends row `iy` to
+    /// `out` from the row's [`Self::roughness_row`]. Into a buffer of the final length, so
+    /// that no row grows it and no whole grid is zeroed first.
+    fn rows_of(&self, grid: &Grid, mut push: impl FnMut(usize, &[f64], &mut Vec<f64>)) -> Vec<f64> {
+        let mut out = Vec::with_capacity(grid.len());
+        let mut row = vec![0.0; grid.nx];
+        for iy in 0..grid.ny {
+            self.roughness_row(iy, &mut row);
+            push(iy, &row, &mut out);
         }
-        h
+        out
+    }
+
+    /// [`Self::roughness_m`] along row `iy`, into `out` (one row of the grid the groove is
+    /// on). The roughness repeats along the row, so the row is its period's row copied from
+    /// the cell under the row's first: copied by runs, not indexed cell by cell (on the 2 um
+    /// example's 300 um domain that lookup, a division per cell, and the whole grid's
+    /// separation around it were an eighth of the run's serial samples, `perf record
+    /// --call-graph dwarf` of `tribosim run scenes/bench-rough-2um-300um.json`).
+    fn roughness_row(&self, iy: usize, out: &mut [f64]) {
+        let c = self.ceiling_m[iy];
+        let Some(roughness) = &self.roughness else {
+            out.fill(c.min(0.0));
+            return;
+        };
+        let heights = roughness.row(iy, self.depth_m.len());
+        let mut from = periodic_index(0, out.len(), roughness.nx);
+        let mut rest = out;
+        while !rest.is_empty() {
+            let run = (heights.len() - from).min(rest.len());
+            let (head, tail) = rest.split_at_mut(run);
+            for (o, &h) in head.iter_mut().zip(&heights[from..]) {
+                *o = h.min(c);
+            }
+            (rest, from) = (tail, 0);
+        }
     }
 
     /// Eq. 13: where the pressure sits at the cap the material yields by the interpenetration
@@ -152,16 +164,13 @@ impl Groove {
         // example on a 300 um domain (`perf record -F 99 --call-graph dwarf`).
         let mut ceiling = self.ceiling_m.clone();
         let mut yielded = false;
+        let mut roughness = vec![0.0; grid.nx];
         let rows = solution.pressure.chunks_exact(grid.nx).enumerate();
         for (iy, pressure) in rows.filter(|(_, row)| row.iter().any(|&p| p >= cap)) {
             let cells = iy * grid.nx..(iy + 1) * grid.nx;
             let (u, h) = (&solution.displacement[cells.clone()], &separation[cells]);
-            for (((&p, &u), &h), r) in pressure
-                .iter()
-                .zip(u)
-                .zip(h)
-                .zip(self.roughness_row(grid, iy))
-            {
+            self.roughness_row(iy, &mut roughness);
+            for (((&p, &u), &h), &r) in pressure.iter().zip(u).zip(h).zip(&roughness) {
                 if p >= cap {
                     let gap = u + h - solution.approach_m;
                     yielded |= gap < 0.0;
