@@ -5,7 +5,7 @@
 //! elastic approach. `docs/paper.md` compares the groove with the paper's statements and
 //! reports the loaded surface beside it: that the paper's figures plot it is a conjecture.
 
-use crate::contact::{ContactSolution, Grid, Material, worn_row_depths_m};
+use crate::contact::{ContactSolution, Grid, Material, Operator, worn_row_depths_m};
 use crate::wear::Groove;
 
 use super::Setup;
@@ -72,13 +72,15 @@ fn loaded_depths_m<'a>(
         .map(move |(depth, (peak, worn))| depth + share * (peak - worn).max(0.0))
 }
 
-/// The pair's displacement `K p` at every cell of `grid` under `pressure`, with the
-/// operator the run's solver uses: a windowed solve computes it only near the contact, and
-/// the loaded profile reaches beyond it.
-pub fn full_displacement(setup: &Setup, grid: &Grid, pressure: &[f64]) -> Vec<f64> {
-    let mut solver = setup.solver(grid);
+/// The pair's displacement `K p` at every cell of `grid` under `pressure`, with `operator`,
+/// the whole grid's operator of the run's solver: a windowed solve computes it only near the
+/// contact, and the loaded profile reaches beyond it. That solver's own, not one built for
+/// the call: building the whole grid's kernels and spectra took about a second and a half
+/// at each of the 15 profiles of the 2 um example's 3600 cycles, serially (`perf record
+/// --call-graph dwarf` of `tribosim run scenes/bench-rough-2um-300um.json`).
+pub fn full_displacement(operator: &mut dyn Operator, grid: &Grid, pressure: &[f64]) -> Vec<f64> {
     let mut displacement = vec![0.0; grid.len()];
-    solver.operator().apply(pressure, &mut displacement);
+    operator.apply(pressure, &mut displacement);
     displacement
 }
 

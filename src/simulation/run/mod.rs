@@ -403,7 +403,7 @@ impl<'a, F: FnMut(&Grid) -> Box<dyn ContactSolver> + Copy> Run<'a, F> {
             || self.record_cycles.contains(&cycle)
             || cycle == setup.scene().test.cycles
         {
-            let displacement = full_displacement(setup, grid, &solution.pressure);
+            let displacement = full_displacement(self.solver.operator(), grid, &solution.pressure);
             let loaded = loaded_profile_m(&self.groove, grid, &displacement, self.share);
             self.profiles
                 .push(Profile::of(cycle, grid, &self.groove, &loaded));
