@@ -121,20 +121,84 @@ impl FreeSetCorrection {
             return;
         }
         let side = 2 * NEAR_REACH + 1;
-        let (nx, ny) = (self.grid.nx as isize, self.grid.ny as isize);
-        let reach = NEAR_REACH as isize;
+        let nx = self.grid.nx;
+        let wrap = |i: usize, n: usize| (i as isize - NEAR_REACH as isize).rem_euclid(n as isize);
+        // Row by row, and a cell away from the side edges as one run of the row: indexed
+        // entry by entry, with a wrap-around division for each, this loop was a fifth of
+        // the solver's serial samples on the 2 um example's grown grid (`perf annotate` of
+        // `tribosim run scenes/bench-rough-2um-300um.json`). The sums are the same.
         for &(cell, sign) in &self.moved {
-            let (x, y) = (
-                (cell % self.grid.nx) as isize,
-                (cell / self.grid.nx) as isize,
-            );
-            for (k, &a) in self.near.iter().enumerate() {
-                let dx = (k % side) as isize - reach;
-                let dy = (k / side) as isize - reach;
-                let at = (y + dy).rem_euclid(ny) * nx + (x + dx).rem_euclid(nx);
-                self.free_response[at as usize] += sign * a;
+            let (x, y) = (cell % nx, cell / nx);
+            for (dy, near) in self.near.chunks_exact(side).enumerate() {
+                let row = wrap(y + dy, self.grid.ny) as usize;
+                let row = &mut self.free_response[row * nx..][..nx];
+                if x >= NEAR_REACH && x + NEAR_REACH < nx {
+                    let run = &mut row[x - NEAR_REACH..][..side];
+                    for (out, &a) in run.iter_mut().zip(near) {
+                        *out += sign * a;
+                    }
+                } else {
+                    for (dx, &a) in near.iter().enumerate() {
+                        row[wrap(x + dx, nx) as usize] += sign * a;
+                    }
+                }
             }
         }
         self.moved.clear();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A preconditioner known only by its near field: numbered entries, so that an entry
+    /// added to the wrong cell shows.
+    struct Numbered(Vec<f64>);
+
+    impl Preconditioner for Numbered {
+        fn apply(&mut self, _input: &[f64], _output: &mut [f64]) {
+            unreachable!("the test moves fewer cells than an apply takes");
+        }
+        fn diagonal(&self) -> f64 {
+            1.0
+        }
+        fn near_field(&self) -> &[f64] {
+            &self.0
+        }
+    }
+
+    #[test]
+    fn the_near_field_of_a_moved_cell_wraps_around_the_grid_as_entry_by_entry() {
+        let side = 2 * NEAR_REACH + 1;
+        let mut inverse = Numbered((1..=side * side).map(|k| k as f64).collect());
+        let grid = Grid::new(20, 12, 1e-6, 1e-6).expect("valid");
+        let mut correction = FreeSetCorrection::new(&inverse, grid);
+        // Corners, side edges, the first and last rows, the middle; one cell twice.
+        let moved = [
+            (0, 0),
+            (19, 11),
+            (1, 5),
+            (18, 6),
+            (9, 0),
+            (9, 11),
+            (9, 5),
+            (0, 0),
+        ];
+        let mut expected = vec![0.0; grid.len()];
+        for (n, &(x, y)) in moved.iter().enumerate() {
+            let joined = n % 2 == 0;
+            correction.record(y * grid.nx + x, joined);
+            let sign = if joined { 1.0 } else { -1.0 };
+            for (k, &a) in inverse.0.iter().enumerate() {
+                let dx = (k % side) as isize - NEAR_REACH as isize;
+                let dy = (k / side) as isize - NEAR_REACH as isize;
+                let at = (y as isize + dy).rem_euclid(12) * 20 + (x as isize + dx).rem_euclid(20);
+                expected[at as usize] += sign * a;
+            }
+        }
+        assert!(moved.len() <= correction.most_moved(), "no apply");
+        correction.follow(&mut inverse, &[]);
+        assert_eq!(correction.free_response, expected);
     }
 }
