@@ -286,7 +286,7 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         }
         let threshold =
             solution.approach_m - tolerance * displacement_scale(&solution.displacement);
-        let reach = Window::bounding(&grid, |i| separation[i] < threshold)
+        let reach = Window::bounding(&grid, separation, |h| h < threshold)
             .map_or(*window, |closing| closing.union(window));
         Window::centred(
             &grid,
