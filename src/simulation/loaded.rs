@@ -75,9 +75,10 @@ fn loaded_depths_m<'a>(
 /// The pair's displacement `K p` at every cell of `grid` under `pressure`, with `operator`,
 /// the whole grid's operator of the run's solver: a windowed solve computes it only near the
 /// contact, and the loaded profile reaches beyond it. That solver's own, not one built for
-/// the call: building the whole grid's kernels and spectra took about a second and a half
-/// at each of the 15 profiles of the 2 um example's 3600 cycles, serially (`perf record
-/// --call-graph dwarf` of `tribosim run scenes/bench-rough-2um-300um.json`).
+/// the call: building the whole grid's kernels, spectra and preconditioner took about 0.3 s
+/// a profile on one thread, 15% of the loop thread's samples over the 8 profiles of the
+/// first 100 cycles of `tribosim run scenes/bench-rough-2um-300um.json` (`perf record
+/// --call-graph dwarf`).
 pub fn full_displacement(operator: &mut dyn Operator, grid: &Grid, pressure: &[f64]) -> Vec<f64> {
     let mut displacement = vec![0.0; grid.len()];
     operator.apply(pressure, &mut displacement);
