@@ -82,6 +82,11 @@ impl Grid {
         (iy as f64 + 0.5 - self.ny as f64 / 2.0) * self.dy
     }
 
+    /// The indices of the cells of the whole rows `rows`, row-major.
+    pub fn row_cells(&self, rows: Range<usize>) -> Range<usize> {
+        rows.start * self.nx..rows.end * self.nx
+    }
+
     /// Whether the cell at `index` lies in the outermost ring.
     pub fn is_edge(&self, index: usize) -> bool {
         let (ix, iy) = (index % self.nx, index / self.nx);

@@ -233,7 +233,7 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         let mut displacement = reach.embed(&grid, &elastic);
         // Only the window's rows carry pressure, so only they wear: the rows beyond (about a
         // third of the 2 um example's grown grid, late in its run) would add nothing.
-        let rows = window.y0 * grid.nx..(window.y0 + window.ny) * grid.nx;
+        let rows = grid.row_cells(window.rows());
         add_worn_rows(
             problem.pass_wear_per_pa,
             &grid,

@@ -27,10 +27,11 @@ pub(super) struct Band<'s> {
 impl<'s> Band<'s> {
     /// The rows `rows` of `pressure`, a field of `grid` that carries none on its other rows.
     pub(super) fn of(grid: &Grid, pressure: &'s [f64], rows: Range<usize>) -> Self {
+        let cells = grid.row_cells(rows.clone());
         debug_assert!(
-            pressure[..rows.start * grid.nx]
+            pressure[..cells.start]
                 .iter()
-                .chain(&pressure[rows.end * grid.nx..])
+                .chain(&pressure[cells.end..])
                 .all(|&p| p == 0.0),
             "the rows beyond the band carry pressure"
         );
@@ -39,7 +40,7 @@ impl<'s> Band<'s> {
             dx: grid.dx,
             dy: grid.dy,
             y0_m: grid.y(rows.start),
-            pressure: &pressure[rows.start * grid.nx..rows.end * grid.nx],
+            pressure: &pressure[cells],
         }
     }
 
