@@ -91,10 +91,9 @@ pub struct WindowedSolver<F> {
     focus: Option<Window>,
     /// The shares of the grid solved and checked, summed over solves.
     fractions: WindowFractions,
-    /// The last check's displacement, the start of a solve from the pressure it checked.
+    /// The last check's displacement, the start of a solve from the pressure it checked;
+    /// `None` after a solve on the whole grid, which no check follows.
     carried: Option<Carried>,
-    /// The rows of the last solve's window (every row after a solve on the whole grid).
-    solved_rows: Range<usize>,
 }
 
 /// The cells a windowed solver worked on, as shares of the grid's, summed over solves.
@@ -140,7 +139,6 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
             focus: None,
             fractions: WindowFractions::default(),
             carried: None,
-            solved_rows: 0..grid.ny,
         }
     }
 
@@ -164,7 +162,6 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         self.grid = wider;
         self.full = (self.factory)(&wider);
         self.carried = None;
-        self.solved_rows = 0..wider.ny;
         self.focus_on(pressure);
     }
 
@@ -178,7 +175,9 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
     /// solved on (every row of the grid after a solve on the whole grid). Every cell of the
     /// other rows carries none, so a pass over the pressure can skip them.
     pub fn loaded_rows(&self) -> Range<usize> {
-        self.solved_rows.clone()
+        self.carried
+            .as_ref()
+            .map_or(0..self.grid.ny, |carried| carried.solved.rows())
     }
 
     /// Solves `problem` on `window` and checks the answer on the cells that could touch
@@ -251,7 +250,6 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
             return Ok(None);
         }
         self.focus = next;
-        self.solved_rows = window.rows();
         self.carried = Some(Carried {
             pressure: solution.pressure,
             solved: window,
@@ -353,7 +351,9 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> ContactSolver for WindowedSolver
                 };
                 let solution = self.full.solve(problem, options, warm_start)?;
                 self.focus = around(&grid, &solution.pressure);
-                self.solved_rows = 0..grid.ny;
+                // The last window's check is not of this pressure, and its rows are not
+                // this solve's.
+                self.carried = None;
                 break solution;
             };
             // A window's solve focuses the next one itself, on the box its check covered.
