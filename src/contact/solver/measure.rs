@@ -5,11 +5,12 @@ use super::super::residual::{Bound, Residual, approach};
 use super::PolonskyKeer;
 use super::free_set::FreeSetCorrection;
 
-/// One block's share of [`PolonskyKeer::measure`]'s sums, in four lanes (a cell's lane is
-/// its index modulo four; the cells past the last whole slice of four go to lane 0).
+/// One block's share of [`PolonskyKeer::measure`]'s sums: the residual, then the sums in
+/// four lanes (a cell's lane is its index modulo four; the cells past the last whole slice
+/// of four go to lane 0).
 #[derive(Default)]
 struct Measured {
-    residual: [Residual; 4],
+    residual: Residual,
     load: [f64; 4],
     free_cells: usize,
     /// `free * t`, summed as `dot` sums (four lanes and the tail apart).
@@ -65,11 +66,11 @@ impl PolonskyKeer<'_> {
         let measured = blocks.each(parts, |(first, reads, writes)| {
             measure_block(first, reads, writes, (delta, cap), record)
         });
-        let mut residual = Vec::with_capacity(4 * measured.len());
+        let mut residual = Vec::with_capacity(measured.len());
         let (mut load, mut free_t) = (Vec::new(), Vec::new());
         self.free_cells = 0.0;
         for block in measured {
-            residual.extend(block.residual);
+            residual.push(block.residual);
             load.push(block.load);
             free_t.push(block.free_t);
             self.free_cells += block.free_cells as f64;
@@ -90,6 +91,14 @@ impl PolonskyKeer<'_> {
 /// [`PolonskyKeer::measure`] on one block whose first cell is `first` (the approach
 /// `delta` and the cap given), recording the first `record` cells that joined or left the
 /// free set.
+///
+/// The residual is a largest value, the same in any order, so it takes one accumulator;
+/// the load and `free * t` are sums, in four lanes as `dot` sums them. The loop's body is
+/// small enough to unroll (`measure_cell`, the rare moved cell recorded out of line by
+/// `note_moved`), so the lanes stay in registers: with the record inline and the residual
+/// in lanes, the loop stayed rolled and every sum went through the stack, and this pass was
+/// 9.9% of the samples of the 4 um rough disc over 600 cycles (`perf record --call-graph
+/// dwarf`, `docs/accuracy.md`).
 fn measure_block(
     first: usize,
     (p, u, h, t): Reads,
@@ -98,28 +107,8 @@ fn measure_block(
     record: usize,
 ) -> Measured {
     let mut out = Measured::default();
-    // Returns `free * t` of the cell, summed as `dot` sums (four accumulators, over
-    // slices of four so the inner loop has no bounds checks).
-    let mut cell = |(i, lane): (usize, usize),
-                    (pi, ui, hi, ti): (f64, f64, f64, f64),
-                    written: (&mut f64, &mut f64, &mut f64)| {
-        let gi = ui + hi - delta;
-        *written.0 = gi;
-        out.load[lane] += pi;
-        let bound = Bound::of(pi, cap);
-        out.residual[lane].add(bound, ui, gi);
-        let is_free = bound == Bound::Free;
-        let fi = if is_free { 1.0 } else { 0.0 };
-        out.free_cells += usize::from(is_free);
-        if (*written.1 > 0.5) != is_free && out.moved.len() < record {
-            out.moved.push((first + i, is_free));
-        }
-        *written.1 = fi;
-        *written.2 = fi * gi;
-        fi * ti
-    };
+    let (mut residual, mut load, mut acc) = (Residual::default(), [0.0; 4], [0.0; 4]);
     let whole = p.len() - p.len() % 4;
-    let mut acc = [0.0; 4];
     for start in (0..whole).step_by(4) {
         let range = start..start + 4;
         let (p, u, h, t) = (
@@ -134,15 +123,64 @@ fn measure_block(
             &mut r[range],
         );
         for k in 0..4 {
-            let fields = (p[k], u[k], h[k], t[k]);
-            acc[k] += cell((start + k, k), fields, (&mut g[k], &mut free[k], &mut r[k]));
+            let written = (&mut g[k], &mut free[k], &mut r[k]);
+            let (is_free, moved) =
+                measure_cell((p[k], u[k], h[k]), (delta, cap), &mut residual, written);
+            if moved {
+                note_moved(&mut out.moved, record, (first + start + k, is_free));
+            }
+            out.free_cells += usize::from(is_free);
+            load[k] += p[k];
+            acc[k] += indicator(is_free) * t[k];
         }
     }
     let mut tail = 0.0;
     for i in whole..p.len() {
-        let fields = (p[i], u[i], h[i], t[i]);
-        tail += cell((i, 0), fields, (&mut g[i], &mut free[i], &mut r[i]));
+        let written = (&mut g[i], &mut free[i], &mut r[i]);
+        let (is_free, moved) =
+            measure_cell((p[i], u[i], h[i]), (delta, cap), &mut residual, written);
+        if moved {
+            note_moved(&mut out.moved, record, (first + i, is_free));
+        }
+        out.free_cells += usize::from(is_free);
+        load[0] += p[i];
+        tail += indicator(is_free) * t[i];
     }
-    out.free_t = (acc, tail);
+    (out.residual, out.load, out.free_t) = (residual, load, (acc, tail));
     out
+}
+
+/// One cell of [`measure_block`]: writes its gap, its free mask and its gap where free, and
+/// adds it to `residual`. Returns whether it is free and whether that changed.
+#[inline(always)]
+fn measure_cell(
+    (pi, ui, hi): (f64, f64, f64),
+    (delta, cap): (f64, f64),
+    residual: &mut Residual,
+    (g, free, r): (&mut f64, &mut f64, &mut f64),
+) -> (bool, bool) {
+    let gi = ui + hi - delta;
+    let bound = Bound::of(pi, cap);
+    residual.add(bound, ui, gi);
+    let is_free = bound == Bound::Free;
+    let moved = (*free > 0.5) != is_free;
+    let fi = indicator(is_free);
+    (*g, *free, *r) = (gi, fi, fi * gi);
+    (is_free, moved)
+}
+
+/// 1 for a free cell, 0 for another: the free mask's value.
+#[inline]
+fn indicator(is_free: bool) -> f64 {
+    if is_free { 1.0 } else { 0.0 }
+}
+
+/// Records `cell` (its index, and whether it joined the free set) while fewer than `record`
+/// are: out of the hot loop, since few cells move once a solve settles.
+#[cold]
+#[inline(never)]
+fn note_moved(moved: &mut Vec<(usize, bool)>, record: usize, cell: (usize, bool)) {
+    if moved.len() < record {
+        moved.push(cell);
+    }
 }
