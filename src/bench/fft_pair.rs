@@ -5,7 +5,7 @@
 
 use rustfft::num_complex::Complex;
 
-use crate::contact::{BLOCK, Plans, STRIDE_PAD};
+use crate::contact::{BLOCK, Plans, STRIDE_PAD, transpose};
 
 /// A planned padded FFT round trip for an `N x N` grid.
 pub struct FftPair {
@@ -46,11 +46,8 @@ impl FftPair {
                     .process_with_scratch(row, out, &mut self.plans.real_scratch)
                     .expect("lengths fixed at construction");
             }
-            for k in 0..half {
-                for slot in 0..BLOCK {
-                    self.columns[k * stride + first + slot] = self.block[slot * half + k];
-                }
-            }
+            let columns = &mut self.columns[first..];
+            transpose(&self.block, half, (BLOCK, half), columns, stride);
         }
         for column in self.columns.chunks_exact_mut(stride) {
             let column = &mut column[..len];
@@ -62,11 +59,8 @@ impl FftPair {
                 .process_with_scratch(column, &mut self.plans.complex_scratch);
         }
         for first in (0..len).step_by(BLOCK) {
-            for k in 0..half {
-                for slot in 0..BLOCK {
-                    self.block[slot * half + k] = self.columns[k * stride + first + slot];
-                }
-            }
+            let columns = &self.columns[first..];
+            transpose(columns, stride, (half, BLOCK), &mut self.block, half);
             for slot in 0..BLOCK {
                 let spectrum = &mut self.block[slot * half..][..half];
                 spectrum[0].im = 0.0;

@@ -29,6 +29,7 @@ use super::operator::{Operator, Preconditioner};
 use super::precondition::FourierInverse;
 use super::transform::{
     BLOCK, Plans, Real, STRIDE_PAD, Split, inverse_row, load_row, periodic_threads, store_row,
+    transpose,
 };
 
 /// The smallest solver tolerance a run solves in single precision (`DcFft<f32>`) at: the
@@ -240,22 +241,16 @@ impl<T: Real> DcFft<T> {
 
     /// Writes the first `rows` rows of the row block into the columns `first_row..`.
     fn scatter_block(&mut self, first_row: usize, rows: usize) {
-        for kx in 0..self.half {
-            let column = &mut self.columns[kx * self.stride + first_row..][..rows];
-            for (slot, c) in column.iter_mut().enumerate() {
-                *c = self.row_block[slot * self.half + kx];
-            }
-        }
+        let (half, stride) = (self.half, self.stride);
+        let columns = &mut self.columns[first_row..];
+        transpose(&self.row_block, half, (rows, half), columns, stride);
     }
 
     /// Reads `rows` rows starting at `first_row` from the columns into the row block.
     fn gather_block(&mut self, first_row: usize, rows: usize) {
-        for kx in 0..self.half {
-            let column = &self.columns[kx * self.stride + first_row..][..rows];
-            for (slot, c) in column.iter().enumerate() {
-                self.row_block[slot * self.half + kx] = *c;
-            }
-        }
+        let (half, stride) = (self.half, self.stride);
+        let columns = &self.columns[first_row..];
+        transpose(columns, stride, (half, rows), &mut self.row_block, half);
     }
 }
 

@@ -19,7 +19,9 @@ use rustfft::num_complex::Complex;
 
 use super::influence::Kernel;
 use super::operator::{NEAR_REACH, Preconditioner};
-use super::transform::{BLOCK, Plans, Real, STRIDE_PAD, Split, inverse_row, load_row, store_row};
+use super::transform::{
+    BLOCK, Plans, Real, STRIDE_PAD, Split, inverse_row, load_row, store_row, transpose,
+};
 
 /// The inverse of a kernel's periodic wrap on its own grid, its transforms computed in `T`.
 pub struct FourierInverse<T: Real = f64> {
@@ -193,12 +195,8 @@ impl<T: Real> FourierInverse<T> {
                     )
                     .expect("buffer lengths fixed at construction");
             }
-            for kx in 0..half {
-                let column = &mut self.columns[kx * stride + first..][..rows];
-                for (slot, c) in column.iter_mut().enumerate() {
-                    *c = self.row_block[slot * half + kx];
-                }
-            }
+            let columns = &mut self.columns[first..];
+            transpose(&self.row_block, half, (rows, half), columns, stride);
         }
         for column in self.columns.chunks_exact_mut(stride) {
             self.plans
@@ -261,12 +259,8 @@ impl<T: Real> Preconditioner for FourierInverse<T> {
         }
         for first in (0..ny).step_by(BLOCK) {
             let rows = BLOCK.min(ny - first);
-            for kx in 0..half {
-                let column = &self.columns[kx * stride + first..][..rows];
-                for (slot, &c) in column.iter().enumerate() {
-                    self.row_block[slot * half + kx] = c;
-                }
-            }
+            let columns = &self.columns[first..];
+            transpose(columns, stride, (half, rows), &mut self.row_block, half);
             for slot in 0..rows {
                 let spectrum = &mut self.row_block[slot * half..(slot + 1) * half];
                 let iy = first + slot;

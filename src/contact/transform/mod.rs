@@ -83,3 +83,70 @@ pub(crate) fn load_row<T: Real>(padded: &mut [T], row: &[f64]) {
 pub(crate) fn store_row<T: Real>(out: &mut [f64], real: &[T]) {
     out.iter_mut().zip(real).for_each(|(o, &v)| *o = v.widen());
 }
+
+/// `to[c * to_stride + r] = from[r * from_stride + c]` for `r < rows` and `c < cols`: a
+/// block moved between the row and the column layouts (rows of a block into the columns,
+/// the columns back into a block's rows, a block of columns from every row's spectrum).
+///
+/// The inner loop runs along the shorter side, [`BLOCK`] rows or columns, so the long
+/// side's runs are read or written whole: those are the large column buffer's, while the
+/// short side's strided accesses stay in a block that fits the L1 cache. Measured on blocks
+/// of 16 rows of 37 to 129 columns (`Complex<f32>`, a column stride of `2 ny + 8`, a
+/// throwaway loop of 200,000 copies): into the columns, runs written whole took 0.76 to 1.0
+/// of the time of runs read whole; out of them, runs read whole took 0.78 to 1.0 of the other.
+#[inline]
+pub(crate) fn transpose<T: Copy>(
+    from: &[T],
+    from_stride: usize,
+    (rows, cols): (usize, usize),
+    to: &mut [T],
+    to_stride: usize,
+) {
+    if rows <= cols {
+        for c in 0..cols {
+            let run = &mut to[c * to_stride..][..rows];
+            for (r, x) in run.iter_mut().enumerate() {
+                *x = from[r * from_stride + c];
+            }
+        }
+    } else {
+        for r in 0..rows {
+            let run = &from[r * from_stride..][..cols];
+            for (c, &x) in run.iter().enumerate() {
+                to[c * to_stride + r] = x;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn transpose_moves_every_entry_along_either_side() {
+        // Both loop orders (rows <= cols and rows > cols), strides past the block's side as
+        // the column buffers' are, against the definition entry by entry; the cells past
+        // each run keep their sentinel.
+        for (rows, cols) in [(3, 7), (7, 3), (1, 5), (5, 1), (4, 4)] {
+            let (from_stride, to_stride) = (cols + 2, rows + 3);
+            let from: Vec<usize> = (0..rows * from_stride).collect();
+            let mut to = vec![usize::MAX; cols * to_stride];
+            transpose(&from, from_stride, (rows, cols), &mut to, to_stride);
+            for c in 0..cols {
+                for r in 0..to_stride {
+                    let expected = if r < rows {
+                        r * from_stride + c
+                    } else {
+                        usize::MAX
+                    };
+                    assert_eq!(
+                        to[c * to_stride + r],
+                        expected,
+                        "{rows} x {cols}: ({r}, {c})"
+                    );
+                }
+            }
+        }
+    }
+}

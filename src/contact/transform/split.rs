@@ -18,7 +18,7 @@ use std::num::NonZeroUsize;
 
 use rustfft::num_complex::Complex;
 
-use super::{BLOCK, Plans, Real, inverse_row, load_row, store_row};
+use super::{BLOCK, Plans, Real, inverse_row, load_row, store_row, transpose};
 
 /// The most threads an apply may be split across (the bound of the scene's
 /// `numerics.threads`).
@@ -224,12 +224,7 @@ impl<T: Real> Worker<T> {
         for (b, block) in columns.chunks_mut(BLOCK * stride).enumerate() {
             let k0 = first + b * BLOCK;
             let width = block.len() / stride;
-            for iy in 0..ny {
-                let source = &spectra[iy * half + k0..][..width];
-                for (j, &c) in source.iter().enumerate() {
-                    block[j * stride + iy] = c;
-                }
-            }
+            transpose(&spectra[k0..], half, (ny, width), block, stride);
             for (j, column) in block.chunks_mut(stride).enumerate() {
                 let column = &mut column[..shape.col_len];
                 column[ny..].fill(Complex::default());
@@ -256,12 +251,13 @@ impl<T: Real> Worker<T> {
         for (b, rows) in output.chunks_mut(BLOCK * nx).enumerate() {
             let iy0 = first + b * BLOCK;
             let count = rows.len() / nx;
-            for kx in 0..half {
-                let column = &columns[kx * stride + iy0..][..count];
-                for (slot, &c) in column.iter().enumerate() {
-                    self.row_block[slot * half + kx] = c;
-                }
-            }
+            transpose(
+                &columns[iy0..],
+                stride,
+                (half, count),
+                &mut self.row_block,
+                half,
+            );
             for (slot, out) in rows.chunks_exact_mut(nx).enumerate() {
                 let row = &mut self.row_block[slot * half..(slot + 1) * half];
                 inverse_row(&mut self.plans, row, &mut self.row_real);
