@@ -146,77 +146,14 @@ enum Command {
         tribosim report quick.json --wear-volume docs/calibration/table3_wear.csv -o report.html\n  \
         tribosim report a.json b.json -o comparison.html\n  \
         tribosim report study.json -o study.html")]
-    Report {
-        /// Result JSON files (one: a run's report; several: a comparison), or one study
-        /// summary JSON.
-        #[arg(required = true)]
-        inputs: Vec<PathBuf>,
-        /// The measurements attached to a single run, as JSON
-        /// (`GET /api/v1/jobs/{id}/measurements`), drawn and compared with the model.
-        #[arg(long, value_name = "FILE")]
-        measurements: Option<PathBuf>,
-        /// A single run's measured wear volumes: a lab's table, CSV (or JSON by its
-        /// extension), `time_s` or `cycles`, `volume_mm3`, optionally `spread_mm3`.
-        #[arg(long, value_name = "FILE")]
-        wear_volume: Option<PathBuf>,
-        /// A single run's measured groove profile: a table of `y_mm`, `depth_um`.
-        #[arg(long, value_name = "FILE")]
-        profile: Option<PathBuf>,
-        /// A single run's measured open-circuit potential: a table of `time_s`, `potential_v`.
-        #[arg(long, value_name = "FILE")]
-        ocp: Option<PathBuf>,
-        /// Where to write the report; standard output if absent.
-        #[arg(short, long)]
-        output: Option<PathBuf>,
-    },
+    Report(ReportCli),
     /// Fit the model's parameters to a measurement table (CSV or JSON, units in the column
     /// names) and write the fit, with the scene filled in, as JSON (guide:
     /// /docs/calibration.md of a running server).
     #[command(after_help = "Examples:\n  \
         tribosim calibrate hardness docs/calibration/table3_hardness.csv -o hardness.json\n  \
         tribosim calibrate archard docs/calibration/table3_wear.csv --regime-change auto")]
-    Calibrate {
-        /// Which fit.
-        #[arg(value_enum)]
-        fit: FitKind,
-        /// The measurements.
-        table: PathBuf,
-        /// The scene to fill in (JSON); the paper's preset if absent.
-        #[arg(long)]
-        scene: Option<PathBuf>,
-        /// Where to write the fit; standard output if absent. A readable summary goes to
-        /// standard error either way.
-        #[arg(short, long)]
-        output: Option<PathBuf>,
-        /// Hardness: fit the table alone, without the scene's bulk hardness at n = 1.
-        #[arg(long)]
-        no_bulk: bool,
-        /// Tafel: E_corr in V, against the scene's reference electrode (else the scene's own
-        /// with `--scene`, else where the measured current changes sign).
-        #[arg(long, value_name = "V", allow_hyphen_values = true)]
-        e_corr: Option<f64>,
-        /// Tafel: the domain's end nearest E_corr, as E - E_corr in V (e.g. -0.15); chosen
-        /// from the data if absent.
-        #[arg(long, value_name = "V", allow_hyphen_values = true)]
-        tafel_overpotential_max: Option<f64>,
-        /// Tafel: the domain's most cathodic end, as E - E_corr in V (e.g. -1.0); the scan's
-        /// end if absent.
-        #[arg(long, value_name = "V", allow_hyphen_values = true)]
-        tafel_overpotential_min: Option<f64>,
-        /// OCP: when the rubbing started, s on the table's clock (the table is then the
-        /// whole trace; without it every row is during the rubbing and `time_s` is the
-        /// rubbing time).
-        #[arg(long, value_name = "S")]
-        rubbing_start: Option<f64>,
-        /// OCP: when the rubbing stopped, s on the table's clock (the table's end if
-        /// absent).
-        #[arg(long, value_name = "S")]
-        rubbing_stop: Option<f64>,
-        /// Archard: also fit a k up to this cycle and another after it (`auto`: the cycle
-        /// too), and compare with one k; the scene gets the better model.
-        #[arg(long, value_name = "CYCLE|auto")]
-        regime_change: Option<ChangeCycle>,
-    },
+    Calibrate(CalibrateCli),
     /// Run a study (a base scene and axes; guide: /docs/study.md of a running server) and
     /// write its summary JSON; or write it as a Slurm job array (`--slurm DIR`) and `collect`
     /// it (/docs/cluster.md).
@@ -224,53 +161,132 @@ enum Command {
     #[command(after_help = "Examples:\n  \
         tribosim study scenes/study-load-speed.json -o study.json --csv study.csv\n  \
         tribosim study scenes/study-12.json --slurm runs/ && tribosim study collect runs/")]
-    Study {
-        #[command(subcommand)]
-        action: Option<StudyAction>,
-        /// The study file (JSON).
-        #[arg(required = true)]
-        study: Option<PathBuf>,
-        /// Worker threads; one per available core by default.
-        #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
-        workers: Option<u64>,
-        /// The most members the study may have.
-        #[arg(long, default_value_t = tribosim::study::MAX_MEMBERS)]
-        max_members: usize,
-        /// Where to write the summary; if absent, standard output when it is a pipe, or a
-        /// new `study-<file>-<date>.json` here when it is a terminal.
-        #[arg(short, long)]
-        output: Option<PathBuf>,
-        /// Also write the summary table as CSV here.
-        #[arg(long, value_name = "PATH")]
-        csv: Option<PathBuf>,
-        #[command(flatten)]
-        slurm: SlurmCli,
-    },
+    Study(StudyCli),
     /// Print the speed-against-error tables (guide: /docs/accuracy.md of a running server).
     #[command(after_help = "Example:\n  tribosim bench contact --json > contact.jsonl")]
-    Bench {
-        /// Which tables.
-        #[arg(value_enum, default_value = "contact")]
-        target: BenchTarget,
-        /// One JSON object per row instead of a table.
-        #[arg(long)]
-        json: bool,
-        /// Also write a markdown report here, its SVG plots in the folder of the same name
-        /// (`docs/accuracy.md` puts them in `docs/accuracy/`).
-        #[arg(long, value_name = "PATH")]
-        markdown: Option<PathBuf>,
-        /// `rough`: also write each grid's height array here as a text matrix in m
-        /// (`rough-N.txt`), the arrays `scripts/peers.py` gives the public solvers.
-        #[arg(long, value_name = "DIR")]
-        surfaces: Option<PathBuf>,
-        /// `kappa`: also press this measured height map (.gsf, x y z columns, or a text
-        /// matrix of heights in m with --pixel-um) on the periodic flat.
-        #[arg(long, value_name = "FILE")]
-        map: Option<PathBuf>,
-        /// The pixel size of a text-matrix `--map`, um.
-        #[arg(long, value_name = "UM", requires = "map")]
-        pixel_um: Option<f64>,
-    },
+    Bench(BenchCli),
+}
+
+/// `tribosim report`'s arguments.
+#[derive(Args)]
+struct ReportCli {
+    /// Result JSON files (one: a run's report; several: a comparison), or one study
+    /// summary JSON.
+    #[arg(required = true)]
+    inputs: Vec<PathBuf>,
+    /// The measurements attached to a single run, as JSON
+    /// (`GET /api/v1/jobs/{id}/measurements`), drawn and compared with the model.
+    #[arg(long, value_name = "FILE")]
+    measurements: Option<PathBuf>,
+    /// A single run's measured wear volumes: a lab's table, CSV (or JSON by its
+    /// extension), `time_s` or `cycles`, `volume_mm3`, optionally `spread_mm3`.
+    #[arg(long, value_name = "FILE")]
+    wear_volume: Option<PathBuf>,
+    /// A single run's measured groove profile: a table of `y_mm`, `depth_um`.
+    #[arg(long, value_name = "FILE")]
+    profile: Option<PathBuf>,
+    /// A single run's measured open-circuit potential: a table of `time_s`, `potential_v`.
+    #[arg(long, value_name = "FILE")]
+    ocp: Option<PathBuf>,
+    /// Where to write the report; standard output if absent.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+}
+
+/// `tribosim calibrate`'s arguments.
+#[derive(Args)]
+struct CalibrateCli {
+    /// Which fit.
+    #[arg(value_enum)]
+    fit: FitKind,
+    /// The measurements.
+    table: PathBuf,
+    /// The scene to fill in (JSON); the paper's preset if absent.
+    #[arg(long)]
+    scene: Option<PathBuf>,
+    /// Where to write the fit; standard output if absent. A readable summary goes to
+    /// standard error either way.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Hardness: fit the table alone, without the scene's bulk hardness at n = 1.
+    #[arg(long)]
+    no_bulk: bool,
+    /// Tafel: E_corr in V, against the scene's reference electrode (else the scene's own
+    /// with `--scene`, else where the measured current changes sign).
+    #[arg(long, value_name = "V", allow_hyphen_values = true)]
+    e_corr: Option<f64>,
+    /// Tafel: the domain's end nearest E_corr, as E - E_corr in V (e.g. -0.15); chosen
+    /// from the data if absent.
+    #[arg(long, value_name = "V", allow_hyphen_values = true)]
+    tafel_overpotential_max: Option<f64>,
+    /// Tafel: the domain's most cathodic end, as E - E_corr in V (e.g. -1.0); the scan's
+    /// end if absent.
+    #[arg(long, value_name = "V", allow_hyphen_values = true)]
+    tafel_overpotential_min: Option<f64>,
+    /// OCP: when the rubbing started, s on the table's clock (the table is then the
+    /// whole trace; without it every row is during the rubbing and `time_s` is the
+    /// rubbing time).
+    #[arg(long, value_name = "S")]
+    rubbing_start: Option<f64>,
+    /// OCP: when the rubbing stopped, s on the table's clock (the table's end if
+    /// absent).
+    #[arg(long, value_name = "S")]
+    rubbing_stop: Option<f64>,
+    /// Archard: also fit a k up to this cycle and another after it (`auto`: the cycle
+    /// too), and compare with one k; the scene gets the better model.
+    #[arg(long, value_name = "CYCLE|auto")]
+    regime_change: Option<ChangeCycle>,
+}
+
+/// `tribosim study`'s arguments.
+#[derive(Args)]
+struct StudyCli {
+    #[command(subcommand)]
+    action: Option<StudyAction>,
+    /// The study file (JSON).
+    #[arg(required = true)]
+    study: Option<PathBuf>,
+    /// Worker threads; one per available core by default.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    workers: Option<u64>,
+    /// The most members the study may have.
+    #[arg(long, default_value_t = tribosim::study::MAX_MEMBERS)]
+    max_members: usize,
+    /// Where to write the summary; if absent, standard output when it is a pipe, or a
+    /// new `study-<file>-<date>.json` here when it is a terminal.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Also write the summary table as CSV here.
+    #[arg(long, value_name = "PATH")]
+    csv: Option<PathBuf>,
+    #[command(flatten)]
+    slurm: SlurmCli,
+}
+
+/// `tribosim bench`'s arguments.
+#[derive(Args)]
+struct BenchCli {
+    /// Which tables.
+    #[arg(value_enum, default_value = "contact")]
+    target: BenchTarget,
+    /// One JSON object per row instead of a table.
+    #[arg(long)]
+    json: bool,
+    /// Also write a markdown report here, its SVG plots in the folder of the same name
+    /// (`docs/accuracy.md` puts them in `docs/accuracy/`).
+    #[arg(long, value_name = "PATH")]
+    markdown: Option<PathBuf>,
+    /// `rough`: also write each grid's height array here as a text matrix in m
+    /// (`rough-N.txt`), the arrays `scripts/peers.py` gives the public solvers.
+    #[arg(long, value_name = "DIR")]
+    surfaces: Option<PathBuf>,
+    /// `kappa`: also press this measured height map (.gsf, x y z columns, or a text
+    /// matrix of heights in m with --pixel-um) on the periodic flat.
+    #[arg(long, value_name = "FILE")]
+    map: Option<PathBuf>,
+    /// The pixel size of a text-matrix `--map`, um.
+    #[arg(long, value_name = "UM", requires = "map")]
+    pixel_um: Option<f64>,
 }
 
 /// `tribosim study --slurm`: the study written as a job array instead of run here.
@@ -314,42 +330,95 @@ enum StudyAction {
     },
 }
 
-/// `tribosim study`: run the study here, write it for Slurm, or collect it.
-fn study(
-    action: Option<StudyAction>,
-    study: Option<PathBuf>,
-    args: StudyArgs,
-    slurm: SlurmCli,
-) -> Result<(), CliError> {
-    if let Some(StudyAction::Collect { dir, output, csv }) = action {
-        collect(&CollectArgs { dir, output, csv })?;
-        return Ok(());
+impl ReportCli {
+    /// `tribosim report`: the measured tables named by kind, then the report.
+    fn report(self) -> Result<(), CliError> {
+        let tables = [
+            (MeasurementKind::WearVolume, self.wear_volume.as_deref()),
+            (MeasurementKind::Profile, self.profile.as_deref()),
+            (MeasurementKind::Ocp, self.ocp.as_deref()),
+        ];
+        let measured = MeasuredFiles {
+            all: self.measurements.as_deref(),
+            tables: tables
+                .into_iter()
+                .filter_map(|(kind, path)| Some((kind, path?)))
+                .collect(),
+        };
+        cli::report::report(&self.inputs, &measured, self.output.as_deref())
     }
-    let study = study.unwrap_or_default();
-    let Some(dir) = slurm.slurm else {
-        let output = study_output(&study, args.output.as_deref());
-        tribosim::study::command::study(&StudyArgs {
-            study,
-            output,
-            ..args
-        })?;
-        return Ok(());
-    };
-    let tribosim = match slurm.tribosim {
-        Some(path) => std::path::absolute(&path),
-        None => std::env::current_exe(),
+}
+
+impl CalibrateCli {
+    /// `tribosim calibrate`: the fit's JSON to `output` (or standard output), its readable
+    /// summary to standard error.
+    fn calibrate(self) -> Result<(), CliError> {
+        let options = CommandOptions {
+            without_bulk: self.no_bulk,
+            corrosion_potential_v: self.e_corr,
+            tafel_overpotential_max_v: self.tafel_overpotential_max,
+            tafel_overpotential_min_v: self.tafel_overpotential_min,
+            scene_given: self.scene.is_some(),
+            rubbing_start_s: self.rubbing_start,
+            rubbing_stop_s: self.rubbing_stop,
+            regime_change: self.regime_change,
+        };
+        let (scene, output) = (self.scene.as_deref(), self.output.as_deref());
+        let fitted = calibrate_files(self.fit, &self.table, scene, output, options)?;
+        eprint!("{}", cli::summary::readable(&fitted));
+        Ok(())
     }
-    .map_err(CliError::Binary)?;
-    let options = SlurmOptions {
-        dir,
-        tribosim,
-        partition: slurm.partition,
-        time: slurm.time,
-        cpus_per_task: slurm.cpus_per_task,
-        max_members: args.max_members,
-        submit: slurm.submit,
-    };
-    Ok(write_dir(&study, &options)?)
+}
+
+impl BenchCli {
+    /// `tribosim bench`: the tables, with a measured map where one is given.
+    fn print(self) -> Result<(), CliError> {
+        let map = self.map.as_deref().map(|path| bench::MeasuredMap {
+            path,
+            pixel_m: self.pixel_um.map(|um| um * 1e-6),
+        });
+        let (markdown, surfaces) = (self.markdown.as_deref(), self.surfaces.as_deref());
+        bench::print(self.target, self.json, markdown, surfaces, map).map_err(CliError::from)
+    }
+}
+
+impl StudyCli {
+    /// `tribosim study`: run the study here, write it for Slurm, or collect it.
+    fn study(self) -> Result<(), CliError> {
+        if let Some(StudyAction::Collect { dir, output, csv }) = self.action {
+            collect(&CollectArgs { dir, output, csv })?;
+            return Ok(());
+        }
+        let study = self.study.unwrap_or_default();
+        let Some(dir) = self.slurm.slurm else {
+            let output = study_output(&study, self.output.as_deref());
+            tribosim::study::command::study(&StudyArgs {
+                study,
+                workers: self
+                    .workers
+                    .map(|n| usize::try_from(n).unwrap_or(usize::MAX)),
+                max_members: self.max_members,
+                output,
+                csv: self.csv,
+            })?;
+            return Ok(());
+        };
+        let tribosim = match self.slurm.tribosim {
+            Some(path) => std::path::absolute(&path),
+            None => std::env::current_exe(),
+        }
+        .map_err(CliError::Binary)?;
+        let options = SlurmOptions {
+            dir,
+            tribosim,
+            partition: self.slurm.partition,
+            time: self.slurm.time,
+            cpus_per_task: self.slurm.cpus_per_task,
+            max_members: self.max_members,
+            submit: self.slurm.submit,
+        };
+        Ok(write_dir(&study, &options)?)
+    }
 }
 
 /// Where a local study's summary goes: `output`, standard output when it is a pipe, or a
@@ -376,20 +445,6 @@ fn study_output(study: &Path, output: Option<&Path>) -> Option<PathBuf> {
     }
 }
 
-/// `tribosim calibrate`: the fit's JSON to `output` (or standard output), its readable
-/// summary to standard error.
-fn calibrate(
-    fit: FitKind,
-    table: &Path,
-    scene: Option<&Path>,
-    output: Option<&Path>,
-    options: CommandOptions,
-) -> Result<(), CliError> {
-    let fitted = calibrate_files(fit, table, scene, output, options)?;
-    eprint!("{}", cli::summary::readable(&fitted));
-    Ok(())
-}
-
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command.unwrap_or(Command::Serve(cli.serve)) {
@@ -402,86 +457,10 @@ fn main() -> ExitCode {
         Command::Contact { scene, surface } => contact_scene(&scene, surface.file().as_ref()),
         Command::Presets { materials: false } => write_json(&presets(), &Destination::Stdout),
         Command::Presets { materials: true } => write_json(&library(), &Destination::Stdout),
-        Command::Report {
-            inputs,
-            measurements,
-            wear_volume,
-            profile,
-            ocp,
-            output,
-        } => {
-            let tables = [
-                (MeasurementKind::WearVolume, wear_volume.as_deref()),
-                (MeasurementKind::Profile, profile.as_deref()),
-                (MeasurementKind::Ocp, ocp.as_deref()),
-            ];
-            let measured = MeasuredFiles {
-                all: measurements.as_deref(),
-                tables: tables
-                    .into_iter()
-                    .filter_map(|(kind, path)| Some((kind, path?)))
-                    .collect(),
-            };
-            cli::report::report(&inputs, &measured, output.as_deref())
-        }
-        Command::Calibrate {
-            fit,
-            table,
-            scene,
-            output,
-            no_bulk,
-            e_corr,
-            tafel_overpotential_max,
-            tafel_overpotential_min,
-            rubbing_start,
-            rubbing_stop,
-            regime_change,
-        } => {
-            let options = CommandOptions {
-                without_bulk: no_bulk,
-                corrosion_potential_v: e_corr,
-                tafel_overpotential_max_v: tafel_overpotential_max,
-                tafel_overpotential_min_v: tafel_overpotential_min,
-                scene_given: scene.is_some(),
-                rubbing_start_s: rubbing_start,
-                rubbing_stop_s: rubbing_stop,
-                regime_change,
-            };
-            calibrate(fit, &table, scene.as_deref(), output.as_deref(), options)
-        }
-        Command::Study {
-            action,
-            study: path,
-            workers,
-            max_members,
-            output,
-            csv,
-            slurm,
-        } => {
-            let args = StudyArgs {
-                study: PathBuf::new(),
-                workers: workers.map(|n| usize::try_from(n).unwrap_or(usize::MAX)),
-                max_members,
-                output,
-                csv,
-            };
-            study(action, path, args, slurm)
-        }
-        Command::Bench {
-            target,
-            json,
-            markdown,
-            surfaces,
-            map,
-            pixel_um,
-        } => {
-            let map = map.as_deref().map(|path| bench::MeasuredMap {
-                path,
-                pixel_m: pixel_um.map(|um| um * 1e-6),
-            });
-            bench::print(target, json, markdown.as_deref(), surfaces.as_deref(), map)
-                .map_err(CliError::from)
-        }
+        Command::Report(args) => args.report(),
+        Command::Calibrate(args) => args.calibrate(),
+        Command::Study(args) => args.study(),
+        Command::Bench(args) => args.print(),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
