@@ -265,76 +265,20 @@ pub async fn serve_on(
              host name"
         );
     }
-    let data_dir = args.data_dir.clone();
-    let capacity = args.queue_capacity.get();
-    let (max_members, workers) = (args.max_study_members.get(), args.workers.get());
-    let upload_limits = UploadLimits {
-        max_pixels: args.budgets.max_surface_pixels,
-        parses: args.budgets.surface_parses.get(),
-    };
-    let memory_budget_bytes = args.budgets.job_memory_bytes();
-    let (jobs, studies, surfaces, fits) = tokio::task::spawn_blocking(move || {
-        let store = Store::open(&data_dir)?;
-        let quarantine = store.quarantine_dir().to_owned();
-        // Before the jobs load: a study interrupted as it was accepted takes its members.
-        let studies = Studies::open(&data_dir, &quarantine, &store, max_members, workers)?;
-        let surfaces = Arc::new(Surfaces::open(&data_dir, &quarantine, upload_limits)?);
-        let jobs = Jobs::open(store, capacity, memory_budget_bytes, Arc::clone(&surfaces))?;
-        let fits = CalibrationStore::open(&data_dir)?;
-        Ok::<_, io::Error>((jobs, Arc::new(studies), surfaces, fits))
-    })
-    .await
-    .map_err(io::Error::other)?
-    .map_err(|source| ServeError::DataDir {
-        path: args.data_dir.clone(),
-        source,
-    })?;
-    let workers = jobs.start_workers(args.workers.get())?;
+    let stores = open_stores(&args).await?;
+    let workers = stores.jobs.start_workers(args.workers.get())?;
+    let jobs = Arc::clone(&stores.jobs);
     let (stop, stopped) = watch::channel(false);
-    let mut limits = args.limits.clone();
-    limits.max_connections = limits.connections_under(listen::open_files_limit());
-    if limits.max_connections < args.limits.max_connections {
-        tracing::warn!(
-            "at most {} connections at once: the limit on open files leaves no room for {} \
-             (raise it with `ulimit -n`)",
-            limits.max_connections,
-            args.limits.max_connections
-        );
-    }
-    // Absolute, so that whoever started the server from some folder sees where it writes.
-    let data_dir = std::fs::canonicalize(&args.data_dir)
-        .or_else(|_| std::path::absolute(&args.data_dir))
-        .unwrap_or_else(|_| args.data_dir.clone());
-    let app = AppState {
-        jobs: Arc::clone(&jobs),
-        studies,
-        calibrations: Arc::new(Calibrations::new(
-            FitLimits {
-                max_grid: args.budgets.calibration_max_grid,
-                max_cell_cycles: args.budgets.calibration_max_cell_cycles,
-                kept_bytes: args.budgets.calibration_kept_bytes,
-            },
-            Some(fits),
-        )),
-        surfaces,
-        token: token.map(Arc::from),
-        static_dir: args.static_dir.as_deref().map(Arc::from),
-        body_timeout: BodyTimeout(limits.body_timeout_s),
-        streams: Streams {
-            keep_alive: keep_alive_interval(limits.idle_timeout_s),
-            shutdown: stopped.clone(),
-        },
-        data_dir: meta::DataDir(Arc::from(data_dir.as_path())),
-        cursor_key: CursorKey::random(),
-    };
+    let limits = connection_limits(&args.limits);
+    let app = app_state(&args, stores, token, (&limits, &stopped));
     tracing::info!(
         %addr,
         workers = args.workers.get(),
-        data_dir = %data_dir.display(),
+        data_dir = %app.data_dir.0.display(),
         max_connections = limits.max_connections,
-        job_memory_mib = memory_budget_bytes >> 20,
+        job_memory_mib = args.budgets.job_memory_bytes() >> 20,
         "tribosim serving on http://{addr} with its data in {}",
-        data_dir.display()
+        app.data_dir.0.display()
     );
     let signal = tokio::spawn(async move {
         shutdown.await;
@@ -356,6 +300,97 @@ pub async fn serve_on(
     .map_err(io::Error::other)?;
     tracing::info!("stopped");
     Ok(())
+}
+
+/// What the data directory holds, opened: the jobs, studies, surfaces and fits.
+struct Stores {
+    jobs: Arc<Jobs>,
+    studies: Arc<Studies>,
+    surfaces: Arc<Surfaces>,
+    fits: CalibrationStore,
+}
+
+/// Opens the data directory's stores off the async threads (they read every stored file).
+async fn open_stores(args: &ServeArgs) -> Result<Stores, ServeError> {
+    let data_dir = args.data_dir.clone();
+    let capacity = args.queue_capacity.get();
+    let (max_members, workers) = (args.max_study_members.get(), args.workers.get());
+    let upload_limits = UploadLimits {
+        max_pixels: args.budgets.max_surface_pixels,
+        parses: args.budgets.surface_parses.get(),
+    };
+    let memory_budget_bytes = args.budgets.job_memory_bytes();
+    tokio::task::spawn_blocking(move || {
+        let store = Store::open(&data_dir)?;
+        let quarantine = store.quarantine_dir().to_owned();
+        // Before the jobs load: a study interrupted as it was accepted takes its members.
+        let studies = Studies::open(&data_dir, &quarantine, &store, max_members, workers)?;
+        let surfaces = Arc::new(Surfaces::open(&data_dir, &quarantine, upload_limits)?);
+        let jobs = Jobs::open(store, capacity, memory_budget_bytes, Arc::clone(&surfaces))?;
+        let fits = CalibrationStore::open(&data_dir)?;
+        Ok::<_, io::Error>(Stores {
+            jobs,
+            studies: Arc::new(studies),
+            surfaces,
+            fits,
+        })
+    })
+    .await
+    .map_err(io::Error::other)?
+    .map_err(|source| ServeError::DataDir {
+        path: args.data_dir.clone(),
+        source,
+    })
+}
+
+/// `asked`, with the connections lowered to what the limit on open files leaves room for
+/// (said in the log when it does).
+fn connection_limits(asked: &listen::Limits) -> listen::Limits {
+    let mut limits = asked.clone();
+    limits.max_connections = limits.connections_under(listen::open_files_limit());
+    if limits.max_connections < asked.max_connections {
+        tracing::warn!(
+            "at most {} connections at once: the limit on open files leaves no room for {} \
+             (raise it with `ulimit -n`)",
+            limits.max_connections,
+            asked.max_connections
+        );
+    }
+    limits
+}
+
+/// The handlers' shared state: the stores, the token, and the limits of bodies and streams
+/// (`stopped` ends the streams at shutdown).
+fn app_state(
+    args: &ServeArgs,
+    stores: Stores,
+    token: Option<String>,
+    (limits, stopped): (&listen::Limits, &watch::Receiver<bool>),
+) -> AppState {
+    // Absolute, so that whoever started the server from some folder sees where it writes.
+    let data_dir = std::fs::canonicalize(&args.data_dir)
+        .or_else(|_| std::path::absolute(&args.data_dir))
+        .unwrap_or_else(|_| args.data_dir.clone());
+    let fit_limits = FitLimits {
+        max_grid: args.budgets.calibration_max_grid,
+        max_cell_cycles: args.budgets.calibration_max_cell_cycles,
+        kept_bytes: args.budgets.calibration_kept_bytes,
+    };
+    AppState {
+        jobs: stores.jobs,
+        studies: stores.studies,
+        calibrations: Arc::new(Calibrations::new(fit_limits, Some(stores.fits))),
+        surfaces: stores.surfaces,
+        token: token.map(Arc::from),
+        static_dir: args.static_dir.as_deref().map(Arc::from),
+        body_timeout: BodyTimeout(limits.body_timeout_s),
+        streams: Streams {
+            keep_alive: keep_alive_interval(limits.idle_timeout_s),
+            shutdown: stopped.clone(),
+        },
+        data_dir: meta::DataDir(Arc::from(data_dir.as_path())),
+        cursor_key: CursorKey::random(),
+    }
 }
 
 /// An event stream's keep-alive comments come at most every 15 s (the usual interval) and
