@@ -191,33 +191,8 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
         warm_start: Option<&[f64]>,
     ) -> Result<Option<ContactSolution>, ContactError> {
         let grid = self.grid;
-        let sub = Grid::new(window.nx, window.ny, grid.dx, grid.dy)?;
-        let separation = window.extract(&grid, problem.separation);
-        let warm = warm_start.map(|p| window.extract(&grid, p));
-        let sub_problem = ContactProblem {
-            grid: sub,
-            separation: &separation,
-            ..*problem
-        };
-        let known = self.carried.as_ref().zip(warm_start);
-        let known = known.and_then(|(carried, warm)| carried.start_on(&grid, &window, warm));
-        let solver = self.solver_of(&window)?;
-        let outcome = match (warm.as_deref(), known.as_deref()) {
-            (Some(pressure), Some(displacement)) => {
-                let start = KnownStart {
-                    pressure,
-                    displacement,
-                };
-                solver.solve_known(&sub_problem, options, start)
-            }
-            (warm, _) => solver.solve(&sub_problem, options, warm),
-        };
-        // Either failure says the window, not the domain, is too small.
-        let solution = match outcome {
-            Err(ContactError::ContactAtEdge { .. } | ContactError::LoadExceedsCapacity { .. }) => {
-                return Ok(None);
-            }
-            outcome => outcome?,
+        let Some((sub, solution)) = self.solve_on(window, problem, options, warm_start)? else {
+            return Ok(None);
         };
         let pressure = window.embed(&grid, &solution.pressure);
         // The next solve's window too, so that it starts from the check's displacement;
@@ -264,6 +239,47 @@ impl<F: FnMut(&Grid) -> Box<dyn ContactSolver>> WindowedSolver<F> {
             operator_applies: solution.operator_applies + 1,
             ..solution
         }))
+    }
+
+    /// The solve of [`Self::solve_in`] on `window`'s cells alone, from the carried check's
+    /// displacement where it can start; the window's grid and the solution, or `None` when
+    /// the window turned out too small.
+    fn solve_on(
+        &mut self,
+        window: Window,
+        problem: &ContactProblem,
+        options: &SolverOptions,
+        warm_start: Option<&[f64]>,
+    ) -> Result<Option<(Grid, ContactSolution)>, ContactError> {
+        let grid = self.grid;
+        let sub = Grid::new(window.nx, window.ny, grid.dx, grid.dy)?;
+        let separation = window.extract(&grid, problem.separation);
+        let warm = warm_start.map(|p| window.extract(&grid, p));
+        let sub_problem = ContactProblem {
+            grid: sub,
+            separation: &separation,
+            ..*problem
+        };
+        let known = self.carried.as_ref().zip(warm_start);
+        let known = known.and_then(|(carried, warm)| carried.start_on(&grid, &window, warm));
+        let solver = self.solver_of(&window)?;
+        let outcome = match (warm.as_deref(), known.as_deref()) {
+            (Some(pressure), Some(displacement)) => {
+                let start = KnownStart {
+                    pressure,
+                    displacement,
+                };
+                solver.solve_known(&sub_problem, options, start)
+            }
+            (warm, _) => solver.solve(&sub_problem, options, warm),
+        };
+        // Either failure says the window, not the domain, is too small.
+        match outcome {
+            Err(ContactError::ContactAtEdge { .. } | ContactError::LoadExceedsCapacity { .. }) => {
+                Ok(None)
+            }
+            outcome => Ok(Some((sub, outcome?))),
+        }
     }
 
     /// The cells the check of `solution` computes: the whole grid, or, under a nonnegative
