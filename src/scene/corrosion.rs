@@ -270,10 +270,19 @@ pub enum GalvanicCell {
     Balanced,
 }
 
+/// The corrosion fields that follow others the scene gave (`given`, its `corrosion`) over
+/// `base`, the corrosion it starts from: the reference electrode, the Faraday metal and the
+/// anodic area.
+pub(super) fn follow_corrosion(document: &mut Value, given: Option<&Value>, base: &Corrosion) {
+    follow_reference(document, given, base);
+    follow_faraday(document, given);
+    follow_area(document, given);
+}
+
 /// The spot models' tau is not the wake's fit: a `corrosion` section (`given`, the user's
 /// own object) that names a spot model without `repassivation_time_s` gets
 /// [`SPOT_REPASSIVATION_TIME_S`] in `document`.
-pub(super) fn follow_area(document: &mut Value, given: Option<&Value>) {
+fn follow_area(document: &mut Value, given: Option<&Value>) {
     let Some(given) = given.and_then(Value::as_object) else {
         return;
     };
@@ -296,7 +305,7 @@ pub(super) fn follow_area(document: &mut Value, given: Option<&Value>) {
 /// names `reference_electrode` without `corrosion_potential_v` gets the E_corr of `base`
 /// (the section it overrides: the preset's, or the default's) in the new reference. `given` is
 /// the user's own `corrosion` object, `document` the scene about to be deserialised.
-pub(super) fn follow_reference(document: &mut Value, given: Option<&Value>, base: &Corrosion) {
+fn follow_reference(document: &mut Value, given: Option<&Value>, base: &Corrosion) {
     let Some(given) = given.and_then(Value::as_object) else {
         return;
     };
@@ -325,7 +334,7 @@ const GIVEN_FARADAY_KEYS: [&str; 3] = ["molar_mass_g_mol", "valence", "density_g
 /// the user's own object) that names the molar mass, valence or density without `faraday`
 /// meant those numbers, as every scene did before `faraday` existed, so `document` gets
 /// `faraday` `given`.
-pub(super) fn follow_faraday(document: &mut Value, given: Option<&Value>) {
+fn follow_faraday(document: &mut Value, given: Option<&Value>) {
     let Some(given) = given.and_then(Value::as_object) else {
         return;
     };

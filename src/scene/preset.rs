@@ -3,7 +3,7 @@
 use serde::Serialize;
 use serde_json::{Map, Value};
 
-use super::corrosion::{follow_area, follow_faraday, follow_reference};
+use super::corrosion::follow_corrosion;
 use super::materials::expand::expand;
 use super::surface::{SurfaceKind, SurfaceSpec};
 use super::{
@@ -117,9 +117,7 @@ pub(super) fn resolve(json: &Value) -> Result<Resolved, SceneErrors> {
             None => Vec::new(),
         };
         let given = document.get("corrosion").cloned();
-        follow_reference(&mut document, given.as_ref(), &Corrosion::default());
-        follow_faraday(&mut document, given.as_ref());
-        follow_area(&mut document, given.as_ref());
+        follow_corrosion(&mut document, given.as_ref(), &Corrosion::default());
         return Ok(Resolved {
             document,
             prefix: "",
@@ -137,45 +135,8 @@ pub(super) fn resolve(json: &Value) -> Result<Resolved, SceneErrors> {
         })
         .collect();
     let known: Vec<Preset> = presets();
-    let names = || {
-        known
-            .iter()
-            .map(|p| format!("`{}`", p.name))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    let preset = match &object["preset"] {
-        Value::String(name) => {
-            let found = known.iter().find(|p| p.name == name);
-            if found.is_none() {
-                let meant = super::suggest::nearest(name, known.iter().map(|p| p.name))
-                    .map_or_else(String::new, |p| format!("; did you mean `{p}`?"));
-                errors.push(FieldError::new(
-                    "preset",
-                    format!("unknown preset `{name}`; known presets: {}{meant}", names()),
-                ));
-            }
-            found
-        }
-        other => {
-            errors.push(FieldError::new(
-                "preset",
-                format!("must be a preset name ({}), got {other}", names()),
-            ));
-            None
-        }
-    };
-    let overrides = match object.get("overrides") {
-        None | Some(Value::Null) => Some(Map::new()),
-        Some(Value::Object(map)) => Some(map.clone()),
-        Some(other) => {
-            errors.push(FieldError::new(
-                "overrides",
-                format!("must be an object of scene fields, got {other}"),
-            ));
-            None
-        }
-    };
+    let preset = named_preset(&object["preset"], &known, &mut errors);
+    let overrides = overrides_of(object.get("overrides"), &mut errors);
     match (preset, overrides) {
         (Some(preset), Some(mut overrides)) if errors.is_empty() => {
             let mut document = serde_json::to_value(&preset.scene).map_err(|e| {
@@ -188,9 +149,7 @@ pub(super) fn resolve(json: &Value) -> Result<Resolved, SceneErrors> {
             merge(&mut document, &Value::Object(overrides.clone()));
             keep_one_archard_setting(&mut document, &overrides);
             let base = preset.scene.corrosion.clone().unwrap_or_default();
-            follow_reference(&mut document, overrides.get("corrosion"), &base);
-            follow_faraday(&mut document, overrides.get("corrosion"));
-            follow_area(&mut document, overrides.get("corrosion"));
+            follow_corrosion(&mut document, overrides.get("corrosion"), &base);
             Ok(Resolved {
                 document,
                 prefix: "overrides",
@@ -198,6 +157,58 @@ pub(super) fn resolve(json: &Value) -> Result<Resolved, SceneErrors> {
             })
         }
         _ => Err(SceneErrors(errors)),
+    }
+}
+
+/// The preset `value` names among `known`; `None`, with the error said, for an unknown
+/// name (and the nearest known one) or a value that is not a name.
+fn named_preset<'a>(
+    value: &Value,
+    known: &'a [Preset],
+    errors: &mut Vec<FieldError>,
+) -> Option<&'a Preset> {
+    let names = || {
+        known
+            .iter()
+            .map(|p| format!("`{}`", p.name))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let Value::String(name) = value else {
+        errors.push(FieldError::new(
+            "preset",
+            format!("must be a preset name ({}), got {value}", names()),
+        ));
+        return None;
+    };
+    let found = known.iter().find(|p| p.name == name);
+    if found.is_none() {
+        let meant = super::suggest::nearest(name, known.iter().map(|p| p.name))
+            .map_or_else(String::new, |p| format!("; did you mean `{p}`?"));
+        errors.push(FieldError::new(
+            "preset",
+            format!("unknown preset `{name}`; known presets: {}{meant}", names()),
+        ));
+    }
+    found
+}
+
+/// The scene fields `overrides` changes (none when absent or null); `None`, with the error
+/// said, when it is not an object.
+fn overrides_of(
+    overrides: Option<&Value>,
+    errors: &mut Vec<FieldError>,
+) -> Option<Map<String, Value>> {
+    match overrides {
+        None | Some(Value::Null) => Some(Map::new()),
+        Some(Value::Object(map)) => Some(map.clone()),
+        Some(other) => {
+            errors.push(FieldError::new(
+                "overrides",
+                format!("must be an object of scene fields, got {other}"),
+            ));
+            None
+        }
     }
 }
 
