@@ -25,7 +25,7 @@ use crate::service::files::Damage;
 use crate::service::jobs::{DeleteError, Deletion, JobRecord, JobStatus, Jobs, Store, SubmitError};
 use crate::service::surfaces::surface_id;
 use crate::simulation::{Build, Summary};
-use crate::study::{MemberRow, Pending, Study, StudyError, StudySummary, describe_values};
+use crate::study::{Member, MemberRow, Pending, Study, StudyError, StudySummary, describe_values};
 
 /// Why a study was not accepted.
 #[derive(Debug)]
@@ -132,30 +132,11 @@ impl Studies {
     /// anything is wrong), then submits its members as jobs and keeps the study. Blocking
     /// (file writes).
     pub fn submit(&self, jobs: &Jobs, study: &Study) -> Result<StudyRecord, StudySubmitError> {
-        let capacity = jobs.capacity();
-        let (limit, set_by) = if capacity < self.max_members {
-            (capacity, "--queue-capacity")
-        } else {
-            (self.max_members, "--max-study-members")
-        };
-        let members = study.members(limit).map_err(|source| match source {
-            StudyError::TooManyMembers { .. } => StudySubmitError::OverLimit { source, set_by },
-            other => StudySubmitError::Invalid(other),
-        })?;
+        let members = self.members_of(jobs, study)?;
         // Held until the members are queued, so no surface they name is deleted meanwhile.
         let names_surface = members.iter().any(|m| surface_id(&m.scene).is_some());
         let _hold = names_surface.then(|| jobs.surfaces().hold());
-        let mut memory_bytes = Vec::with_capacity(members.len());
-        for member in &members {
-            let bytes = jobs.admissible(&member.scene).map_err(|source| {
-                StudySubmitError::Invalid(StudyError::Member {
-                    index: member.index,
-                    values: describe_values(&member.values),
-                    source,
-                })
-            })?;
-            memory_bytes.push(bytes);
-        }
+        let memory_bytes = memory_of(jobs, &members)?;
         let id = Uuid::new_v4();
         let name = study.name();
         let axes = study
@@ -217,6 +198,21 @@ impl Studies {
             StudySubmitError::Submit(SubmitError::Storage(io::Error::other(
                 "the study vanished as it was accepted",
             )))
+        })
+    }
+
+    /// The study's members, refused past the queue's capacity or the server's limit on a
+    /// study's members, whichever is lower (named by the flag that sets it).
+    fn members_of(&self, jobs: &Jobs, study: &Study) -> Result<Vec<Member>, StudySubmitError> {
+        let capacity = jobs.capacity();
+        let (limit, set_by) = if capacity < self.max_members {
+            (capacity, "--queue-capacity")
+        } else {
+            (self.max_members, "--max-study-members")
+        };
+        study.members(limit).map_err(|source| match source {
+            StudyError::TooManyMembers { .. } => StudySubmitError::OverLimit { source, set_by },
+            other => StudySubmitError::Invalid(other),
         })
     }
 
@@ -405,4 +401,21 @@ fn member_row(
     }
     let ended = if row.pending.is_some() { None } else { ended };
     Ok((row, ended))
+}
+
+/// Each member's memory bound, as the jobs queue admits it: the first member it would
+/// refuse refuses the study, named by its index and its values.
+fn memory_of(jobs: &Jobs, members: &[Member]) -> Result<Vec<u64>, StudySubmitError> {
+    members
+        .iter()
+        .map(|member| {
+            jobs.admissible(&member.scene).map_err(|source| {
+                StudySubmitError::Invalid(StudyError::Member {
+                    index: member.index,
+                    values: describe_values(&member.values),
+                    source,
+                })
+            })
+        })
+        .collect()
 }
