@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 use super::{CalibrationError, CommandOptions, FitKind, Table, calibrate, default_scene};
-use crate::scene::SceneErrors;
+use crate::scene::{Scene, SceneErrors};
 use crate::simulation::parse_scene_str;
 
 /// Why the command failed.
@@ -68,6 +68,28 @@ pub fn calibrate_files(
     output: Option<&Path>,
     options: CommandOptions,
 ) -> Result<serde_json::Value, CommandError> {
+    refuse_misplaced(kind, &options)?;
+    let text = read(table)?;
+    let fit_error = |source: CalibrationError| CommandError::Fit {
+        path: table.to_owned(),
+        source,
+    };
+    let parsed = Table::parse(&text).map_err(|e| fit_error(e.into()))?;
+    // A lab's export read under other names is said, so the user sees what was fitted.
+    for (header, name) in parsed.renamed() {
+        eprintln!(
+            "note: {}: read the column `{header}` as `{name}`",
+            table.display()
+        );
+    }
+    let scene = scene_of(scene)?;
+    let fit = serde_json::to_value(calibrate(kind, &parsed, &scene, options).map_err(fit_error)?)?;
+    write_fit(&serde_json::to_string_pretty(&fit)?, output)?;
+    Ok(fit)
+}
+
+/// Refuses an option given to a fit it does not apply to, naming the fit it is for.
+fn refuse_misplaced(kind: FitKind, options: &CommandOptions) -> Result<(), CommandError> {
     let misplaced = [
         (
             "--regime-change",
@@ -112,41 +134,35 @@ pub fn calibrate_files(
     {
         return Err(CommandError::NotForThisFit { option, applies_to });
     }
-    let text = read(table)?;
-    let fit_error = |source: CalibrationError| CommandError::Fit {
-        path: table.to_owned(),
-        source,
+    Ok(())
+}
+
+/// The scene a fit fills in: the file's at `path`, or the paper's preset.
+fn scene_of(path: Option<&Path>) -> Result<Scene, CommandError> {
+    let Some(path) = path else {
+        return Ok(default_scene());
     };
-    let parsed = Table::parse(&text).map_err(|e| fit_error(e.into()))?;
-    // A lab's export read under other names is said, so the user sees what was fitted.
-    for (header, name) in parsed.renamed() {
-        eprintln!(
-            "note: {}: read the column `{header}` as `{name}`",
-            table.display()
-        );
-    }
-    let scene = match scene {
-        Some(path) => parse_scene_str(&read(path)?)
-            .map_err(|errors| CommandError::Scene {
+    let parsed = parse_scene_str(&read(path)?).map_err(|errors| CommandError::Scene {
+        path: path.to_owned(),
+        errors,
+    })?;
+    Ok(parsed.into_scene())
+}
+
+/// The fit's JSON to `output`, or to standard output.
+fn write_fit(json: &str, output: Option<&Path>) -> Result<(), CommandError> {
+    match output {
+        Some(path) => {
+            std::fs::write(path, format!("{json}\n")).map_err(|source| CommandError::Write {
                 path: path.to_owned(),
-                errors,
-            })?
-            .into_scene(),
-        None => default_scene(),
-    };
-    let fit = serde_json::to_value(calibrate(kind, &parsed, &scene, options).map_err(fit_error)?)?;
-    let json = serde_json::to_string_pretty(&fit)?;
-    let written = match output {
-        Some(path) => std::fs::write(path, json + "\n").map_err(|source| CommandError::Write {
-            path: path.to_owned(),
-            source,
-        }),
+                source,
+            })
+        }
         None => writeln!(std::io::stdout(), "{json}").map_err(|source| CommandError::Write {
             path: PathBuf::from("-"),
             source,
         }),
-    };
-    written.map(|()| fit)
+    }
 }
 
 fn read(path: &Path) -> Result<String, CommandError> {
