@@ -35,6 +35,19 @@ fn cell(property: Property, digits: Option<usize>) -> String {
 /// [`MATERIALS_BEGIN`] and [`MATERIALS_END`] (both included).
 pub fn materials_table() -> String {
     let mut out = format!("{MATERIALS_BEGIN}\n\n### Discs (`disc.material`)\n\n");
+    discs_table(&mut out);
+    out.push_str("\n### Electrochemistry in chloride\n\n");
+    electrochemistry_table(&mut out);
+    out.push_str("\n### Balls (`ball.material`)\n\n");
+    balls_table(&mut out);
+    out.push_str("\n### Sources\n\n");
+    sources_list(&mut out);
+    let _ = writeln!(out, "\n{MATERIALS_END}");
+    out
+}
+
+/// The discs' mechanical and Faraday values, with their sources' keys.
+fn discs_table(out: &mut String) {
     out.push_str(
         "| name | material | E (GPa) | nu | hardness (MPa, Vickers) | hardness law | 0.2% \
          yield (MPa) | density (g/cm^3) | EW (g/eq), `faraday` |\n|---|---|---|---|---|---|---|---|---|\n",
@@ -61,7 +74,10 @@ pub fn materials_table() -> String {
             d.equivalent_weight_source,
         );
     }
-    out.push_str("\n### Electrochemistry in chloride\n\n");
+}
+
+/// Each disc's electrochemical constants in chloride, or that none were found.
+fn electrochemistry_table(out: &mut String) {
     out.push_str(
         "| disc | medium | E_corr (V) | a_c (V) | b_c (V/decade) | i_a (A/cm^2) | source |\n\
          |---|---|---|---|---|---|---|\n",
@@ -87,7 +103,10 @@ pub fn materials_table() -> String {
             ),
         };
     }
-    out.push_str("\n### Balls (`ball.material`)\n\n");
+}
+
+/// The balls' values, with their sources' keys.
+fn balls_table(out: &mut String) {
     out.push_str(
         "| name | material | E (GPa) | nu | density (g/cm^3) | hardness |\n\
          |---|---|---|---|---|---|\n",
@@ -105,7 +124,10 @@ pub fn materials_table() -> String {
             b.hardness.1,
         );
     }
-    out.push_str("\n### Sources\n\n");
+}
+
+/// Every source the tables cite, primary or secondary.
+fn sources_list(out: &mut String) {
     for r in REFERENCES {
         let kind = if r.primary { "primary" } else { "secondary" };
         let _ = writeln!(
@@ -114,6 +136,4 @@ pub fn materials_table() -> String {
             r.key, r.citation, r.address
         );
     }
-    let _ = writeln!(out, "\n{MATERIALS_END}");
-    out
 }
