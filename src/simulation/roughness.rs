@@ -95,16 +95,7 @@ fn synthetic(spec: &SurfaceSpec, grid: &Grid) -> Result<DiscSurface, SimulationE
     // The shortest wavelength the grid resolves at the rule's density.
     let resolved = CELLS_PER_SHORT_WAVELENGTH * cell;
     let short_used = short.max(resolved);
-    let roughness = match (spec.rms_height_um, spec.rms_slope) {
-        (Some(um), _) => Roughness::RmsHeight(um * 1e-6),
-        // The slope of the band the grid keeps, at the amplitude of the whole band:
-        // h'^2 is proportional to the integral of q^(1 - 2H) dq from q_long up.
-        (None, Some(slope)) => {
-            let band = |shortest: f64| slope_integral(TAU / long, TAU / shortest, hurst);
-            Roughness::RmsSlope(slope * (band(short_used) / band(short)).sqrt())
-        }
-        (None, None) => Roughness::RmsSlope(0.0),
-    };
+    let roughness = asked_roughness(spec, hurst, (long, short, short_used));
     let generator = SelfAffine {
         roughness,
         hurst,
@@ -115,19 +106,7 @@ fn synthetic(spec: &SurfaceSpec, grid: &Grid) -> Result<DiscSurface, SimulationE
     let map = generator.generate(grid.nx, grid.ny, grid.dx, grid.dy)?;
     let (fit_long, fit_short) = fit_range(&map, Some((long, short_used)));
     let statistics = Statistics::of(&map, fit_long, fit_short);
-    if spec.rms_height_um.is_some() && statistics.rms_slope > MAX_RMS_SLOPE {
-        return Err(SceneErrors(vec![FieldError::new(
-            "disc.surface.rms_height_um",
-            format!(
-                "gives an rms slope of {:.3} on the grid's {:.4} um cells, above \
-                 {MAX_RMS_SLOPE} (beyond it the small-slope half-space theory of eqs. 5-10 \
-                 does not hold); lower the height or lengthen the short cut-off",
-                statistics.rms_slope,
-                cell * 1e6
-            ),
-        )])
-        .into());
-    }
+    refuse_steep(spec, &statistics, cell)?;
     let mut reason = format!(
         "synthetic self-affine, H = {hurst}, cut-offs {:.3} to {:.3} um, seed {}, generated on \
          the grid's cells and periodic over it: rms height {:.4} um, rms slope {:.4}",
@@ -167,6 +146,49 @@ fn synthetic(spec: &SurfaceSpec, grid: &Grid) -> Result<DiscSurface, SimulationE
             reason,
         },
     })
+}
+
+/// The roughness `spec` asks for, on the band the grid keeps (cut-offs `long` to
+/// `short_used`, `short` asked): an rms height as given, or an rms slope scaled to the band
+/// kept.
+fn asked_roughness(
+    spec: &SurfaceSpec,
+    hurst: f64,
+    (long, short, short_used): (f64, f64, f64),
+) -> Roughness {
+    match (spec.rms_height_um, spec.rms_slope) {
+        (Some(um), _) => Roughness::RmsHeight(um * 1e-6),
+        // The slope of the band the grid keeps, at the amplitude of the whole band:
+        // h'^2 is proportional to the integral of q^(1 - 2H) dq from q_long up.
+        (None, Some(slope)) => {
+            let band = |shortest: f64| slope_integral(TAU / long, TAU / shortest, hurst);
+            Roughness::RmsSlope(slope * (band(short_used) / band(short)).sqrt())
+        }
+        (None, None) => Roughness::RmsSlope(0.0),
+    }
+}
+
+/// Refuses a height that makes the surface steeper than the half-space theory holds for,
+/// on the grid's cells of side `cell` (m).
+fn refuse_steep(
+    spec: &SurfaceSpec,
+    statistics: &Statistics,
+    cell: f64,
+) -> Result<(), SimulationError> {
+    if spec.rms_height_um.is_some() && statistics.rms_slope > MAX_RMS_SLOPE {
+        return Err(SceneErrors(vec![FieldError::new(
+            "disc.surface.rms_height_um",
+            format!(
+                "gives an rms slope of {:.3} on the grid's {:.4} um cells, above \
+                 {MAX_RMS_SLOPE} (beyond it the small-slope half-space theory of eqs. 5-10 \
+                 does not hold); lower the height or lengthen the short cut-off",
+                statistics.rms_slope,
+                cell * 1e6
+            ),
+        )])
+        .into());
+    }
+    Ok(())
 }
 
 /// `int q^(1 - 2H) dq` from `low` to `high` (up to a constant factor).
