@@ -2,118 +2,28 @@
 //! clients, the cap on connections, the idle timeout, the bounded shutdown on SIGTERM, the
 //! token's scheme and file, duplicate keys, long targets and the page built into the binary.
 
-use std::io::{BufRead, BufReader, ErrorKind, Read, Write};
+use std::io::{ErrorKind, Read, Write};
 use std::net::TcpStream;
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
-use std::sync::mpsc;
+use std::path::Path;
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use serde_json::Value;
 
-/// Generous bound on anything a test waits for: the machine may be loaded.
-const PATIENCE: Duration = Duration::from_secs(120);
+mod common;
 
-/// A directory removed when dropped.
-struct TempDir(PathBuf);
+use common::process::{ServerProcess, serve_command};
+use common::{PATIENCE, TempDir};
 
-impl TempDir {
-    fn new(label: &str) -> Self {
-        let path = std::env::temp_dir().join(format!("tribosim-{label}-{}", uuid::Uuid::new_v4()));
-        std::fs::create_dir_all(&path).expect("create temp dir");
-        Self(path)
-    }
-
-    fn path(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-/// A `tribosim serve` process on a loopback port, killed when dropped.
-struct Served {
-    child: Child,
-    base: String,
-    /// The address, as `host:port`.
-    addr: String,
-}
-
-impl Served {
-    /// Starts `tribosim serve` on a free port with `data_dir`, the extra `flags`, in `cwd`.
-    fn start(data_dir: &Path, flags: &[&str], cwd: &Path) -> Self {
-        let mut command = Command::new(env!("CARGO_BIN_EXE_tribosim"));
-        command
-            .args(["serve", "--addr", "127.0.0.1:0", "--data-dir"])
-            .arg(data_dir)
-            .args(flags)
-            .current_dir(cwd)
-            .env_remove("TRIBOSIM_TOKEN");
-        Self::spawn(command)
-    }
-
-    /// Runs `command` (`tribosim serve` on a free port) and waits until it listens.
-    fn spawn(mut command: Command) -> Self {
-        let mut child = command
-            .env("RUST_LOG", "warn,tribosim=info")
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("spawn tribosim serve");
-        let stderr = child.stderr.take().expect("stderr");
-        let (announce, announced) = mpsc::channel();
-        // Reads the log to its end, so the server never blocks on a full pipe.
-        std::thread::spawn(move || {
-            for line in BufReader::new(stderr).lines().map_while(Result::ok) {
-                eprintln!("server: {line}");
-                if let Some((_, rest)) = line.split_once("serving on http://") {
-                    let addr = rest.split_whitespace().next().unwrap_or_default();
-                    let _ = announce.send(addr.to_owned());
-                }
-            }
-        });
-        let addr = announced
-            .recv_timeout(PATIENCE)
-            .expect("the server logs `serving on http://...`");
-        Self {
-            child,
-            base: format!("http://{addr}"),
-            addr,
-        }
-    }
-
-    fn url(&self, path: &str) -> String {
-        format!("{}{path}", self.base)
-    }
-
-    /// Sends SIGTERM and returns the time until the process exited, and whether it exited
-    /// with success; `None` if it had not exited after [`PATIENCE`].
-    fn terminate(&mut self) -> Option<(Duration, bool)> {
-        let sent = Instant::now();
-        let status = Command::new("kill")
-            .args(["-TERM", &self.child.id().to_string()])
-            .status()
-            .expect("run kill");
-        assert!(status.success(), "kill -TERM failed");
-        while sent.elapsed() < PATIENCE {
-            if let Some(exit) = self.child.try_wait().expect("wait for the server") {
-                return Some((sent.elapsed(), exit.success()));
-            }
-            std::thread::sleep(Duration::from_millis(10));
-        }
-        None
-    }
-}
-
-impl Drop for Served {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
+/// `tribosim serve` on a free port with `data_dir` and the extra `flags`, started in `cwd`
+/// with no token in its environment.
+fn served(data_dir: &Path, flags: &[&str], cwd: &Path) -> ServerProcess {
+    let mut command = serve_command(data_dir, 2);
+    command
+        .args(flags)
+        .current_dir(cwd)
+        .env_remove("TRIBOSIM_TOKEN");
+    ServerProcess::spawn(command)
 }
 
 fn client() -> reqwest::Client {
@@ -159,10 +69,10 @@ async fn slow_clients_do_not_stop_healthz_and_are_closed_after_the_header_timeou
     const HEADER_TIMEOUT_S: u64 = 3;
     let dir = TempDir::new("slow");
     let timeout = HEADER_TIMEOUT_S.to_string();
-    let server = Served::start(dir.path(), &["--header-timeout-s", &timeout], dir.path());
+    let server = served(dir.path(), &["--header-timeout-s", &timeout], dir.path());
     let slow: Vec<_> = (0..SLOW_CLIENTS)
         .map(|_| {
-            let addr = server.addr.clone();
+            let addr = server.addr().to_owned();
             std::thread::spawn(move || slow_client(&addr))
         })
         .collect();
@@ -212,7 +122,7 @@ async fn sigterm_stops_the_server_within_the_grace_despite_half_sent_requests() 
     let dir = TempDir::new("sigterm");
     let grace = GRACE_S.to_string();
     // Timeouts far beyond the test's patience: only the shutdown's grace can end these.
-    let mut server = Served::start(
+    let mut server = served(
         dir.path(),
         &[
             "--shutdown-grace-s",
@@ -226,18 +136,18 @@ async fn sigterm_stops_the_server_within_the_grace_despite_half_sent_requests() 
         ],
         dir.path(),
     );
-    let mut half_body = TcpStream::connect(&server.addr).expect("connect");
+    let mut half_body = TcpStream::connect(server.addr()).expect("connect");
     half_body
         .write_all(
             format!(
                 "POST /api/v1/jobs HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\n\
                  Content-Length: 1000\r\n\r\n{{\"name\": ",
-                server.addr
+                server.addr()
             )
             .as_bytes(),
         )
         .expect("half a body");
-    let mut half_head = TcpStream::connect(&server.addr).expect("connect");
+    let mut half_head = TcpStream::connect(server.addr()).expect("connect");
     half_head
         .write_all(b"GET /healthz HTTP/1.1\r\nHo")
         .expect("half a head");
@@ -261,7 +171,7 @@ async fn sigterm_stops_the_server_within_the_grace_despite_half_sent_requests() 
 async fn a_key_given_twice_is_refused_naming_it_by_the_service_and_the_cli() {
     let dir = TempDir::new("duplicate");
     let text = r#"{"test": {"load_n": 5, "cycles": 3, "load_n": 50}}"#;
-    let server = Served::start(dir.path(), &[], dir.path());
+    let server = served(dir.path(), &[], dir.path());
     let response = client()
         .post(server.url("/api/v1/jobs"))
         .header("Content-Type", "application/json")
@@ -288,7 +198,7 @@ async fn a_key_given_twice_is_refused_naming_it_by_the_service_and_the_cli() {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn long_targets_get_414_with_the_json_body_and_long_ids_are_cut() {
     let dir = TempDir::new("long");
-    let server = Served::start(dir.path(), &[], dir.path());
+    let server = served(dir.path(), &[], dir.path());
     let client = client();
     let long = "a".repeat(tribosim::service::MAX_URI_BYTES);
     let response = client
@@ -319,7 +229,7 @@ async fn a_token_from_a_file_is_accepted_with_any_case_of_bearer() {
     let token_file = dir.path().join("token");
     std::fs::write(&token_file, "s3cret-token\n").expect("write token");
     let token_flag = token_file.to_str().expect("UTF-8 path");
-    let server = Served::start(dir.path(), &["--token-file", token_flag], dir.path());
+    let server = served(dir.path(), &["--token-file", token_flag], dir.path());
     let client = client();
     let cases = [
         (Some("Bearer s3cret-token"), 200),
@@ -408,7 +318,7 @@ async fn a_token_that_cannot_work_stops_the_start_saying_why() {
         .args(["serve", "--addr", "127.0.0.1:0", "--data-dir"])
         .arg(dir.path().join("data"))
         .env("TRIBOSIM_TOKEN", "  padded-token\n");
-    let served = Served::spawn(command);
+    let served = ServerProcess::spawn(command);
     let client = client();
     for (authorization, status) in [("Bearer padded-token", 200), ("Bearer padded", 401)] {
         let response = client
@@ -469,7 +379,7 @@ async fn no_page_file(client: &reqwest::Client, url: String) {
 async fn the_page_is_served_from_any_directory_and_static_dir_overrides_it() {
     let dir = TempDir::new("page");
     let elsewhere = TempDir::new("cwd");
-    let built_in = Served::start(dir.path(), &[], elsewhere.path());
+    let built_in = served(dir.path(), &[], elsewhere.path());
     let client = client();
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("static");
     let page = page_file(&client, built_in.url("/"), "text/html").await;
@@ -515,7 +425,7 @@ async fn the_page_is_served_from_any_directory_and_static_dir_overrides_it() {
     std::fs::write(draft.join("js/main.js"), "// draft").expect("write a module");
     std::fs::write(elsewhere.path().join("secret"), "outside the page").expect("write a file");
     let flag = draft.to_str().expect("UTF-8 path");
-    let overridden = Served::start(dir.path(), &["--static-dir", flag], dir.path());
+    let overridden = served(dir.path(), &["--static-dir", flag], dir.path());
     let page = page_file(&client, overridden.url("/"), "text/html").await;
     assert_eq!(page, b"<p>draft</p>");
     let module = page_file(
@@ -539,7 +449,7 @@ async fn the_page_is_served_from_any_directory_and_static_dir_overrides_it() {
 async fn connections_beyond_the_cap_wait_until_one_closes() {
     let dir = TempDir::new("cap");
     // Only the cap can hold these connections: no timeout ends them during the test.
-    let server = Served::start(
+    let server = served(
         dir.path(),
         &[
             "--max-connections",
@@ -552,7 +462,7 @@ async fn connections_beyond_the_cap_wait_until_one_closes() {
         dir.path(),
     );
     let held: Vec<_> = (0..2)
-        .map(|_| TcpStream::connect(&server.addr).expect("connect"))
+        .map(|_| TcpStream::connect(server.addr()).expect("connect"))
         .collect();
     let impatient = reqwest::Client::builder()
         .timeout(Duration::from_secs(1))
@@ -577,14 +487,14 @@ fn a_connection_with_no_traffic_is_closed_after_the_idle_timeout() {
     const IDLE_TIMEOUT_S: u64 = 1;
     let dir = TempDir::new("idle");
     let idle = IDLE_TIMEOUT_S.to_string();
-    let server = Served::start(
+    let server = served(
         dir.path(),
         &["--idle-timeout-s", &idle, "--header-timeout-s", "3600"],
         dir.path(),
     );
-    let mut stream = TcpStream::connect(&server.addr).expect("connect");
+    let mut stream = TcpStream::connect(server.addr()).expect("connect");
     stream
-        .write_all(format!("GET /healthz HTTP/1.1\r\nHost: {}\r\n\r\n", server.addr).as_bytes())
+        .write_all(format!("GET /healthz HTTP/1.1\r\nHost: {}\r\n\r\n", server.addr()).as_bytes())
         .expect("request");
     stream
         .set_read_timeout(Some(PATIENCE))

@@ -8,6 +8,7 @@ use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 
 use serde_json::Value;
 
@@ -104,6 +105,29 @@ impl ServerProcess {
     /// `base` + `path`.
     pub fn url(&self, path: &str) -> String {
         format!("{}{path}", self.base)
+    }
+
+    /// The address, as `host:port`.
+    pub fn addr(&self) -> &str {
+        self.base.trim_start_matches("http://")
+    }
+
+    /// Sends SIGTERM and returns the time until the process exited, and whether it exited
+    /// with success; `None` if it had not exited after [`PATIENCE`].
+    pub fn terminate(&mut self) -> Option<(Duration, bool)> {
+        let sent = Instant::now();
+        let status = Command::new("kill")
+            .args(["-TERM", &self.child.id().to_string()])
+            .status()
+            .expect("run kill");
+        assert!(status.success(), "kill -TERM failed");
+        while sent.elapsed() < PATIENCE {
+            if let Some(exit) = self.child.try_wait().expect("wait for the server") {
+                return Some((sent.elapsed(), exit.success()));
+            }
+            std::thread::sleep(Duration::from_millis(10));
+        }
+        None
     }
 
     /// Everything the server has logged so far.
