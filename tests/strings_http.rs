@@ -1,7 +1,8 @@
 //! User strings over HTTP, against the service in this process: every name has a
 //! bound and refuses hidden characters (as `tribosim run` does, `tests/cli.rs`), a hundred
 //! thousand tags are refused in one problem, a study's summary.csv keeps a `;` value in its
-//! cell, and a list's cursor works only in the list and filters that gave it.
+//! cell, a list's cursor works only in the list and filters that gave it, and a job's id
+//! in a path is a UUID (400 otherwise, 404 when unknown) on every route.
 
 mod common;
 
@@ -210,5 +211,46 @@ async fn a_job_stored_before_names_were_bounded_still_runs() {
         "n".repeat(200),
         "the name as run: hidden characters dropped, cut to 200"
     );
+    server.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn every_job_route_answers_404_for_an_unknown_id_and_400_for_a_malformed_one() {
+    let dir = TempDir::new("ids");
+    let server = Server::start(args(dir.path())).await;
+    let client = reqwest::Client::new();
+    let unknown = uuid::Uuid::new_v4().to_string();
+    for suffix in [
+        "",
+        "/events",
+        "/result",
+        "/result.csv",
+        "/scene",
+        "/measurements",
+    ] {
+        for (id, status) in [
+            (unknown.as_str(), 404),
+            ("not-a-uuid", 400),
+            ("..%2F..%2Fetc", 400),
+            ("12345", 400),
+        ] {
+            let url = server.url(&format!("/api/v1/jobs/{id}{suffix}"));
+            let response = client.get(&url).send().await.expect("get");
+            expect_client_error(response, status).await;
+        }
+    }
+    let response = client
+        .delete(server.url(&format!("/api/v1/jobs/{unknown}")))
+        .send()
+        .await
+        .expect("delete");
+    expect_client_error(response, 404).await;
+    let response = client
+        .delete(server.url("/api/v1/jobs/x"))
+        .send()
+        .await
+        .expect("delete");
+    expect_client_error(response, 400).await;
+
     server.stop().await;
 }
