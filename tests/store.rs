@@ -83,27 +83,7 @@ async fn a_damaged_store_comes_up_serving_every_intact_job() {
     let dir = TempDir::new("damaged-store");
     let client = reqwest::Client::new();
     let mut first = ServerProcess::start(dir.path());
-    // Each job gets one kind of damage: (label, file, how), the file's damage applied after
-    // the job has succeeded and the server is dead.
-    let damage: [Damage; 13] = [
-        ("intact", "", |_| {}),
-        ("status truncated", "status.json", truncate),
-        ("status corrupt", "status.json", corrupt),
-        // A directory cannot be read as a file nor replaced by a rename: this status can
-        // neither be read nor rewritten at startup.
-        ("status unreadable", "status.json", into_directory),
-        ("scene truncated", "scene.json", truncate),
-        ("scene unreadable", "scene.json", into_directory),
-        ("scene corrupt", "scene.json", corrupt),
-        ("result truncated", "result.json", truncate),
-        ("result corrupt", "result.json", corrupt),
-        ("result missing", "result.json", |path| {
-            fs::remove_file(path).expect("remove");
-        }),
-        ("cycles truncated", "cycles.jsonl", truncate),
-        ("cycles corrupt", "cycles.jsonl", corrupt),
-        ("manifest corrupt", "manifest.json", corrupt),
-    ];
+    let damage = damages();
     let mut ids = Vec::new();
     for _ in &damage {
         let job = submit(&client, &first.base, &small_scene(5)).await;
@@ -125,17 +105,7 @@ async fn a_damaged_store_comes_up_serving_every_intact_job() {
         }
     }
     let jobs = dir.path().join("jobs");
-    fs::write(
-        jobs.join("x.new"),
-        "a file where a staging directory is expected",
-    )
-    .expect("x");
-    fs::create_dir_all(jobs.join("y.deleted").join("inside")).expect("y");
-    let file_job = uuid::Uuid::new_v4().to_string();
-    fs::write(jobs.join(&file_job), "a file in place of a job directory").expect("file");
-    let staged = format!("{}.new", uuid::Uuid::new_v4());
-    fs::create_dir(jobs.join(&staged)).expect("staged");
-    fs::write(jobs.join(&staged).join("scene.json"), "{").expect("staged scene");
+    let strays = litter(&jobs);
 
     let second = ServerProcess::start(dir.path());
     let base = &second.base;
@@ -145,55 +115,10 @@ async fn a_damaged_store_comes_up_serving_every_intact_job() {
         Some(ids.len()),
         "no job vanished: {listed}"
     );
-    for (id, (label, file, _)) in ids.iter().zip(&damage) {
-        let job = wait_for_job(&client, base, id, is_final).await;
-        let (status, bytes) = result(&client, &result_url(base, id)).await;
-        match *file {
-            "" | "status.json" => {
-                assert_eq!(job["status"], "succeeded", "{label}: {job}");
-                assert_eq!(status, 200, "{label}");
-                assert!(
-                    bytes == before[id],
-                    "{label}: the result is served byte for byte"
-                );
-            }
-            "scene.json" => {
-                assert_eq!(job["status"], "damaged", "{label}: {job}");
-                let error = job["error"].as_str().unwrap_or_default();
-                assert!(error.contains("scene.json"), "{label}: {job}");
-                assert_eq!(status, 409, "{label}");
-                let response = client
-                    .delete(format!("{base}/api/v1/jobs/{id}"))
-                    .send()
-                    .await
-                    .expect("delete");
-                assert_eq!(
-                    response.status(),
-                    204,
-                    "{label}: a damaged job can be deleted"
-                );
-            }
-            _ => {
-                assert_eq!(job["status"], "succeeded", "{label}: {job}");
-                let reason = job["rerun_reason"].as_str().unwrap_or_default();
-                assert!(
-                    reason.contains(file),
-                    "{label}: the reason names {file}: {job}"
-                );
-                assert_eq!(status, 200, "{label}");
-                // The run is deterministic: only the wall-clock time differs.
-                assert_eq!(
-                    without_wall_time(parsed(&bytes)),
-                    without_wall_time(parsed(&before[id])),
-                    "{label}: the re-run gives the same numbers"
-                );
-                let (cycles, last) = streamed(&client, base, id).await;
-                assert_eq!(Value::Array(cycles), parsed(&bytes)["cycles"], "{label}");
-                assert_eq!(last["status"], "succeeded", "{label}");
-            }
-        }
+    for (id, &(label, file, _)) in ids.iter().zip(&damage) {
+        served_after_damage(&client, base, id, (label, file), &before[id]).await;
     }
-    for gone in ["x.new", "y.deleted", staged.as_str(), file_job.as_str()] {
+    for gone in &strays {
         assert!(!jobs.join(gone).exists(), "{gone} is swept or set aside");
     }
     let quarantined: Vec<String> = fs::read_dir(dir.path().join("quarantine"))
@@ -206,11 +131,114 @@ async fn a_damaged_store_comes_up_serving_every_intact_job() {
                 .into_owned()
         })
         .collect();
+    let file_job = &strays[3];
     assert!(
-        quarantined.iter().any(|name| name.starts_with(&file_job)),
+        quarantined
+            .iter()
+            .any(|name| name.starts_with(file_job.as_str())),
         "the file in place of a job is kept aside: {quarantined:?}"
     );
     assert!(second.log().contains("quarantined"), "{}", second.log());
+}
+
+/// One kind of damage for each job: (label, file, how), applied after the job has succeeded
+/// and the server is dead.
+fn damages() -> [Damage; 13] {
+    [
+        ("intact", "", |_| {}),
+        ("status truncated", "status.json", truncate),
+        ("status corrupt", "status.json", corrupt),
+        // A directory cannot be read as a file nor replaced by a rename: this status can
+        // neither be read nor rewritten at startup.
+        ("status unreadable", "status.json", into_directory),
+        ("scene truncated", "scene.json", truncate),
+        ("scene unreadable", "scene.json", into_directory),
+        ("scene corrupt", "scene.json", corrupt),
+        ("result truncated", "result.json", truncate),
+        ("result corrupt", "result.json", corrupt),
+        ("result missing", "result.json", |path| {
+            fs::remove_file(path).expect("remove");
+        }),
+        ("cycles truncated", "cycles.jsonl", truncate),
+        ("cycles corrupt", "cycles.jsonl", corrupt),
+        ("manifest corrupt", "manifest.json", corrupt),
+    ]
+}
+
+/// Leaves in the jobs directory what a crash or a hand could: a file where a staging
+/// directory goes, a half-deleted directory, a file in place of a job, and a staged job
+/// never committed. Their names, the file in place of a job's last.
+fn litter(jobs: &Path) -> [String; 4] {
+    fs::write(
+        jobs.join("x.new"),
+        "a file where a staging directory is expected",
+    )
+    .expect("x");
+    fs::create_dir_all(jobs.join("y.deleted").join("inside")).expect("y");
+    let file_job = uuid::Uuid::new_v4().to_string();
+    fs::write(jobs.join(&file_job), "a file in place of a job directory").expect("file");
+    let staged = format!("{}.new", uuid::Uuid::new_v4());
+    fs::create_dir(jobs.join(&staged)).expect("staged");
+    fs::write(jobs.join(&staged).join("scene.json"), "{").expect("staged scene");
+    ["x.new".to_owned(), "y.deleted".to_owned(), staged, file_job]
+}
+
+/// What the restarted server makes of job `id` whose `file` got the damage `label`: served
+/// as it was (no damage, or a status it rebuilds), damaged and deletable (its scene), or
+/// run again to the same numbers (its result, cycles or manifest).
+async fn served_after_damage(
+    client: &reqwest::Client,
+    base: &str,
+    id: &str,
+    (label, file): (&str, &str),
+    before: &[u8],
+) {
+    let job = wait_for_job(client, base, id, is_final).await;
+    let (status, bytes) = result(client, &result_url(base, id)).await;
+    match file {
+        "" | "status.json" => {
+            assert_eq!(job["status"], "succeeded", "{label}: {job}");
+            assert_eq!(status, 200, "{label}");
+            assert!(
+                bytes == before,
+                "{label}: the result is served byte for byte"
+            );
+        }
+        "scene.json" => {
+            assert_eq!(job["status"], "damaged", "{label}: {job}");
+            let error = job["error"].as_str().unwrap_or_default();
+            assert!(error.contains("scene.json"), "{label}: {job}");
+            assert_eq!(status, 409, "{label}");
+            let response = client
+                .delete(format!("{base}/api/v1/jobs/{id}"))
+                .send()
+                .await
+                .expect("delete");
+            assert_eq!(
+                response.status(),
+                204,
+                "{label}: a damaged job can be deleted"
+            );
+        }
+        _ => {
+            assert_eq!(job["status"], "succeeded", "{label}: {job}");
+            let reason = job["rerun_reason"].as_str().unwrap_or_default();
+            assert!(
+                reason.contains(file),
+                "{label}: the reason names {file}: {job}"
+            );
+            assert_eq!(status, 200, "{label}");
+            // The run is deterministic: only the wall-clock time differs.
+            assert_eq!(
+                without_wall_time(parsed(&bytes)),
+                without_wall_time(parsed(before)),
+                "{label}: the re-run gives the same numbers"
+            );
+            let (cycles, last) = streamed(client, base, id).await;
+            assert_eq!(Value::Array(cycles), parsed(&bytes)["cycles"], "{label}");
+            assert_eq!(last["status"], "succeeded", "{label}");
+        }
+    }
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

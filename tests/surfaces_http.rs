@@ -9,6 +9,8 @@
 mod bounds;
 mod common;
 
+use std::path::Path;
+
 use serde_json::{Value, json};
 
 use common::process::ServerProcess;
@@ -106,13 +108,29 @@ async fn each_format_is_read_listed_and_deleted_and_bad_maps_are_named() {
     let client = reqwest::Client::new();
     let server = ServerProcess::start(dir.path());
     let base = server.base.clone();
+    let [from_gsf, from_matrix, from_xyz] = uploaded_in_each_format(&client, &base).await;
+    listed_fetched_and_deleted(
+        &client,
+        &base,
+        dir.path(),
+        [&from_gsf, &from_matrix, &from_xyz],
+    )
+    .await;
+    bad_maps_named(&client, &base).await;
+    too_big_refused(&client, &base).await;
+    let listed = get_json(&client, &format!("{base}/api/v1/surfaces")).await;
+    assert_eq!(listed, json!([from_gsf, from_matrix]));
+}
 
-    let (status, from_gsf) = upload(&client, &base, "", "application/octet-stream", gsf()).await;
+/// The same heights uploaded as .gsf, as a text matrix (named, its pixel in the query) and
+/// as x y z columns: each read with its format's pixel, the same statistics.
+async fn uploaded_in_each_format(client: &reqwest::Client, base: &str) -> [Value; 3] {
+    let (status, from_gsf) = upload(client, base, "", "application/octet-stream", gsf()).await;
     assert_eq!(status, 201, "{from_gsf}");
     let query = "?pixel_um=4&name=matrix%20map";
     let (status, from_matrix) = upload(
-        &client,
-        &base,
+        client,
+        base,
         query,
         "application/octet-stream",
         matrix().into(),
@@ -120,7 +138,7 @@ async fn each_format_is_read_listed_and_deleted_and_bad_maps_are_named() {
     .await;
     assert_eq!(status, 201, "{from_matrix}");
     let (status, from_xyz) =
-        upload(&client, &base, "", "application/octet-stream", xyz().into()).await;
+        upload(client, base, "", "application/octet-stream", xyz().into()).await;
     assert_eq!(status, 201, "{from_xyz}");
     for (answer, format) in [
         (&from_gsf, "gsf"),
@@ -151,14 +169,25 @@ async fn each_format_is_read_listed_and_deleted_and_bad_maps_are_named() {
     );
     assert!((rms_height(&from_gsf) / rms_height(&from_matrix) - 1.0).abs() < 1e-7);
 
-    let listed = get_json(&client, &format!("{base}/api/v1/surfaces")).await;
+    [from_gsf, from_matrix, from_xyz]
+}
+
+/// The three uploads are listed in order and each read back; the last deleted, with its
+/// directory, then 404 to a read and a delete; a malformed id gets 400.
+async fn listed_fetched_and_deleted(
+    client: &reqwest::Client,
+    base: &str,
+    data_dir: &Path,
+    [from_gsf, from_matrix, from_xyz]: [&Value; 3],
+) {
+    let listed = get_json(client, &format!("{base}/api/v1/surfaces")).await;
     assert_eq!(listed, json!([from_gsf, from_matrix, from_xyz]));
     let id = from_xyz["id"].as_str().expect("id");
     let url = format!("{base}/api/v1/surfaces/{id}");
-    assert_eq!(get_json(&client, &url).await, from_xyz);
+    assert_eq!(&get_json(client, &url).await, from_xyz);
     let deleted = client.delete(&url).send().await.expect("DELETE");
     assert_eq!(deleted.status(), 204);
-    assert!(!dir.path().join("surfaces").join(id).exists());
+    assert!(!data_dir.join("surfaces").join(id).exists());
     for response in [
         client.get(&url).send().await.expect("GET"),
         client.delete(&url).send().await.expect("DELETE"),
@@ -171,8 +200,10 @@ async fn each_format_is_read_listed_and_deleted_and_bad_maps_are_named() {
         .await
         .expect("GET");
     assert_eq!(malformed.status(), 400);
+}
 
-    // Refusals name the problem and where it is; nothing refused is stored.
+/// Refusals name the problem and where it is; nothing refused is stored.
+async fn bad_maps_named(client: &reqwest::Client, base: &str) {
     let flat = format!("{}\n", vec![vec!["0"; 16].join(" "); 16].join("\n"));
     let refusals: [(&str, &str, Vec<u8>, &str, &str); 6] = [
         (
@@ -219,20 +250,22 @@ async fn each_format_is_read_listed_and_deleted_and_bad_maps_are_named() {
         ),
     ];
     for (query, content_type, body, path, words) in refusals {
-        let (status, answer) = upload(&client, &base, query, content_type, body).await;
+        let (status, answer) = upload(client, base, query, content_type, body).await;
         assert_eq!(status, 422, "{answer}");
         assert_eq!(answer["fields"][0]["path"], path, "{answer}");
         let message = answer["error"].as_str().expect("message");
         assert!(message.contains(words), "{message}");
     }
-    let (status, _) = upload(&client, &base, "", "application/json", xyz().into()).await;
+    let (status, _) = upload(client, base, "", "application/json", xyz().into()).await;
     assert_eq!(status, 415);
+}
 
-    // Too big: more pixels per side than the reader takes, or more bytes than the body limit.
+/// Too big: more pixels per side than the reader takes, or more bytes than the body limit.
+async fn too_big_refused(client: &reqwest::Client, base: &str) {
     let wide = format!("{}\n{0}\n", vec!["0"; 4097].join(" "));
     let (status, answer) = upload(
-        &client,
-        &base,
+        client,
+        base,
         "?pixel_um=1",
         "application/octet-stream",
         wide.into(),
@@ -242,8 +275,8 @@ async fn each_format_is_read_listed_and_deleted_and_bad_maps_are_named() {
     assert!(answer["error"].as_str().expect("message").contains("4096"));
     let huge = vec![b'0'; (64 << 20) + 1];
     let (status, answer) = upload(
-        &client,
-        &base,
+        client,
+        base,
         "?pixel_um=1",
         "application/octet-stream",
         huge,
@@ -252,8 +285,6 @@ async fn each_format_is_read_listed_and_deleted_and_bad_maps_are_named() {
     assert_eq!(status, 413, "{answer}");
     let message = answer["error"].as_str().expect("message");
     assert!(message.contains(&(64u64 << 20).to_string()), "{message}");
-    let listed = get_json(&client, &format!("{base}/api/v1/surfaces")).await;
-    assert_eq!(listed, json!([from_gsf, from_matrix]));
 }
 
 /// `small_scene` on the surface `id`, without the plastic cap (docs/scene.md's rough example).
@@ -339,75 +370,9 @@ async fn a_measured_scene_runs_on_its_stored_surface_which_survives_a_restart() 
     .await;
     assert_eq!(status, 201, "{spare}");
 
-    // An unknown id is refused at the field that names it, for a job and a study alike.
-    let unknown = measured_scene("6b0a2f64-1d7e-4c3a-9f1e-2b8d5c4a7e90", 3);
-    let response = client
-        .post(format!("{base}/api/v1/jobs"))
-        .json(&unknown)
-        .send()
-        .await
-        .expect("POST job");
-    assert_eq!(response.status(), 422);
-    let answer: Value = response.json().await.expect("JSON");
-    assert_eq!(answer["fields"][0]["path"], "disc.surface.id", "{answer}");
-
-    let study = |base: Value| json!({"base": base, "axes": {"test.load_n": [2, 5]}});
-    let response = client
-        .post(format!("{base}/api/v1/studies"))
-        .json(&study(unknown.clone()))
-        .send()
-        .await
-        .expect("POST study");
-    assert_eq!(response.status(), 422);
-    let answer: Value = response.json().await.expect("JSON");
-    assert_eq!(
-        answer["fields"][0]["path"], "base.disc.surface.id",
-        "{answer}"
-    );
-    let response = client
-        .post(format!("{base}/api/v1/studies"))
-        .json(&study(measured_scene(&id, 2)))
-        .send()
-        .await
-        .expect("POST study");
-    assert_eq!(response.status(), 201);
-    let members: Value = response.json().await.expect("JSON");
-    for member in members["members"].as_array().expect("members") {
-        let member_id = member["job_id"].as_str().expect("job id");
-        let done = wait_for_job(&client, &base, member_id, is_final).await;
-        assert_eq!(done["status"], "succeeded", "{done}");
-    }
-
-    // The one worker is busy, so the measured job waits, and its surface cannot go.
-    let busy = submit(&client, &base, &busy_scene()).await;
-    let busy_id = busy["id"].as_str().expect("id");
-    let job = submit(&client, &base, &measured_scene(&id, 3)).await;
-    let job_id = job["id"].as_str().expect("id").to_owned();
-    let surface_url = format!("{base}/api/v1/surfaces/{id}");
-    let refused = client.delete(&surface_url).send().await.expect("DELETE");
-    assert_eq!(refused.status(), 409);
-    let answer: Value = refused.json().await.expect("JSON");
-    assert!(answer["error"].as_str().expect("message").contains(&job_id));
-    let cancelled = client
-        .delete(format!("{base}/api/v1/jobs/{busy_id}"))
-        .send()
-        .await
-        .expect("cancel");
-    assert!(cancelled.status().is_success());
-
-    let done = wait_for_job(&client, &base, &job_id, is_final).await;
-    assert_eq!(done["status"], "succeeded", "{done}");
-    let result = get_json(&client, &format!("{base}/api/v1/jobs/{job_id}/result")).await;
-    // The run reads the stored map exactly: its statistics are the upload's, to the bit.
-    assert_eq!(
-        result["surface"]["measured"], surface["statistics"],
-        "{result}"
-    );
-    assert!(
-        result["surface"]["on_grid"]["rms_height_um"]
-            .as_f64()
-            .is_some()
-    );
+    unknown_surface_refused(&client, &base).await;
+    study_on_surface(&client, &base, &id).await;
+    kept_while_a_job_waits(&client, &base, &id, &surface).await;
 
     // Kept across a kill -9; a surface whose heights were changed on disk is quarantined.
     server.kill_9();
@@ -440,6 +405,90 @@ async fn a_measured_scene_runs_on_its_stored_surface_which_survives_a_restart() 
     let deleted = client.delete(&surface_url).send().await.expect("DELETE");
     assert_eq!(deleted.status(), 204);
     assert!(!dir.path().join("surfaces").join(&id).exists());
+}
+
+/// A study of `scene` at two loads.
+fn two_loads(scene: &Value) -> Value {
+    json!({"base": scene, "axes": {"test.load_n": [2, 5]}})
+}
+
+/// An unknown surface id is refused at the field that names it, for a job and a study alike.
+async fn unknown_surface_refused(client: &reqwest::Client, base: &str) {
+    let unknown = measured_scene("6b0a2f64-1d7e-4c3a-9f1e-2b8d5c4a7e90", 3);
+    let response = client
+        .post(format!("{base}/api/v1/jobs"))
+        .json(&unknown)
+        .send()
+        .await
+        .expect("POST job");
+    assert_eq!(response.status(), 422);
+    let answer: Value = response.json().await.expect("JSON");
+    assert_eq!(answer["fields"][0]["path"], "disc.surface.id", "{answer}");
+
+    let response = client
+        .post(format!("{base}/api/v1/studies"))
+        .json(&two_loads(&unknown))
+        .send()
+        .await
+        .expect("POST study");
+    assert_eq!(response.status(), 422);
+    let answer: Value = response.json().await.expect("JSON");
+    assert_eq!(
+        answer["fields"][0]["path"], "base.disc.surface.id",
+        "{answer}"
+    );
+}
+
+/// A study on the stored surface: every member succeeds.
+async fn study_on_surface(client: &reqwest::Client, base: &str, id: &str) {
+    let study = two_loads(&measured_scene(id, 2));
+    let response = client
+        .post(format!("{base}/api/v1/studies"))
+        .json(&study)
+        .send()
+        .await
+        .expect("POST study");
+    assert_eq!(response.status(), 201);
+    let members: Value = response.json().await.expect("JSON");
+    for member in members["members"].as_array().expect("members") {
+        let member_id = member["job_id"].as_str().expect("job id");
+        let done = wait_for_job(client, base, member_id, is_final).await;
+        assert_eq!(done["status"], "succeeded", "{done}");
+    }
+}
+
+/// The one worker busy, a measured job waits, and its surface cannot be deleted (the
+/// refusal names the job); once it runs, it reads the stored map to the bit.
+async fn kept_while_a_job_waits(client: &reqwest::Client, base: &str, id: &str, surface: &Value) {
+    let busy = submit(client, base, &busy_scene()).await;
+    let busy_id = busy["id"].as_str().expect("id");
+    let job = submit(client, base, &measured_scene(id, 3)).await;
+    let job_id = job["id"].as_str().expect("id").to_owned();
+    let surface_url = format!("{base}/api/v1/surfaces/{id}");
+    let refused = client.delete(&surface_url).send().await.expect("DELETE");
+    assert_eq!(refused.status(), 409);
+    let answer: Value = refused.json().await.expect("JSON");
+    assert!(answer["error"].as_str().expect("message").contains(&job_id));
+    let cancelled = client
+        .delete(format!("{base}/api/v1/jobs/{busy_id}"))
+        .send()
+        .await
+        .expect("cancel");
+    assert!(cancelled.status().is_success());
+
+    let done = wait_for_job(client, base, &job_id, is_final).await;
+    assert_eq!(done["status"], "succeeded", "{done}");
+    let result = get_json(client, &format!("{base}/api/v1/jobs/{job_id}/result")).await;
+    // The run reads the stored map exactly: its statistics are the upload's, to the bit.
+    assert_eq!(
+        result["surface"]["measured"], surface["statistics"],
+        "{result}"
+    );
+    assert!(
+        result["surface"]["on_grid"]["rms_height_um"]
+            .as_f64()
+            .is_some()
+    );
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

@@ -22,8 +22,6 @@ fn small_matrix() -> Vec<u8> {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn uploads_are_bounded_before_they_are_read_and_every_accepted_map_reads_back() {
-    use std::io::Write;
-
     let dir = TempDir::new("surface-budget");
     let client = reqwest::Client::new();
     let flags = ["--max-surface-pixels", "500", "--surface-parses", "1"];
@@ -31,9 +29,34 @@ async fn uploads_are_bounded_before_they_are_read_and_every_accepted_map_reads_b
     command.args(flags);
     let mut server = ServerProcess::spawn(command);
     let base = server.base.clone();
+    over_the_limits_refused(&client, &base).await;
+    let accepted = accepted_one_read_at_a_time(&client, &base).await;
 
-    // Declared over the limit (32 x 24 = 768 pixels): 413 naming the flag, before reading.
-    let (status, answer) = upload(&client, &base, "", "application/octet-stream", gsf()).await;
+    // Every map accepted reads back the same after a crash.
+    server.kill_9();
+    let mut command = common::process::serve_command(dir.path(), 1);
+    command.args(flags);
+    let server = ServerProcess::spawn(command);
+    for surface in &accepted {
+        let record: Value = serde_json::from_str(surface).expect("JSON");
+        let id = record["id"].as_str().expect("id");
+        let url = server.url(&format!("/api/v1/surfaces/{id}"));
+        let text = client
+            .get(url)
+            .send()
+            .await
+            .expect("GET")
+            .text()
+            .await
+            .expect("text");
+        assert_eq!(&text, surface);
+    }
+}
+
+/// Declared over the limit (32 x 24 = 768 pixels): 413 naming the flag, before reading;
+/// pixel sizes whose statistics JSON could not hold: refused, not lost at the next start.
+async fn over_the_limits_refused(client: &reqwest::Client, base: &str) {
+    let (status, answer) = upload(client, base, "", "application/octet-stream", gsf()).await;
     assert_eq!(status, 413, "{answer}");
     assert!(
         answer["error"]
@@ -41,10 +64,9 @@ async fn uploads_are_bounded_before_they_are_read_and_every_accepted_map_reads_b
             .expect("message")
             .contains("--max-surface-pixels")
     );
-    // Pixel sizes whose statistics JSON could not hold: refused, not lost at the next start.
     let (status, answer) = upload(
-        &client,
-        &base,
+        client,
+        base,
         "?pixel_um=1e308",
         "application/octet-stream",
         small_matrix(),
@@ -53,7 +75,7 @@ async fn uploads_are_bounded_before_they_are_read_and_every_accepted_map_reads_b
     assert_eq!(status, 422, "{answer}");
     assert_eq!(answer["fields"][0]["path"], "pixel_um", "{answer}");
     let absurd = gsf_of(20, 20, 1e306, &heights()[..400]);
-    let (status, answer) = upload(&client, &base, "", "application/octet-stream", absurd).await;
+    let (status, answer) = upload(client, base, "", "application/octet-stream", absurd).await;
     assert_eq!(status, 422, "{answer}");
     assert!(
         answer["error"]
@@ -61,8 +83,14 @@ async fn uploads_are_bounded_before_they_are_read_and_every_accepted_map_reads_b
             .expect("message")
             .contains("pixel's side")
     );
+}
 
-    // One upload being read holds the only place: the next gets 429 before its body is read.
+/// One upload being read holds the only place: the next gets 429 with Retry-After before
+/// its body is read. The uploads accepted meanwhile, and one more once the slow one is
+/// gone, as their answers' text.
+async fn accepted_one_read_at_a_time(client: &reqwest::Client, base: &str) -> Vec<String> {
+    use std::io::Write;
+
     // The slow upload may reach the server after the next one: then it is the one refused,
     // and it is sent again.
     let address = base.trim_start_matches("http://").to_owned();
@@ -119,26 +147,7 @@ async fn uploads_are_bounded_before_they_are_read_and_every_accepted_map_reads_b
         tokio::time::sleep(std::time::Duration::from_millis(50)).await;
     };
     accepted.push(answer);
-
-    // Every map accepted reads back the same after a crash.
-    server.kill_9();
-    let mut command = common::process::serve_command(dir.path(), 1);
-    command.args(flags);
-    let server = ServerProcess::spawn(command);
-    for surface in &accepted {
-        let record: Value = serde_json::from_str(surface).expect("JSON");
-        let id = record["id"].as_str().expect("id");
-        let url = server.url(&format!("/api/v1/surfaces/{id}"));
-        let text = client
-            .get(url)
-            .send()
-            .await
-            .expect("GET")
-            .text()
-            .await
-            .expect("text");
-        assert_eq!(&text, surface);
-    }
+    accepted
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
