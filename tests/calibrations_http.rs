@@ -99,6 +99,34 @@ async fn calibrations_are_bounded_up_front_listed_cancelled_and_deleted() {
     let url = server.url("/api/v1/calibrations");
     let every_cycle =
         json!({"preset": "dalmau2018-316l", "overrides": {"numerics": {"cycle_step": 1}}});
+    refused_up_front(&client, &url, &every_cycle).await;
+    let (running, id) = places_held_until_cancelled(&client, &url, every_cycle).await;
+
+    // Listed newest first without results, filtered by status; DELETE forgets an ended fit.
+    let listed = get_json(&client, &url).await;
+    let ids: Vec<&str> = listed
+        .as_array()
+        .expect("a list")
+        .iter()
+        .filter_map(|c| c["id"].as_str())
+        .collect();
+    assert_eq!(ids.first().copied(), Some(id.as_str()), "{listed}");
+    assert_eq!(ids.len(), 3, "{listed}");
+    assert!(listed[0].get("result").is_none(), "{listed}");
+    let cancelled = get_json(&client, &format!("{url}?status=cancelled")).await;
+    assert_eq!(cancelled.as_array().map(Vec::len), Some(2), "{cancelled}");
+    for id in running.iter().chain([&id]) {
+        let (code, _) = delete(&client, &format!("{url}/{id}")).await;
+        assert_eq!(code, 204);
+        let response = client.get(format!("{url}/{id}")).send().await.expect("GET");
+        assert_eq!(response.status(), 404);
+    }
+}
+
+/// Fits past the bounds are refused before they start, at the field at fault and naming
+/// the flag that sets the bound: too many cycles, too many cell-cycles (`every_cycle`, a
+/// scene that solves every cycle), too fine a grid, a column twice, too many rows.
+async fn refused_up_front(client: &reqwest::Client, url: &str, every_cycle: &Value) {
     let on_2048 = json!({"preset": "dalmau2018-316l", "overrides": {"numerics": {"grid": 2048}}});
     let refusals = [
         (
@@ -131,7 +159,7 @@ async fn calibrations_are_bounded_up_front_listed_cancelled_and_deleted() {
         if !scene.is_null() {
             request["scene"] = scene;
         }
-        let error = refused(&client, &url, &request).await;
+        let error = refused(client, url, &request).await;
         assert_eq!(error["fields"][0]["path"], path, "{error}");
         assert!(
             error["error"].as_str().expect("message").contains(words),
@@ -142,15 +170,23 @@ async fn calibrations_are_bounded_up_front_listed_cancelled_and_deleted() {
         .map(|n| format!("{n},{}\n", 2500 + n % 7))
         .collect();
     let request = json!({"kind": "hardness", "table": format!("cycles,hardness_mpa\n{rows}")});
-    let error = refused(&client, &url, &request).await;
+    let error = refused(client, url, &request).await;
     assert!(
         error["error"]
             .as_str()
             .expect("message")
             .contains("at most 20000")
     );
+}
 
-    // Two fits of whole runs, every cycle solved, hold both places until cancelled.
+/// Two fits of whole runs (every cycle solved) hold both places, so a third gets 429 until
+/// they are cancelled; each stops within a cycle and frees its place. The two cancelled
+/// fits' ids, and the id of the fit that then ran to the end.
+async fn places_held_until_cancelled(
+    client: &reqwest::Client,
+    url: &str,
+    every_cycle: Value,
+) -> (Vec<String>, String) {
     let table3 = std::fs::read_to_string(
         Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/calibration/table3_wear.csv"),
     )
@@ -158,22 +194,22 @@ async fn calibrations_are_bounded_up_front_listed_cancelled_and_deleted() {
     let archard = json!({"kind": "archard", "table": table3, "scene": every_cycle});
     let mut running = Vec::new();
     for _ in 0..2 {
-        let (code, started) = post(&client, &url, &archard).await;
+        let (code, started) = post(client, url, &archard).await;
         assert_eq!(code, 202, "{started}");
         running.push(started["id"].as_str().expect("id").to_owned());
     }
     let hardness =
         json!({"kind": "hardness", "table": "cycles,hardness_mpa\n10,2551\n60,2727\n300,2842\n"});
-    let (code, _) = post(&client, &url, &hardness).await;
+    let (code, _) = post(client, url, &hardness).await;
     assert_eq!(code, 429, "both places are taken");
     for id in &running {
-        let (code, cancelled) = delete(&client, &format!("{url}/{id}")).await;
+        let (code, cancelled) = delete(client, &format!("{url}/{id}")).await;
         assert_eq!(code, 202, "{cancelled}");
         assert_eq!(cancelled["status"], "cancelled");
     }
     // Each run stops within a cycle, and its place frees then.
     let fit = loop {
-        let (code, fit) = post(&client, &url, &hardness).await;
+        let (code, fit) = post(client, url, &hardness).await;
         if code == 202 {
             break fit;
         }
@@ -181,30 +217,12 @@ async fn calibrations_are_bounded_up_front_listed_cancelled_and_deleted() {
         tokio::time::sleep(Duration::from_millis(50)).await;
     };
     let id = fit["id"].as_str().expect("id").to_owned();
-    wait_for(&client, &format!("{url}/{id}"), |c| {
+    wait_for(client, &format!("{url}/{id}"), |c| {
         c["status"] == "succeeded"
     })
     .await;
 
-    // Listed newest first without results, filtered by status; DELETE forgets an ended fit.
-    let listed = get_json(&client, &url).await;
-    let ids: Vec<&str> = listed
-        .as_array()
-        .expect("a list")
-        .iter()
-        .filter_map(|c| c["id"].as_str())
-        .collect();
-    assert_eq!(ids.first().copied(), Some(id.as_str()), "{listed}");
-    assert_eq!(ids.len(), 3, "{listed}");
-    assert!(listed[0].get("result").is_none(), "{listed}");
-    let cancelled = get_json(&client, &format!("{url}?status=cancelled")).await;
-    assert_eq!(cancelled.as_array().map(Vec::len), Some(2), "{cancelled}");
-    for id in running.iter().chain([&id]) {
-        let (code, _) = delete(&client, &format!("{url}/{id}")).await;
-        assert_eq!(code, 204);
-        let response = client.get(format!("{url}/{id}")).send().await.expect("GET");
-        assert_eq!(response.status(), 404);
-    }
+    (running, id)
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

@@ -5,6 +5,8 @@
 
 mod common;
 
+use std::path::Path;
+
 use serde_json::{Value, json};
 
 use common::process::ServerProcess;
@@ -39,64 +41,8 @@ async fn measurements_round_trip_survive_a_restart_and_go_with_their_job() {
     let id = job["id"].as_str().expect("id").to_owned();
     let url = |path: &str| server.url(&format!("/api/v1/jobs/{id}{path}"));
 
-    // A job just accepted takes measurements already.
-    let empty = get_json(&client, &url("/measurements")).await;
-    assert_eq!(
-        empty,
-        json!({"wear_volume": null, "profile": null, "ocp": null})
-    );
-    let csv =
-        "# Table 3, 5 N\ntime_s,volume_mm3,spread_mm3\n600,0.0042,0.0005\n3600,0.0118,0.0011\n";
-    let (status, answer) = put_table(
-        &client,
-        &url("/measurements/wear_volume"),
-        "text/csv; charset=utf-8",
-        csv,
-    )
-    .await;
-    assert_eq!(status, 200, "{answer}");
-    let wear = json!({"time_s": [600.0, 3600.0], "volume_mm3": [0.0042, 0.0118],
-                      "spread_mm3": [0.0005, 0.0011]});
-    assert_eq!(answer["wear_volume"], wear);
-    let profile = json!({"y_mm": [-0.1, 0.0, 0.1], "depth_um": [-0.2, 3.5, 0.1]});
-    let (status, answer) = put_table(
-        &client,
-        &url("/measurements/profile"),
-        "application/json",
-        &profile.to_string(),
-    )
-    .await;
-    assert_eq!(status, 200, "{answer}");
-    assert_eq!(answer["profile"], profile);
-    assert_eq!(answer["wear_volume"], wear);
-
-    // Refusals name the column; nothing of a refused table is kept.
-    let refusals = [
-        (
-            "wear_volume",
-            "time_s,volume_mm3\n600,0.004\n3600,-0.01\n",
-            "volume_mm3",
-        ),
-        ("ocp", "time_s,potential_v\n10,-0.2\n5,-0.3\n", "time_s"),
-        ("potential", "time_s\n10\n", "potential_v"),
-        ("profile", "y_mm,depth_um\n0,1\n0.1,inf\n", "depth_um"),
-    ];
-    for (kind, csv, column) in refusals {
-        let (status, answer) = put_table(
-            &client,
-            &url(&format!("/measurements/{kind}")),
-            "text/csv",
-            csv,
-        )
-        .await;
-        assert_eq!(status, 422, "{answer}");
-        assert_eq!(answer["fields"][0]["path"], column, "{answer}");
-        assert!(answer["error"].as_str().expect("message").contains(column));
-    }
-    let (status, _) = put_table(&client, &url("/measurements/wear"), "text/csv", csv).await;
-    assert_eq!(status, 400);
-    let (status, _) = put_table(&client, &url("/measurements/profile"), "text/plain", csv).await;
-    assert_eq!(status, 415);
+    let wear = measurements_stored(&client, &url("")).await;
+    bad_tables_refused(&client, &url("")).await;
     let kept = get_json(&client, &url("/measurements")).await;
     assert_eq!(kept["wear_volume"], wear);
     assert_eq!(kept["ocp"], Value::Null);
@@ -124,6 +70,83 @@ async fn measurements_round_trip_survive_a_restart_and_go_with_their_job() {
     assert!(!dir.path().join("jobs").join(&id).exists());
     let response = client.get(url("/measurements")).send().await.expect("GET");
     assert_eq!(response.status(), 404);
+}
+
+/// The paper's wear volumes at 5 N (Table 3), as a lab's CSV export.
+const TABLE3_WEAR_CSV: &str =
+    "# Table 3, 5 N\ntime_s,volume_mm3,spread_mm3\n600,0.0042,0.0005\n3600,0.0118,0.0011\n";
+
+/// A job just accepted takes measurements already: a wear table as CSV and a profile as
+/// JSON, each read back beside the other, at the job `job` (its URL). The wear table as read.
+async fn measurements_stored(client: &reqwest::Client, job: &str) -> Value {
+    let empty = get_json(client, &format!("{job}/measurements")).await;
+    assert_eq!(
+        empty,
+        json!({"wear_volume": null, "profile": null, "ocp": null})
+    );
+    let csv = TABLE3_WEAR_CSV;
+    let (status, answer) = put_table(
+        client,
+        &format!("{job}/measurements/wear_volume"),
+        "text/csv; charset=utf-8",
+        csv,
+    )
+    .await;
+    assert_eq!(status, 200, "{answer}");
+    let wear = json!({"time_s": [600.0, 3600.0], "volume_mm3": [0.0042, 0.0118],
+                      "spread_mm3": [0.0005, 0.0011]});
+    assert_eq!(answer["wear_volume"], wear);
+    let profile = json!({"y_mm": [-0.1, 0.0, 0.1], "depth_um": [-0.2, 3.5, 0.1]});
+    let (status, answer) = put_table(
+        client,
+        &format!("{job}/measurements/profile"),
+        "application/json",
+        &profile.to_string(),
+    )
+    .await;
+    assert_eq!(status, 200, "{answer}");
+    assert_eq!(answer["profile"], profile);
+    assert_eq!(answer["wear_volume"], wear);
+
+    wear
+}
+
+/// Refusals name the column, an unknown kind gets 400 and a type that is no table 415;
+/// nothing of a refused table is kept (checked by the caller).
+async fn bad_tables_refused(client: &reqwest::Client, job: &str) {
+    let csv = TABLE3_WEAR_CSV;
+    let refusals = [
+        (
+            "wear_volume",
+            "time_s,volume_mm3\n600,0.004\n3600,-0.01\n",
+            "volume_mm3",
+        ),
+        ("ocp", "time_s,potential_v\n10,-0.2\n5,-0.3\n", "time_s"),
+        ("potential", "time_s\n10\n", "potential_v"),
+        ("profile", "y_mm,depth_um\n0,1\n0.1,inf\n", "depth_um"),
+    ];
+    for (kind, csv, column) in refusals {
+        let (status, answer) = put_table(
+            client,
+            &format!("{job}/measurements/{kind}"),
+            "text/csv",
+            csv,
+        )
+        .await;
+        assert_eq!(status, 422, "{answer}");
+        assert_eq!(answer["fields"][0]["path"], column, "{answer}");
+        assert!(answer["error"].as_str().expect("message").contains(column));
+    }
+    let (status, _) = put_table(client, &format!("{job}/measurements/wear"), "text/csv", csv).await;
+    assert_eq!(status, 400);
+    let (status, _) = put_table(
+        client,
+        &format!("{job}/measurements/profile"),
+        "text/plain",
+        csv,
+    )
+    .await;
+    assert_eq!(status, 415);
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -208,9 +231,40 @@ async fn labels_are_set_at_submit_changed_after_kept_and_searched() {
     let dir = TempDir::new("labels");
     let client = reqwest::Client::new();
     let mut server = ServerProcess::start(dir.path());
-    // The data directory, absolute, in the line that announces the address (which the log
-    // keeps just after the address is read from it, so it is awaited).
-    let absolute = std::fs::canonicalize(dir.path()).expect("the data dir exists");
+    data_dir_announced(&server, dir.path()).await;
+    let id = labelled_at_submit(&client, &server).await;
+    wait_for_job(&client, &server.base, &id, is_final).await;
+    labels_changed_within_bounds(&client, &server, &id).await;
+
+    // Searched by any label; kept across a restart without a shutdown.
+    let ids = |list: Value| -> Vec<String> {
+        list.as_array()
+            .expect("a list")
+            .iter()
+            .map(|j| j["id"].as_str().expect("id").to_owned())
+            .collect()
+    };
+    for query in ["q=POLISHED", "q=s-12", "tag=wet", "tag=x,Paper"] {
+        let list = get_json(&client, &server.url(&format!("/api/v1/jobs?{query}"))).await;
+        assert_eq!(ids(list), std::slice::from_ref(&id), "{query}");
+    }
+    server.kill_9();
+    let server = ServerProcess::start(dir.path());
+    let job = get_job(&client, &server.base, &id).await;
+    assert_eq!(
+        (&job["sample"], &job["note"], &job["tags"]),
+        (
+            &json!("S-12"),
+            &json!("re-polished"),
+            &json!(["paper", "wet"])
+        )
+    );
+}
+
+/// The data directory, absolute, in the line that announces the address (which the log
+/// keeps just after the address is read from it, so it is awaited).
+async fn data_dir_announced(server: &ServerProcess, dir: &Path) {
+    let absolute = std::fs::canonicalize(dir).expect("the data dir exists");
     let said = format!("with its data in {}", absolute.display());
     for _ in 0..100 {
         if server.log().contains(&said) {
@@ -219,6 +273,11 @@ async fn labels_are_set_at_submit_changed_after_kept_and_searched() {
         tokio::time::sleep(std::time::Duration::from_millis(50)).await;
     }
     assert!(server.log().contains(&said), "{}", server.log());
+}
+
+/// A job submitted with a sample, a note and tags in the query carries them; one without
+/// has none. The labelled job's id.
+async fn labelled_at_submit(client: &reqwest::Client, server: &ServerProcess) -> String {
     let response = client
         .post(server.url("/api/v1/jobs?sample=S-12&note=first%20polish&tags=paper,5N"))
         .json(&small_scene(2))
@@ -231,10 +290,16 @@ async fn labels_are_set_at_submit_changed_after_kept_and_searched() {
     assert_eq!(job["note"], "first polish");
     assert_eq!(job["tags"], json!(["paper", "5N"]));
     let id = job["id"].as_str().expect("id").to_owned();
-    let other = submit(&client, &server.base, &small_scene(2)).await;
+    let other = submit(client, &server.base, &small_scene(2)).await;
     assert_eq!(other["sample"], Value::Null);
     assert_eq!(other["tags"], json!([]));
 
+    id
+}
+
+/// Labels changed after the run, those left out kept; refusals name the field and the
+/// bound, and change nothing; too many tags at submit are refused too.
+async fn labels_changed_within_bounds(client: &reqwest::Client, server: &ServerProcess, id: &str) {
     let patch = |body: Value| {
         let url = server.url(&format!("/api/v1/jobs/{id}"));
         let client = client.clone();
@@ -244,7 +309,6 @@ async fn labels_are_set_at_submit_changed_after_kept_and_searched() {
             (status, response.json::<Value>().await.expect("JSON"))
         }
     };
-    wait_for_job(&client, &server.base, &id, is_final).await;
     let (status, changed) = patch(json!({"note": "re-polished", "tags": ["paper", "wet"]})).await;
     assert_eq!(status, 200, "{changed}");
     assert_eq!(changed["sample"], "S-12", "a label left out stays");
@@ -272,30 +336,6 @@ async fn labels_are_set_at_submit_changed_after_kept_and_searched() {
         .await
         .expect("submit");
     assert_eq!(response.status(), 422);
-
-    // Searched by any label; kept across a restart without a shutdown.
-    let ids = |list: Value| -> Vec<String> {
-        list.as_array()
-            .expect("a list")
-            .iter()
-            .map(|j| j["id"].as_str().expect("id").to_owned())
-            .collect()
-    };
-    for query in ["q=POLISHED", "q=s-12", "tag=wet", "tag=x,Paper"] {
-        let list = get_json(&client, &server.url(&format!("/api/v1/jobs?{query}"))).await;
-        assert_eq!(ids(list), std::slice::from_ref(&id), "{query}");
-    }
-    server.kill_9();
-    let server = ServerProcess::start(dir.path());
-    let job = get_job(&client, &server.base, &id).await;
-    assert_eq!(
-        (&job["sample"], &job["note"], &job["tags"]),
-        (
-            &json!("S-12"),
-            &json!("re-polished"),
-            &json!(["paper", "wet"])
-        )
-    );
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

@@ -218,8 +218,6 @@ async fn a_page_of_another_origin_changes_nothing() {
     assert_eq!(response.status(), 201);
     let surface: Value = response.json().await.expect("surface");
     let surface_url = format!("/api/v1/surfaces/{}", surface["id"].as_str().expect("id"));
-    let scene = serde_json::to_vec(&small_scene(2)).expect("scene");
-    let labels = serde_json::to_vec(&json!({"sample": "x"})).expect("labels");
     let foreign = [
         vec![("origin", "http://127.0.0.1:1")],
         vec![("origin", "http://evil.example")],
@@ -228,41 +226,7 @@ async fn a_page_of_another_origin_changes_nothing() {
         vec![("sec-fetch-site", "same-site")],
     ];
     for headers in &foreign {
-        let tries = [
-            (
-                Method::POST,
-                "/api/v1/jobs",
-                Some(("application/json", scene.clone())),
-            ),
-            (
-                Method::POST,
-                "/api/v1/jobs",
-                Some(("text/plain", scene.clone())),
-            ),
-            (
-                Method::PATCH,
-                job_url.as_str(),
-                Some(("application/json", labels.clone())),
-            ),
-            (Method::DELETE, job_url.as_str(), None),
-            (Method::DELETE, surface_url.as_str(), None),
-        ];
-        for (method, path, body) in tries {
-            let response = send(&client, &server, method.clone(), path, headers, body).await;
-            assert_secured(&response, PAGE_POLICY);
-            assert!(
-                response
-                    .headers()
-                    .get("access-control-allow-origin")
-                    .is_none()
-            );
-            let error = expect_client_error(response, 403).await;
-            let message = error["error"].as_str().expect("message");
-            assert!(
-                message.contains("--cors-origin"),
-                "{method} {path} {headers:?}: {message}"
-            );
-        }
+        every_change_refused(&client, &server, headers, (&job_url, &surface_url)).await;
         expect_client_error(upload(&client, &server, headers).await, 403).await;
     }
     // Nothing was stored, changed or deleted.
@@ -283,9 +247,54 @@ async fn a_page_of_another_origin_changes_nothing() {
             .get("access-control-allow-origin")
             .is_none()
     );
-    // The server's own page, under any of its names, changes things.
-    let own = format!("http://{}", authority(&server));
-    let port = authority(&server)
+    own_page_changes_things(&client, &server, &surface_url).await;
+    server.stop().await;
+}
+
+/// Every change a foreign page (`headers`) could try, to the job at `job_url` and the
+/// surface at `surface_url` or by a new job, is refused with 403 naming `--cors-origin`,
+/// with the page's security headers and no CORS header.
+async fn every_change_refused(
+    client: &Client,
+    server: &Server,
+    headers: &[(&str, &str)],
+    (job_url, surface_url): (&str, &str),
+) {
+    let scene = serde_json::to_vec(&small_scene(2)).expect("scene");
+    let labels = serde_json::to_vec(&json!({"sample": "x"})).expect("labels");
+    let tries = [
+        (
+            Method::POST,
+            "/api/v1/jobs",
+            Some(("application/json", scene.clone())),
+        ),
+        (Method::POST, "/api/v1/jobs", Some(("text/plain", scene))),
+        (Method::PATCH, job_url, Some(("application/json", labels))),
+        (Method::DELETE, job_url, None),
+        (Method::DELETE, surface_url, None),
+    ];
+    for (method, path, body) in tries {
+        let response = send(client, server, method.clone(), path, headers, body).await;
+        assert_secured(&response, PAGE_POLICY);
+        assert!(
+            response
+                .headers()
+                .get("access-control-allow-origin")
+                .is_none()
+        );
+        let error = expect_client_error(response, 403).await;
+        let message = error["error"].as_str().expect("message");
+        assert!(
+            message.contains("--cors-origin"),
+            "{method} {path} {headers:?}: {message}"
+        );
+    }
+}
+
+/// The server's own page, under any of its names, changes things.
+async fn own_page_changes_things(client: &Client, server: &Server, surface_url: &str) {
+    let own = format!("http://{}", authority(server));
+    let port = authority(server)
         .rsplit_once(':')
         .expect("port")
         .1
@@ -293,21 +302,12 @@ async fn a_page_of_another_origin_changes_nothing() {
     let localhost = format!("http://localhost:{port}");
     for origin in [own.as_str(), localhost.as_str()] {
         let headers = [("origin", origin), ("sec-fetch-site", "same-origin")];
-        let response = upload(&client, &server, &headers).await;
+        let response = upload(client, server, &headers).await;
         assert_eq!(response.status(), 201, "{origin}");
     }
     let headers = [("origin", own.as_str())];
-    let response = send(
-        &client,
-        &server,
-        Method::DELETE,
-        &surface_url,
-        &headers,
-        None,
-    )
-    .await;
+    let response = send(client, server, Method::DELETE, surface_url, &headers, None).await;
     assert_eq!(response.status(), 204);
-    server.stop().await;
 }
 
 #[tokio::test]
