@@ -258,7 +258,7 @@ pub async fn serve_on(
         &args.allowed_hosts,
         &args.cors_origins,
     )
-    .map_err(ServeError::AllowedHost)?;
+    .map_err(|origin::NotAHostName(value)| ServeError::AllowedHost(value))?;
     if token.is_some() && !args.allowed_hosts.is_empty() {
         tracing::warn!(
             "--allowed-host has no effect with a token: a server with a token answers to any \

@@ -123,17 +123,17 @@ pub(crate) struct Guard {
 impl Guard {
     /// The guard of a server listening on `addr`: with `token`, one that checks nothing;
     /// otherwise its own names (`localhost`, `127.0.0.1`, `[::1]` and the address it listens
-    /// on, each on its port) and the `--allowed-host` values. The value that is not a host
-    /// name is the error.
+    /// on, each on its port) and the `--allowed-host` values; refuses the first value that
+    /// is not a host name.
     pub(crate) fn new(
         addr: SocketAddr,
         token: bool,
         allowed_hosts: &[String],
         cors_origins: &[String],
-    ) -> Result<Self, String> {
+    ) -> Result<Self, NotAHostName> {
         let mut hosts = own_names(addr);
         for allowed in allowed_hosts {
-            hosts.push(HostName::parse(allowed).ok_or_else(|| allowed.clone())?);
+            hosts.push(HostName::parse(allowed).ok_or_else(|| NotAHostName(allowed.clone()))?);
         }
         Ok(Self {
             hosts: (!token).then_some(hosts),
@@ -170,6 +170,10 @@ impl Guard {
         }
     }
 }
+
+/// An `--allowed-host` value that is not a host name (with an optional port): the value.
+#[derive(Debug, PartialEq, Eq)]
+pub(crate) struct NotAHostName(pub(crate) String);
 
 /// `Sec-Fetch-Site`: where a browser's request comes from, relative to the server.
 const SEC_FETCH_SITE: &str = "sec-fetch-site";
@@ -397,6 +401,7 @@ mod tests {
         assert_eq!(status(&guard, &Method::POST, &pairs), 200);
         let addr = "127.0.0.1:8080".parse().expect("addr");
         let error = Guard::new(addr, false, &["http://lab.example/".to_owned()], &[]);
-        assert_eq!(error.err().as_deref(), Some("http://lab.example/"));
+        let refused = NotAHostName("http://lab.example/".to_owned());
+        assert_eq!(error.err(), Some(refused));
     }
 }
