@@ -29,6 +29,8 @@ mod stroke_run;
 mod sweep_wear;
 mod warm;
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use thiserror::Error;
 
 use crate::contact::ContactError;
@@ -114,4 +116,24 @@ pub enum SimulationError {
         /// Cycles completed before the stop.
         cycles_done: u64,
     },
+}
+
+/// The cycle loop of both rigs: `advance(cycle)` from cycle 1 through `total`, each call
+/// returning how many cycles its step covered, stopped with [`SimulationError::Cancelled`]
+/// once `cancel` is set.
+fn each_cycle(
+    total: u64,
+    cancel: &AtomicBool,
+    mut advance: impl FnMut(u64) -> Result<u64, SimulationError>,
+) -> Result<(), SimulationError> {
+    let mut cycle = 1;
+    while cycle <= total {
+        if cancel.load(Ordering::Relaxed) {
+            return Err(SimulationError::Cancelled {
+                cycles_done: cycle - 1,
+            });
+        }
+        cycle += advance(cycle)?;
+    }
+    Ok(())
 }

@@ -8,7 +8,7 @@
 //! skipped cycle worn at its own hardness; a cycle whose yielding reshapes the track is
 //! never stepped over.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use crate::contact::{ContactSolution, Grid};
@@ -27,7 +27,8 @@ use super::reciprocating::{
 use super::stepping::{Stepper, step_stop};
 use super::stroke_report::{AxialProfile, CycleTrace, StrokeReport, TRACE_SAMPLES, WearMapReport};
 use super::{
-    CycleRecord, Model, ModelChoice, PressureMap, Profile, Setup, SimulationError, SimulationResult,
+    CycleRecord, Model, ModelChoice, PressureMap, Profile, Setup, SimulationError,
+    SimulationResult, each_cycle,
 };
 
 /// The rig's numerics for `scene`: every sweep solved where it asks for every cycle.
@@ -52,16 +53,9 @@ pub(super) fn run_stroke(
 ) -> Result<SimulationResult, SimulationError> {
     let started = Instant::now();
     let mut run = StrokeRun::new(setup, stroke);
-    let total = setup.scene().test.cycles;
-    let mut cycle = 1;
-    while cycle <= total {
-        if cancel.load(Ordering::Relaxed) {
-            return Err(SimulationError::Cancelled {
-                cycles_done: cycle - 1,
-            });
-        }
-        cycle += run.cycle(cycle, on_cycle)?;
-    }
+    each_cycle(setup.scene().test.cycles, cancel, |cycle| {
+        run.cycle(cycle, on_cycle)
+    })?;
     Ok(run.finish(started))
 }
 

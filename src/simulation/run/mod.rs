@@ -15,7 +15,7 @@
 //!    same pressure, and an auto domain grows if the contact nears its edge
 //!    ([`super::growth`]).
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use crate::contact::{
@@ -39,7 +39,7 @@ use super::stepping::{Stepper, step_stop};
 use super::warm::WarmStart;
 use super::{
     CycleRecord, Model, ModelChoice, Plan, PressureMap, Profile, RunOptions, Setup,
-    SimulationError, SimulationResult,
+    SimulationError, SimulationResult, each_cycle,
 };
 use band::Band;
 use stalls::Stalls;
@@ -86,16 +86,9 @@ pub fn run_setup(
     }
     let started = Instant::now();
     let mut state = Run::new(setup, |grid: &Grid| setup.solver(grid));
-    let total = setup.scene().test.cycles;
-    let mut cycle = 1;
-    while cycle <= total {
-        if cancel.load(Ordering::Relaxed) {
-            return Err(SimulationError::Cancelled {
-                cycles_done: cycle - 1,
-            });
-        }
-        cycle += state.cycle(cycle, on_cycle)?;
-    }
+    each_cycle(setup.scene().test.cycles, cancel, |cycle| {
+        state.cycle(cycle, on_cycle)
+    })?;
     Ok(state.finish(started))
 }
 
