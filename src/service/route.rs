@@ -67,41 +67,27 @@ impl Route {
 /// resource knows nothing of the application's state, which provides the parts.
 pub(crate) struct Endpoint<S> {
     pub(crate) route: Route,
-    handler: fn(MethodFilter) -> MethodRouter<S>,
+    handler: Handler<S>,
 }
+
+/// A route's handler: given the route's method filter, its method router.
+type Handler<S> = fn(MethodFilter) -> MethodRouter<S>;
 
 impl<S> Endpoint<S> {
     /// An API call, which needs the bearer token when one is configured.
-    pub(crate) fn api(
-        verb: Verb,
-        path: &'static str,
-        handler: fn(MethodFilter) -> MethodRouter<S>,
-    ) -> Self {
-        Self {
-            route: Route {
-                verb,
-                path,
-                auth: true,
-            },
-            handler,
-        }
+    pub(crate) fn api(verb: Verb, path: &'static str, handler: Handler<S>) -> Self {
+        Self::of(verb, path, handler, true)
     }
 
     /// A route anyone may call: the page, the health check and the API's description carry
     /// no data.
-    pub(crate) fn public(
-        verb: Verb,
-        path: &'static str,
-        handler: fn(MethodFilter) -> MethodRouter<S>,
-    ) -> Self {
-        Self {
-            route: Route {
-                verb,
-                path,
-                auth: false,
-            },
-            handler,
-        }
+    pub(crate) fn public(verb: Verb, path: &'static str, handler: Handler<S>) -> Self {
+        Self::of(verb, path, handler, false)
+    }
+
+    fn of(verb: Verb, path: &'static str, handler: Handler<S>, auth: bool) -> Self {
+        let route = Route { verb, path, auth };
+        Self { route, handler }
     }
 
     /// This route's method router.
