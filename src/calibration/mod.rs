@@ -49,7 +49,7 @@ pub use regime::{
     RegimeFit, RegimeOptions, RegimePoint, Regimes, TwoRegimeFit, fit_archard_regimes,
     fit_archard_regimes_until,
 };
-pub use table::{Table, TableError, UNITS, accepted, column_name, quoted, spellings};
+pub use table::{Table, TableError, UNITS, column_name, quoted, spellings};
 pub use tafel::{
     CorrosionPotentialSource, MIN_DOMAIN_SPAN_V, MIN_TAFEL_POINTS, TafelDomain, TafelFit,
     TafelOptions, TafelResidual, fit_tafel,

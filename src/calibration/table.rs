@@ -321,7 +321,7 @@ pub fn spellings(name: &str) -> Vec<String> {
 
 /// Every accepted spelling of the columns `wanted`, and the forms with the unit apart, in
 /// words that follow "no column ...;" in an error.
-pub fn accepted(wanted: &[String]) -> String {
+fn accepted(wanted: &[String]) -> String {
     let all: Vec<String> = wanted.iter().flat_map(|w| spellings(w)).collect();
     format!(
         "accepted: {}, also with the unit in brackets, parentheses or after `/` (`Time (s)`, \

@@ -10,8 +10,7 @@ use serde::Serialize;
 use thiserror::Error;
 
 use crate::calibration::{
-    CalibrationError, Table, TableError, accepted, quoted, require_at_least, require_increasing,
-    spellings,
+    CalibrationError, Table, TableError, quoted, require_at_least, require_increasing, spellings,
 };
 use crate::json::{self, JsonError};
 
@@ -168,19 +167,6 @@ pub enum MeasurementError {
     /// The table cannot be read, or a cell is not a finite number.
     #[error(transparent)]
     Table(#[from] TableError),
-    /// A column this kind needs is absent.
-    #[error(
-        "no column {}; {}; the table has {}",
-        quoted(wanted, " or "),
-        accepted(wanted),
-        quoted(found, ", ")
-    )]
-    MissingColumn {
-        /// The column, or the alternatives, wanted.
-        wanted: Vec<String>,
-        /// The columns present.
-        found: Vec<String>,
-    },
     /// A column this kind does not know (a misspelt unit, say).
     #[error(
         "unknown column `{column}`{}; a {kind} table takes {} (units in the name, or in \
@@ -209,7 +195,7 @@ impl MeasurementError {
         match self {
             Self::Table(TableError::NotANumber { column, .. }) => column.clone(),
             Self::Table(TableError::DuplicateColumns(names)) => names.join(", "),
-            Self::MissingColumn { wanted, .. } => wanted.join(" or "),
+            Self::Table(TableError::MissingColumn { wanted, .. }) => wanted.join(" or "),
             Self::UnknownColumn { column, .. } => column.clone(),
             Self::Value(
                 CalibrationError::NotIncreasing { column, .. }
@@ -291,23 +277,19 @@ fn check(kind: MeasurementKind, table: &Table) -> Result<Columns, MeasurementErr
             allowed: spec.iter().flat_map(|c| spellings(c.name)).collect(),
         });
     }
-    let missing = |wanted: Vec<String>| MeasurementError::MissingColumn {
-        wanted,
-        found: table.names().to_vec(),
-    };
-    let abscissas: Vec<String> = spec
+    let abscissas: Vec<&str> = spec
         .iter()
         .filter(|c| c.presence == Presence::Abscissa)
-        .map(|c| c.name.to_owned())
+        .map(|c| c.name)
         .collect();
     if !abscissas.is_empty() && abscissas.iter().all(|name| table.optional(name).is_none()) {
-        return Err(missing(abscissas));
+        return Err(table.missing(&abscissas).into());
     }
     let mut columns = Columns::new();
     for c in spec {
         let Some(values) = table.optional(c.name) else {
             if c.presence == Presence::Required {
-                return Err(missing(vec![c.name.to_owned()]));
+                return Err(table.missing(&[c.name]).into());
             }
             continue;
         };
