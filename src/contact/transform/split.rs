@@ -84,6 +84,9 @@ pub(crate) struct Split<T: Real = f64> {
 /// The product of column `k` of the spectrum with the kernel's, in place.
 pub(crate) type ColumnProduct<'a, T> = &'a (dyn Fn(usize, &mut [Complex<T>]) + Sync);
 
+/// How a row of an inverse transform goes into the output: stored, or added.
+pub(crate) type RowPut<T> = fn(&mut [f64], &[T]);
+
 /// One thread's scratch.
 struct Worker<T: Real> {
     plans: Plans<T>,
@@ -130,11 +133,32 @@ impl<T: Real> Split<T> {
     /// half-spectrum columns `stride` apart) for the column pass.
     pub(crate) fn apply(
         &mut self,
-        (nx, ny, col_len, stride): (usize, usize, usize, usize),
+        shape: (usize, usize, usize, usize),
         product: ColumnProduct<T>,
         columns: &mut [Complex<T>],
         input: &[f64],
         output: &mut [f64],
+    ) {
+        self.passes(
+            shape,
+            product,
+            columns,
+            Some(input),
+            Some((output, store_row)),
+        );
+    }
+
+    /// The passes of [`Self::apply`], each where asked: the forward transforms of `input`
+    /// (`None`: `product` makes each column from nothing), `product` on each column, and
+    /// the inverse transforms, their rows `put` into `output` (`None`: the columns keep the
+    /// forward transform, after `product`).
+    pub(crate) fn passes(
+        &mut self,
+        (nx, ny, col_len, stride): (usize, usize, usize, usize),
+        product: ColumnProduct<T>,
+        columns: &mut [Complex<T>],
+        input: Option<&[f64]>,
+        output: Option<(&mut [f64], RowPut<T>)>,
     ) {
         let shape = Shape {
             nx,
@@ -146,32 +170,37 @@ impl<T: Real> Split<T> {
         let threads = self.workers.len();
         let rows = ny.div_ceil(threads);
         let cols = shape.half.div_ceil(threads);
-        let spectra = &mut self.spectra;
-        let workers = &mut self.workers;
-        in_parallel(
-            workers
-                .iter_mut()
-                .zip(spectra.chunks_mut(rows * shape.half))
-                .zip(input.chunks(rows * nx)),
-            |((worker, spectra), input)| worker.forward_rows(shape, input, spectra),
-        );
-        let spectra = &self.spectra;
+        if let Some(input) = input {
+            let spectra = &mut self.spectra;
+            in_parallel(
+                self.workers
+                    .iter_mut()
+                    .zip(spectra.chunks_mut(rows * shape.half))
+                    .zip(input.chunks(rows * nx)),
+                |((worker, spectra), input)| worker.forward_rows(shape, input, spectra),
+            );
+        }
+        let (spectra, forward, inverse) = (&self.spectra, input.is_some(), output.is_some());
         in_parallel(
             self.workers
                 .iter_mut()
                 .zip(columns.chunks_mut(cols * stride))
                 .enumerate(),
             |(i, (worker, columns))| {
-                worker.columns(shape, product, spectra, i * cols, columns);
+                let first = i * cols;
+                worker.columns(shape, product, (spectra, forward, inverse), first, columns);
             },
         );
+        let Some((output, put)) = output else {
+            return;
+        };
         let columns = &*columns;
         in_parallel(
             self.workers
                 .iter_mut()
                 .zip(output.chunks_mut(rows * nx))
                 .enumerate(),
-            |(i, (worker, output))| worker.inverse_rows(shape, columns, i * rows, output),
+            |(i, (worker, output))| worker.inverse_rows(shape, columns, i * rows, (output, put)),
         );
     }
 }
@@ -210,13 +239,13 @@ impl<T: Real> Worker<T> {
     }
 
     /// The columns `first..` held in `columns`: gathered from the row spectra in blocks of
-    /// [`BLOCK`] columns, zero-padded, transformed, multiplied by the kernel spectrum and
-    /// transformed back.
+    /// [`BLOCK`] columns, zero-padded and transformed (if `forward`), multiplied by the
+    /// kernel spectrum (`product`) and transformed back (if `inverse`).
     fn columns(
         &mut self,
         shape: Shape,
         product: ColumnProduct<T>,
-        spectra: &[Complex<T>],
+        (spectra, forward, inverse): (&[Complex<T>], bool, bool),
         first: usize,
         columns: &mut [Complex<T>],
     ) {
@@ -224,28 +253,34 @@ impl<T: Real> Worker<T> {
         for (b, block) in columns.chunks_mut(BLOCK * stride).enumerate() {
             let k0 = first + b * BLOCK;
             let width = block.len() / stride;
-            transpose(&spectra[k0..], half, (ny, width), block, stride);
+            if forward {
+                transpose(&spectra[k0..], half, (ny, width), block, stride);
+            }
             for (j, column) in block.chunks_mut(stride).enumerate() {
                 let column = &mut column[..shape.col_len];
-                column[ny..].fill(Complex::default());
-                self.plans
-                    .col_forward
-                    .process_with_scratch(column, &mut self.plans.complex_scratch);
+                if forward {
+                    column[ny..].fill(Complex::default());
+                    self.plans
+                        .col_forward
+                        .process_with_scratch(column, &mut self.plans.complex_scratch);
+                }
                 product(k0 + j, column);
-                self.plans
-                    .col_inverse
-                    .process_with_scratch(column, &mut self.plans.complex_scratch);
+                if inverse {
+                    self.plans
+                        .col_inverse
+                        .process_with_scratch(column, &mut self.plans.complex_scratch);
+                }
             }
         }
     }
 
-    /// Complex-to-real transforms of the rows `first..` of the columns into `output`.
+    /// Complex-to-real transforms of the rows `first..` of the columns, `put` into `output`.
     fn inverse_rows(
         &mut self,
         shape: Shape,
         columns: &[Complex<T>],
         first: usize,
-        output: &mut [f64],
+        (output, put): (&mut [f64], RowPut<T>),
     ) {
         let (nx, half, stride) = (shape.nx, shape.half, shape.stride);
         for (b, rows) in output.chunks_mut(BLOCK * nx).enumerate() {
@@ -261,7 +296,7 @@ impl<T: Real> Worker<T> {
             for (slot, out) in rows.chunks_exact_mut(nx).enumerate() {
                 let row = &mut self.row_block[slot * half..(slot + 1) * half];
                 inverse_row(&mut self.plans, row, &mut self.row_real);
-                store_row(out, &self.row_real);
+                put(out, &self.row_real);
             }
         }
     }
