@@ -25,7 +25,7 @@ use super::influence::Kernel;
 use super::operator::Operator;
 use super::problem::{ContactProblem, ContactSolution, ContactSolver, KnownStart, SolverOptions};
 use super::residual::{approach, complementarity_residual};
-use super::solver::{solve, solve_from};
+use super::solver::{Keeping, solve, solve_from};
 use super::transform::Real;
 
 /// Outer iterations allowed; each is a warm-started inner solve.
@@ -156,6 +156,8 @@ pub struct CoupledSolver<T: Real = f64> {
     route: Route<T>,
     /// Threads of each apply, on either route.
     threads: usize,
+    /// What the direct route's last solve's first step did, for the next one's.
+    keeping: Keeping,
 }
 
 /// How the coupled solver solves: directly (keeping the kernels the fixed point would
@@ -189,6 +191,7 @@ impl<T: Real> CoupledSolver<T> {
                 coupling: coupling.clone(),
             },
             threads: 1,
+            keeping: Keeping::default(),
         }
     }
 
@@ -249,7 +252,15 @@ impl<T: Real> CoupledSolver<T> {
                 max_iterations: DIRECT_BUDGET.min(options.max_iterations),
                 ..*options
             };
-            match solve_from(&mut self.summed, problem, &direct, warm_start, known) {
+            let keeping = &mut self.keeping;
+            match solve_from(
+                &mut self.summed,
+                problem,
+                &direct,
+                warm_start,
+                known,
+                keeping,
+            ) {
                 Err(ContactError::NotConverged { iterations, .. }) => {
                     spent = iterations;
                     self.route = Route::FixedPoint {

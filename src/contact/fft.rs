@@ -19,6 +19,7 @@
 //! dropped is round-off; the direct-summation test bounds the result). Nothing is allocated
 //! per apply.
 
+mod kept;
 mod sparse;
 
 use rustfft::num_complex::Complex;
@@ -77,6 +78,8 @@ pub struct DcFft<T: Real = f64> {
     split: Option<Split<T>>,
     /// The kernel in real space, for updates at a few cells (`None` on large grids).
     sparse: Option<KernelRows>,
+    /// The transform of the input of [`Operator::keep`] (empty until the first).
+    kept: kept::Kept<T>,
     /// Whether every coefficient of the (summed) kernel is nonnegative.
     nonnegative: bool,
 }
@@ -175,6 +178,7 @@ impl<T: Real> DcFft<T> {
             inverse: None,
             split: None,
             sparse: None,
+            kept: kept::Kept::default(),
             nonnegative: false,
         }
     }
@@ -252,6 +256,44 @@ impl<T: Real> DcFft<T> {
         let columns = &self.columns[first_row..];
         transpose(columns, stride, (half, rows), &mut self.row_block, half);
     }
+
+    /// The row pass of an apply: the rows of `input` transformed into the columns.
+    fn forward_rows(&mut self, input: &[f64]) {
+        let (nx, ny) = (self.nx, self.ny);
+        for first in (0..ny).step_by(BLOCK) {
+            let rows = BLOCK.min(ny - first);
+            for slot in 0..rows {
+                let iy = first + slot;
+                let row = &input[iy * nx..(iy + 1) * nx];
+                // A row without load transforms to zero: the windowed solver's check applies
+                // a window's pressure on the whole grid, where most rows carry none.
+                if row.iter().all(|&v| v == 0.0) {
+                    self.row_block[slot * self.half..(slot + 1) * self.half]
+                        .fill(Complex::default());
+                    continue;
+                }
+                load_row(&mut self.row_real, row);
+                self.forward_row(slot);
+            }
+            self.scatter_block(first, rows);
+        }
+    }
+
+    /// The last pass of an apply: the columns transformed back row by row, each row
+    /// written to `output` by `put` (stored, or added).
+    fn inverse_rows(&mut self, output: &mut [f64], put: fn(&mut [f64], &[T])) {
+        let (nx, ny) = (self.nx, self.ny);
+        for first in (0..ny).step_by(BLOCK) {
+            let rows = BLOCK.min(ny - first);
+            self.gather_block(first, rows);
+            for slot in 0..rows {
+                let iy = first + slot;
+                let row = &mut self.row_block[slot * self.half..(slot + 1) * self.half];
+                inverse_row(&mut self.plans, row, &mut self.row_real);
+                put(&mut output[iy * nx..(iy + 1) * nx], &self.row_real);
+            }
+        }
+    }
 }
 
 impl<T: Real> Operator for DcFft<T> {
@@ -292,23 +334,7 @@ impl<T: Real> Operator for DcFft<T> {
             split.apply(shape, &product, &mut self.columns, input, output);
             return;
         }
-        for first in (0..ny).step_by(BLOCK) {
-            let rows = BLOCK.min(ny - first);
-            for slot in 0..rows {
-                let iy = first + slot;
-                let row = &input[iy * nx..(iy + 1) * nx];
-                // A row without load transforms to zero: the windowed solver's check applies
-                // a window's pressure on the whole grid, where most rows carry none.
-                if row.iter().all(|&v| v == 0.0) {
-                    self.row_block[slot * self.half..(slot + 1) * self.half]
-                        .fill(Complex::default());
-                    continue;
-                }
-                load_row(&mut self.row_real, row);
-                self.forward_row(slot);
-            }
-            self.scatter_block(first, rows);
-        }
+        self.forward_rows(input);
         for (k, column) in self.columns.chunks_exact_mut(self.stride).enumerate() {
             let column = &mut column[..self.col_len];
             column[ny..].fill(Complex::default());
@@ -320,16 +346,15 @@ impl<T: Real> Operator for DcFft<T> {
                 .col_inverse
                 .process_with_scratch(column, &mut self.plans.complex_scratch);
         }
-        for first in (0..ny).step_by(BLOCK) {
-            let rows = BLOCK.min(ny - first);
-            self.gather_block(first, rows);
-            for slot in 0..rows {
-                let iy = first + slot;
-                let row = &mut self.row_block[slot * self.half..(slot + 1) * self.half];
-                inverse_row(&mut self.plans, row, &mut self.row_real);
-                store_row(&mut output[iy * nx..(iy + 1) * nx], &self.row_real);
-            }
-        }
+        self.inverse_rows(output, store_row);
+    }
+
+    fn keep(&mut self, input: &[f64]) -> Option<f64> {
+        DcFft::keep(self, input)
+    }
+
+    fn add_kept(&mut self, extra: Option<&[f64]>, scale: f64, output: &mut [f64]) {
+        DcFft::add_kept(self, extra, scale, output);
     }
 }
 

@@ -27,6 +27,21 @@ pub trait Operator {
         false
     }
 
+    /// The first half of an apply whose transform is kept: `input . K input`, or `None`
+    /// (the default) when the operator does not keep one. After `Some`,
+    /// [`Operator::add_kept`] adds `K (extra + scale input)` to a field for the cost of
+    /// what remains of the apply and of one forward transform of `extra`.
+    fn keep(&mut self, _input: &[f64]) -> Option<f64> {
+        None
+    }
+
+    /// Adds `K (extra + scale input)` to `output`, `input` that of the last
+    /// [`Operator::keep`] that returned `Some` (`extra` zero when `None`). Only called
+    /// after one did: the default has nothing kept.
+    fn add_kept(&mut self, _extra: Option<&[f64]>, _scale: f64, _output: &mut [f64]) {
+        unreachable!("add_kept without a kept transform");
+    }
+
     /// Whether the operator wraps around the grid's edges (a periodic surface), so a
     /// contact on the edge cells is as valid as anywhere; `false` (the default) for the
     /// half-space operators, whose edge cells stand for a domain that ends there.

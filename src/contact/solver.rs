@@ -50,9 +50,20 @@
 //! load is one factor on every pressure, and the few changed cells are added to `u` by
 //! direct summation ([`Operator::add_sparse`]); otherwise (cells at the cap, or more
 //! changed cells than a sparse update can take for less than an apply) the load is
-//! restored by the general rescale and `u` recomputed by a second apply. Measured on the
+//! restored by the general rescale and `u` takes `K` of the change. Measured on the
 //! paper's 3600-cycle scene (`tribosim run`, the sparse update switched off by hand for the
-//! comparison): 3.8-4.0 s against 4.35-4.5 s, the same results. The gap, the free set and
+//! comparison): 3.8-4.0 s against 4.35-4.5 s, the same results.
+//!
+//! That `K` of the change came from a second apply, of the restored pressure. Where the
+//! operator keeps the transform of the direction ([`Operator::keep`]:
+//! [`super::DcFft`]), the step length's `t . K t` is read off that transform, and after the
+//! step `u` takes `K (w - tau t)`, `w` the moves off the direction (the truncations, the
+//! re-entries and the shift), from the transform of `w` and the kept one: three transforms
+//! in the place of four. A step that restores under the cap asks for it when the step
+//! before did (`Keeping`). On the 4 um rough disc of `docs/accuracy.md`, where nearly every
+//! step does, the run's instructions fell to 0.919 of the two applies' (`valgrind
+//! --tool=cachegrind`, 60 cycles, the same 383 iterations), and on the paper scene, where
+//! one step in eight does, to 0.997 (1200 cycles). The gap, the free set and
 //! the residual come from one fused pass over the grid. The grid-sized vectors are
 //! allocated once a solve; an iteration allocates only its passes' short lists of blocks
 //! and their sums (an entry a block: one below `SPLIT_MIN_CELLS`, eight from there on) and
@@ -67,6 +78,14 @@
 //! and success is confirmed on a freshly computed `u` only when that bound could reach a
 //! hundredth of the tolerance (`DRIFT_SHARE`): at the scene's default tolerance, never.
 //! On the paper scene the confirmation apply cost one of 7.3 iterations a solve.
+//!
+//! The bound is double precision's. In single precision (tolerances from 1e-4 on,
+//! [`super::SINGLE_PRECISION_MIN_TOLERANCE`]) an update errs by the f32 transforms'
+//! round-off of the update's own size, a step's and not `u`'s: at the end of each of the 4
+//! um rough disc's 600 solves, `u` differed from a fresh f32 apply of the pressure by at
+//! most 5.5e-7 of its largest value (median 4.0e-7), the fresh apply's own round-off, and
+//! under the hundredth of the tolerance, 1e-6 (counted once with a build that compared the
+//! two at each solve's end; `tests/contact.rs` bounds it on a capped Hertz contact).
 
 use super::blocks::Blocks;
 use super::error::ContactError;
@@ -87,6 +106,8 @@ use super::sums::{dot, dot2, free_dots, sum, update_direction};
 use bounds::{check_edges, rescale_to_load, violator_step};
 use free_set::FreeSetCorrection;
 use progress::Progress;
+
+pub(super) use advance::Keeping;
 
 /// Relative load error accepted at convergence. Summing N^2 pressures in f64 errs by up to
 /// N^2 * 1.1e-16 in the worst case (1.2e-10 at N = 1024), typically sqrt(N^2) times that;
@@ -109,12 +130,16 @@ const DRIFT_SHARE: f64 = 0.01;
 #[derive(Debug)]
 pub struct NormalSolver<O> {
     operator: O,
+    keeping: Keeping,
 }
 
 impl<O: Operator> NormalSolver<O> {
     /// The solver of `operator` (e.g. [`super::DcFft`] of the normal kernel).
     pub fn new(operator: O) -> Self {
-        Self { operator }
+        Self {
+            operator,
+            keeping: Keeping::default(),
+        }
     }
 }
 
@@ -125,7 +150,15 @@ impl<O: Operator> ContactSolver for NormalSolver<O> {
         options: &SolverOptions,
         warm_start: Option<&[f64]>,
     ) -> Result<ContactSolution, ContactError> {
-        solve(&mut self.operator, problem, options, warm_start)
+        let keeping = &mut self.keeping;
+        solve_from(
+            &mut self.operator,
+            problem,
+            options,
+            warm_start,
+            None,
+            keeping,
+        )
     }
 
     fn solve_known(
@@ -134,7 +167,9 @@ impl<O: Operator> ContactSolver for NormalSolver<O> {
         options: &SolverOptions,
         start: KnownStart<'_>,
     ) -> Result<ContactSolution, ContactError> {
-        solve_known(&mut self.operator, problem, options, start)
+        let (warm, known) = (Some(start.pressure), Some(start.displacement));
+        let keeping = &mut self.keeping;
+        solve_from(&mut self.operator, problem, options, warm, known, keeping)
     }
 
     fn operator(&mut self) -> &mut dyn Operator {
@@ -151,7 +186,14 @@ pub fn solve(
     options: &SolverOptions,
     warm_start: Option<&[f64]>,
 ) -> Result<ContactSolution, ContactError> {
-    solve_from(operator, problem, options, warm_start, None)
+    solve_from(
+        operator,
+        problem,
+        options,
+        warm_start,
+        None,
+        &mut Keeping::default(),
+    )
 }
 
 /// [`solve`] from `start`, whose displacement is known: the start's apply is skipped when
@@ -162,18 +204,27 @@ pub fn solve_known(
     options: &SolverOptions,
     start: KnownStart<'_>,
 ) -> Result<ContactSolution, ContactError> {
-    let warm = Some(start.pressure);
-    solve_from(operator, problem, options, warm, Some(start.displacement))
+    let (warm, known) = (Some(start.pressure), Some(start.displacement));
+    solve_from(
+        operator,
+        problem,
+        options,
+        warm,
+        known,
+        &mut Keeping::default(),
+    )
 }
 
 /// [`solve`] from `warm_start` and, where known, its displacement `K warm_start` without
-/// the wear term (`None`: one apply computes it).
+/// the wear term (`None`: one apply computes it), its first step keeping the direction's
+/// transform as `keeping` says, which the solve then updates.
 pub(super) fn solve_from(
     operator: &mut dyn Operator,
     problem: &ContactProblem,
     options: &SolverOptions,
     warm_start: Option<&[f64]>,
     known: Option<&[f64]>,
+    keeping: &mut Keeping,
 ) -> Result<ContactSolution, ContactError> {
     problem.validate(options)?;
     let mut known = known.zip(warm_start).map(|(u, p)| (u.to_vec(), p));
@@ -189,7 +240,11 @@ pub(super) fn solve_from(
         operator
     };
     let known = known.map(|(u, _)| u);
-    PolonskyKeer::start(operator, problem, options, warm_start, known)?.iterate(operator, options)
+    let mut solve = PolonskyKeer::start(operator, problem, options, warm_start, known)?;
+    solve.keep_next = keeping.first_step;
+    let solution = solve.iterate(operator, options);
+    keeping.first_step = solve.first_kept.unwrap_or(keeping.first_step);
+    solution
 }
 
 /// The state of one solve between iterations. The work vectors are allocated once, at the
@@ -245,6 +300,15 @@ struct PolonskyKeer<'a> {
     rho_old: f64,
     /// Whether the next direction starts afresh, after a re-entry or a fallback step.
     restart: bool,
+    /// Whether the operator kept the transform of the direction ([`Operator::keep`])
+    /// instead of applying to it: `r` then does not hold `K t`, and the step's displacement
+    /// update waits for the moves it makes off the direction.
+    kept: bool,
+    /// Whether the next step asks the operator to keep the direction's transform
+    /// ([`Keeping`]).
+    keep_next: bool,
+    /// Whether the first step restored the load under the cap (`None` before it).
+    first_kept: Option<bool>,
     /// The last positive step length.
     tau_last: f64,
     /// The relative residual of the last measure.
@@ -334,6 +398,9 @@ impl<'a> PolonskyKeer<'a> {
             entry_rate: 0.0,
             rho_old: 0.0,
             restart: true,
+            kept: false,
+            keep_next: false,
+            first_kept: None,
             tau_last: 0.0,
             residual: f64::INFINITY,
             load: 0.0,
@@ -494,9 +561,20 @@ impl<'a> PolonskyKeer<'a> {
     /// `g.t / t.Kt` (the last positive one when `t.Kt` is not positive). Also sets the
     /// re-entry rate.
     fn step_length(&mut self, operator: &mut dyn Operator, num: f64) -> f64 {
-        operator.apply(&self.t, &mut self.r);
+        let kept = if self.keep_next {
+            operator.keep(&self.t)
+        } else {
+            None
+        };
+        self.kept = kept.is_some();
         self.applies += 1;
-        let (den, tt) = dot2(self.blocks, (&self.t, &self.r), (&self.t, &self.t));
+        let (den, tt) = match kept {
+            Some(den) => (den, dot(&self.t, &self.t)),
+            None => {
+                operator.apply(&self.t, &mut self.r);
+                dot2(self.blocks, (&self.t, &self.r), (&self.t, &self.t))
+            }
+        };
         let tau = if den > 0.0 { num / den } else { self.tau_last };
         if tau > 0.0 {
             self.tau_last = tau;
@@ -518,26 +596,5 @@ impl<'a> PolonskyKeer<'a> {
             self.entry_rate = rate;
         }
         tau
-    }
-
-    /// Brings the load back to the target after the recorded changes (`highest`: the
-    /// largest pressure now, `load` their sum). With no cell at the cap before or after, the rescale is one
-    /// factor `s` on every pressure, so `u = K p` becomes `s (u + K d)` with `d` the
-    /// recorded changes: a sparse update where the operator offers one (with no cap to
-    /// reach, a scale clips nothing, so it cannot cascade as it did under the cap). Otherwise
-    /// the load is restored by [`rescale_to_load`]'s shift and `u` recomputed.
-    pub(super) fn restore_load(&mut self, operator: &mut dyn Operator, highest: f64, load: f64) {
-        let scale = self.target / load;
-        if highest < self.cap
-            && scale * highest < self.cap
-            && operator.add_sparse(&self.changes, &mut self.u)
-        {
-            self.p.iter_mut().for_each(|p| *p *= scale);
-            self.u.iter_mut().for_each(|u| *u *= scale);
-            self.updates += 1;
-            return;
-        }
-        self.rescale();
-        self.recompute(operator);
     }
 }

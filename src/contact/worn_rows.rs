@@ -31,6 +31,8 @@ pub struct WornRows<'a> {
     inner: &'a mut dyn Operator,
     /// `s dx`: the depth worn per unit of a row's pressure sum, m/Pa.
     per_row_sum: f64,
+    /// The row sums of the input of the last [`Operator::keep`].
+    kept_rows: Vec<f64>,
 }
 
 impl<'a> WornRows<'a> {
@@ -40,6 +42,7 @@ impl<'a> WornRows<'a> {
         Self {
             inner,
             per_row_sum: per_row_sum(pass_wear_per_pa, dx_m),
+            kept_rows: Vec::new(),
         }
     }
 
@@ -62,6 +65,26 @@ impl Operator for WornRows<'_> {
 
     fn preconditioner(&mut self) -> Option<&mut dyn Preconditioner> {
         self.inner.preconditioner()
+    }
+
+    /// `K`'s half, plus `t . W t = s dx sum_rows (sum_x t)^2`.
+    fn keep(&mut self, input: &[f64]) -> Option<f64> {
+        let inner = self.inner.keep(input)?;
+        let nx = self.inner.shape().0;
+        self.kept_rows.clear();
+        self.kept_rows.extend(input.chunks_exact(nx).map(sum));
+        let rows: f64 = self.kept_rows.iter().map(|r| r * r).sum();
+        Some(inner + self.per_row_sum * rows)
+    }
+
+    fn add_kept(&mut self, extra: Option<&[f64]>, scale: f64, output: &mut [f64]) {
+        self.inner.add_kept(extra, scale, output);
+        let nx = self.inner.shape().0;
+        for (row, (out, &kept)) in output.chunks_exact_mut(nx).zip(&self.kept_rows).enumerate() {
+            let extra = extra.map_or(0.0, |extra| sum(&extra[row * nx..(row + 1) * nx]));
+            let worn = self.per_row_sum * (extra + scale * kept);
+            out.iter_mut().for_each(|u| *u += worn);
+        }
     }
 
     fn threads(&self) -> usize {
