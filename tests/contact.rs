@@ -447,6 +447,20 @@ fn hertz_256_solve_time() {
     println!("Hertz N = 256: median {:.4} s", times[10]);
 }
 
+/// The largest difference between `solution`'s displacement and `op` applied to its
+/// pressure afresh, relative to the largest fresh displacement.
+fn drift_from_fresh(op: &mut dyn Operator, solution: &ContactSolution) -> f64 {
+    let mut fresh = vec![0.0; solution.pressure.len()];
+    op.apply(&solution.pressure, &mut fresh);
+    let scale = fresh.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let largest = solution
+        .displacement
+        .iter()
+        .zip(&fresh)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    largest / scale
+}
+
 #[test]
 fn an_updated_displacement_drifts_from_a_fresh_one_by_round_off_only() {
     // Success is declared on the displacement the steps updated unless its drift could
@@ -466,16 +480,7 @@ fn an_updated_displacement_drifts_from_a_fresh_one_by_round_off_only() {
             let Solved { grid, solution, .. } =
                 solve_sphere_with(n, DOMAIN_M, LOAD_N, cap, &options).expect("converges");
             let mut op = DcFft::new(&Kernel::normal(&grid, &pair));
-            let mut fresh = vec![0.0; grid.len()];
-            op.apply(&solution.pressure, &mut fresh);
-            let scale = fresh.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            let drift = solution
-                .displacement
-                .iter()
-                .zip(&fresh)
-                .map(|(a, b)| (a - b).abs())
-                .fold(0.0, f64::max)
-                / scale;
+            let drift = drift_from_fresh(&mut op, &solution);
             assert!(
                 drift <= UPDATE_ROUNDOFF * solution.iterations as f64,
                 "N = {n}, cap {cap:e}: drift {drift:e} after {} iterations",
@@ -507,16 +512,7 @@ fn a_single_precision_solve_drifts_by_the_transforms_round_off_only() {
     assert!(solution.iterations > 2, "the wear moved the answer");
     let mut double = DcFft::new(&kernel);
     let mut worn = WornRows::new(&mut double, problem.pass_wear_per_pa, s.grid.dx);
-    let mut fresh = vec![0.0; s.grid.len()];
-    worn.apply(&solution.pressure, &mut fresh);
-    let scale = fresh.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let drift = solution
-        .displacement
-        .iter()
-        .zip(&fresh)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max)
-        / scale;
+    let drift = drift_from_fresh(&mut worn, &solution);
     println!(
         "f32 drift {drift:e} after {} iterations",
         solution.iterations
