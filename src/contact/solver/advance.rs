@@ -118,7 +118,7 @@ impl PolonskyKeer<'_> {
     }
 
     /// Records whether a step restored the load under the cap (`general`), for the next
-    /// step's and the next solve's [`Keeping`](super::Keeping).
+    /// step's and the next solve's [`Keeping`].
     fn took_restore(&mut self, general: bool) {
         self.keep_next = general;
         self.first_kept.get_or_insert(general);
