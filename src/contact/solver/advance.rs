@@ -70,8 +70,9 @@ impl PolonskyKeer<'_> {
     /// pressure, so `u = K p` becomes `s (u + K d)` with `d` the recorded changes: a sparse
     /// update where the operator offers one (with no cap to reach, a scale clips nothing, so
     /// it cannot cascade as it did under the cap). Otherwise the load is restored by
-    /// [`rescale_to_load`](super::bounds::rescale_to_load)'s shift, and `u` takes `K (w - tau t)`, `w` the changes and the
-    /// shift, from the kept transform; without one, `u` is recomputed.
+    /// [`rescale_to_load`](super::bounds::rescale_to_load)'s shift, and `u` takes
+    /// `K (w - tau t)`, `w` the changes and the shift, from the kept transform; without one,
+    /// `u` is recomputed.
     pub(super) fn restore_load(
         &mut self,
         operator: &mut dyn Operator,
