@@ -237,7 +237,7 @@ def choice(rows):
         f'yield cuts of its cycles ("Rough wear: speed levers"), which costs more accuracy '
         f"than the 13% fewer solves save time. Iterations are the measure that does not move "
         f"with the machine: the CPU ratios spread by tens of percent between pairs, as each "
-        f"pair's ratio in brackets shows. {time_target(rows)} (\"fallbacks / restarts\" "
+        f'pair\'s ratio in brackets shows. {time_target(rows)} ("fallbacks / restarts" '
         f"counts the solves whose free-set preconditioner stalled and whose warm start began "
         f'again from the uniform pressure; "Rough wear: where the time goes" for the shares).\n'
     )
