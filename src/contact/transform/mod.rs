@@ -189,8 +189,11 @@ mod tests {
             (16, 8),
             (8, 16),
             (3, 19),
+            (19, 3),
+            (16, 33),
+            (33, 16),
         ];
-        for (rows, cols) in shapes.into_iter().chain([(19, 3), (16, 33), (33, 16)]) {
+        for (rows, cols) in shapes {
             // Both buffers end at their last run's last entry, as a block of the column
             // buffer does when it holds the last columns.
             let (from_stride, to_stride) = (cols + 2, rows + 3);
