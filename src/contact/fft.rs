@@ -4,13 +4,14 @@
 //! Layout and costs, per [`Operator::apply`]:
 //! - row pass: real-to-complex FFTs of length `2nx` on the `ny` data rows only; the other
 //!   `ny` padded rows are zero and their transforms are zero, so they are skipped;
-//! - column pass: for each of the `nx + 1` half-spectrum columns, in a transposed
-//!   (column-contiguous) buffer, the forward FFT of length `2ny`, the product with the kernel
-//!   spectrum (stored in the same transposed order) and the inverse FFT, one after the other
-//!   while the column is still in the L1 cache;
+//! - column pass: for each of the `nx + 1` half-spectrum columns, gathered a block at a time
+//!   into a transposed (column-contiguous) buffer, the forward FFT of length `2ny`, the
+//!   product with the kernel spectrum (stored in the same transposed order) and the inverse
+//!   FFT, one after the other while the column is still in the L1 cache;
 //! - complex-to-real FFTs on the `ny` rows whose output is kept.
 //!
-//! The rows and columns move through the transposed layout of [`super::transform`].
+//! On one thread the passes run as [`passes`] lays out; split across threads, as
+//! [`super::transform`]'s `Split` does.
 //!
 //! The kernel spectrum is computed once per operator and includes the `1 / (4 nx ny)`
 //! normalisation. Arranged by wrap-around, an even kernel is a real even sequence, so its
@@ -20,17 +21,18 @@
 //! per apply.
 
 mod kept;
+mod passes;
 mod sparse;
 
 use rustfft::num_complex::Complex;
 
+use self::passes::{Passes, Transforms};
 use self::sparse::KernelRows;
 use super::influence::{Kernel, Symmetry, offset_index};
 use super::operator::{Operator, Preconditioner};
 use super::precondition::FourierInverse;
 use super::transform::{
-    BLOCK, Plans, Real, STRIDE_PAD, Split, inverse_row, load_row, periodic_threads, store_row,
-    transpose,
+    Plans, Real, STRIDE_PAD, Split, load_row, periodic_threads, store_row, transpose,
 };
 
 /// The smallest solver tolerance a run solves in single precision (`DcFft<f32>`) at: the
@@ -68,10 +70,11 @@ pub struct DcFft<T: Real = f64> {
     plans: Plans<T>,
     /// The kernel spectrum, transposed: entry `(kx, ky)` at `kx * stride + ky`.
     spectrum: Spectrum<T>,
-    /// Work buffer in the same transposed layout.
+    /// The buffers of the passes on one thread (none when split).
+    passes: Passes<T>,
+    /// The columns of a split apply, in the spectrum's transposed layout (empty on one
+    /// thread).
     columns: Vec<Complex<T>>,
-    row_real: Vec<T>,
-    row_block: Vec<Complex<T>>,
     /// The preconditioner: the inverse of the normal kernel's periodic wrap.
     inverse: Option<FourierInverse<T>>,
     /// The passes split across threads (`None`: one thread).
@@ -130,8 +133,7 @@ impl<T: Real> DcFft<T> {
     /// Plans the transforms and computes the spectrum of `kernel`.
     pub fn of(kernel: &Kernel) -> Self {
         let mut op = Self::planned(kernel.shape());
-        op.kernel_spectrum(&[kernel]);
-        let columns = &op.columns;
+        let columns = op.kernel_spectrum(&[kernel]);
         op.spectrum = match kernel.symmetry() {
             Symmetry::EvenInX => Spectrum::Real(columns.iter().map(|c| c.re).collect()),
             Symmetry::OddInX => Spectrum::Imaginary(columns.iter().map(|c| c.im).collect()),
@@ -150,8 +152,7 @@ impl<T: Real> DcFft<T> {
         assert_eq!(first.shape(), second.shape(), "kernel shapes differ");
         let mut op = Self::planned(first.shape());
         // The transform is linear: one of the summed kernel, not the sum of two.
-        op.kernel_spectrum(&[first, second]);
-        op.spectrum = Spectrum::Complex(op.columns.clone());
+        op.spectrum = Spectrum::Complex(op.kernel_spectrum(&[first, second]));
         // The normal kernel dominates the sum (the coupling carries mu delta-nu / 2).
         if first.symmetry() == Symmetry::EvenInX {
             op.inverse = Some(FourierInverse::of(first));
@@ -172,9 +173,8 @@ impl<T: Real> DcFft<T> {
             half,
             plans: Plans::new(row_len, col_len),
             spectrum: Spectrum::Real(Vec::new()),
-            columns: vec![Complex::default(); half * stride],
-            row_real: vec![T::default(); row_len],
-            row_block: vec![Complex::default(); BLOCK * half],
+            passes: Passes::new((nx, ny), stride),
+            columns: Vec::new(),
             inverse: None,
             split: None,
             sparse: None,
@@ -189,6 +189,12 @@ impl<T: Real> DcFft<T> {
     pub fn threaded(mut self, threads: usize) -> Self {
         let row_len = 2 * self.nx;
         self.split = (threads > 1).then(|| Split::new(threads, &self.plans, row_len, self.ny));
+        (self.passes, self.columns) = if self.split.is_some() {
+            let columns = vec![Complex::default(); self.half * self.stride];
+            (Passes::none(), columns)
+        } else {
+            (Passes::new((self.nx, self.ny), self.stride), Vec::new())
+        };
         let inverse_threads = periodic_threads(threads, self.nx * self.ny);
         self.inverse = self
             .inverse
@@ -201,15 +207,18 @@ impl<T: Real> DcFft<T> {
         self.split.as_ref().map_or(1, Split::threads)
     }
 
-    /// The sum of `kernels` arranged by wrap-around on the padded grid (index `i < n` holds
-    /// offset `i`, `i > n` holds offset `i - 2n`; the entry at `i = n` multiplies only
-    /// padding and is set to zero, which also keeps odd kernels odd), transformed into
-    /// `columns`. Each padded row is copied from the kernels' rows of offsets as two slices.
-    fn kernel_spectrum(&mut self, kernels: &[&Kernel]) {
-        let (nx, ny) = (self.nx, self.ny);
+    /// The transform of the sum of `kernels` arranged by wrap-around on the padded grid
+    /// (index `i < n` holds offset `i`, `i > n` holds offset `i - 2n`; the entry at `i = n`
+    /// multiplies only padding and is set to zero, which also keeps odd kernels odd), in the
+    /// spectrum's transposed layout. Each padded row is copied from the kernels' rows of
+    /// offsets as two slices. Once per operator, so its buffers are its own.
+    fn kernel_spectrum(&mut self, kernels: &[&Kernel]) -> Vec<Complex<T>> {
+        let (nx, ny, half, stride) = (self.nx, self.ny, self.half, self.stride);
         let scale = 1.0 / (4 * nx * ny) as f64;
         let mut row = vec![0.0; 2 * nx];
-        for iy in 0..self.col_len {
+        let mut real = vec![T::default(); 2 * nx];
+        let mut rows = vec![Complex::default(); self.col_len * half];
+        for (iy, out) in rows.chunks_exact_mut(half).enumerate() {
             row.fill(0.0);
             let dj = match iy.cmp(&ny) {
                 std::cmp::Ordering::Less => Some(iy as isize),
@@ -221,78 +230,20 @@ impl<T: Real> DcFft<T> {
                     add_wrapped_row(&mut row, kernel, dj, scale);
                 }
             }
-            load_row(&mut self.row_real, &row);
-            self.forward_row(iy % BLOCK);
-            if iy % BLOCK == BLOCK - 1 || iy + 1 == self.col_len {
-                self.scatter_block(iy - iy % BLOCK, iy % BLOCK + 1);
-            }
+            load_row(&mut real, &row);
+            self.plans
+                .row_forward
+                .process_with_scratch(&mut real, out, &mut self.plans.real_scratch)
+                .expect("buffer lengths fixed at construction");
         }
-        for column in self.columns.chunks_exact_mut(self.stride) {
+        let mut columns = vec![Complex::default(); half * stride];
+        transpose(&rows, half, (self.col_len, half), &mut columns, stride);
+        for column in columns.chunks_exact_mut(stride) {
             self.plans
                 .col_forward
                 .process_with_scratch(&mut column[..self.col_len], &mut self.plans.complex_scratch);
         }
-    }
-
-    /// Real-to-complex transform of `row_real` into slot `slot` of the row block.
-    fn forward_row(&mut self, slot: usize) {
-        let out = &mut self.row_block[slot * self.half..(slot + 1) * self.half];
-        self.plans
-            .row_forward
-            .process_with_scratch(&mut self.row_real, out, &mut self.plans.real_scratch)
-            .expect("buffer lengths fixed at construction");
-    }
-
-    /// Writes the first `rows` rows of the row block into the columns `first_row..`.
-    fn scatter_block(&mut self, first_row: usize, rows: usize) {
-        let (half, stride) = (self.half, self.stride);
-        let columns = &mut self.columns[first_row..];
-        transpose(&self.row_block, half, (rows, half), columns, stride);
-    }
-
-    /// Reads `rows` rows starting at `first_row` from the columns into the row block.
-    fn gather_block(&mut self, first_row: usize, rows: usize) {
-        let (half, stride) = (self.half, self.stride);
-        let columns = &self.columns[first_row..];
-        transpose(columns, stride, (half, rows), &mut self.row_block, half);
-    }
-
-    /// The row pass of an apply: the rows of `input` transformed into the columns.
-    fn forward_rows(&mut self, input: &[f64]) {
-        let (nx, ny) = (self.nx, self.ny);
-        for first in (0..ny).step_by(BLOCK) {
-            let rows = BLOCK.min(ny - first);
-            for slot in 0..rows {
-                let iy = first + slot;
-                let row = &input[iy * nx..(iy + 1) * nx];
-                // A row without load transforms to zero: the windowed solver's check applies
-                // a window's pressure on the whole grid, where most rows carry none.
-                if row.iter().all(|&v| v == 0.0) {
-                    self.row_block[slot * self.half..(slot + 1) * self.half]
-                        .fill(Complex::default());
-                    continue;
-                }
-                load_row(&mut self.row_real, row);
-                self.forward_row(slot);
-            }
-            self.scatter_block(first, rows);
-        }
-    }
-
-    /// The last pass of an apply: the columns transformed back row by row, each row
-    /// written to `output` by `put` (stored, or added).
-    fn inverse_rows(&mut self, output: &mut [f64], put: fn(&mut [f64], &[T])) {
-        let (nx, ny) = (self.nx, self.ny);
-        for first in (0..ny).step_by(BLOCK) {
-            let rows = BLOCK.min(ny - first);
-            self.gather_block(first, rows);
-            for slot in 0..rows {
-                let iy = first + slot;
-                let row = &mut self.row_block[slot * self.half..(slot + 1) * self.half];
-                inverse_row(&mut self.plans, row, &mut self.row_real);
-                put(&mut output[iy * nx..(iy + 1) * nx], &self.row_real);
-            }
-        }
+        columns
     }
 }
 
@@ -334,19 +285,16 @@ impl<T: Real> Operator for DcFft<T> {
             split.apply(shape, &product, &mut self.columns, input, output);
             return;
         }
-        self.forward_rows(input);
-        for (k, column) in self.columns.chunks_exact_mut(self.stride).enumerate() {
-            let column = &mut column[..self.col_len];
-            column[ny..].fill(Complex::default());
-            self.plans
-                .col_forward
-                .process_with_scratch(column, &mut self.plans.complex_scratch);
-            multiply(&self.spectrum, column, k * self.stride);
-            self.plans
-                .col_inverse
-                .process_with_scratch(column, &mut self.plans.complex_scratch);
-        }
-        self.inverse_rows(output, store_row);
+        let (plans, spectrum, stride) = (&mut self.plans, &self.spectrum, self.stride);
+        self.passes.forward_rows(plans, input);
+        let both = Transforms {
+            forward: true,
+            inverse: true,
+        };
+        self.passes.columns(plans, both, None, |k, column| {
+            multiply(spectrum, column, k * stride);
+        });
+        self.passes.inverse_rows(plans, output, store_row);
     }
 
     fn keep(&mut self, input: &[f64]) -> Option<f64> {

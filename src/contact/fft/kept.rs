@@ -18,7 +18,7 @@
 
 use rustfft::num_complex::Complex;
 
-use super::{DcFft, Spectrum, multiply};
+use super::{DcFft, Spectrum, Transforms, multiply};
 use crate::contact::transform::Real;
 
 impl<T: Real> DcFft<T> {
@@ -38,20 +38,20 @@ impl<T: Real> DcFft<T> {
             for (column, weights) in self.columns.chunks_exact(stride).zip(weights) {
                 quadratic += weighted_power(&column[..col_len], &weights[..col_len]);
             }
+            std::mem::swap(&mut self.columns, &mut self.kept.spectrum);
         } else {
-            self.forward_rows(input);
-            let weights = self.kept.weights.chunks_exact(stride);
-            for (column, weights) in self.columns.chunks_exact_mut(stride).zip(weights) {
-                let column = &mut column[..col_len];
-                column[ny..].fill(Complex::default());
-                self.plans
-                    .col_forward
-                    .process_with_scratch(column, &mut self.plans.complex_scratch);
-                // Summed while the column is in the cache.
-                quadratic += weighted_power(column, &weights[..col_len]);
-            }
+            self.passes.forward_rows(&mut self.plans, input);
+            let forward = Transforms {
+                forward: true,
+                inverse: false,
+            };
+            let (spectrum, weights) = (&mut self.kept.spectrum, &self.kept.weights);
+            self.passes
+                .columns(&mut self.plans, forward, Some(spectrum), |k, column| {
+                    // Summed while the column is in the cache, in the order of the columns.
+                    quadratic += weighted_power(column, &weights[k * stride..][..col_len]);
+                });
         }
-        std::mem::swap(&mut self.columns, &mut self.kept.spectrum);
         Some(quadratic)
     }
 
@@ -60,11 +60,11 @@ impl<T: Real> DcFft<T> {
     pub(super) fn add_kept(&mut self, extra: Option<&[f64]>, scale: f64, output: &mut [f64]) {
         let (nx, ny, col_len, stride) = (self.nx, self.ny, self.col_len, self.stride);
         assert_eq!(output.len(), nx * ny, "output does not match the grid");
-        assert_eq!(self.kept.spectrum.len(), self.columns.len(), "nothing kept");
+        assert!(!self.kept.weights.is_empty(), "nothing kept");
         if let Some(extra) = extra {
             assert_eq!(extra.len(), output.len(), "input does not match the grid");
             if self.split.is_none() {
-                self.forward_rows(extra);
+                self.passes.forward_rows(&mut self.plans, extra);
             }
         }
         let (spectrum, kept) = (&self.spectrum, &self.kept.spectrum);
@@ -92,20 +92,13 @@ impl<T: Real> DcFft<T> {
             );
             return;
         }
-        for (k, column) in self.columns.chunks_exact_mut(stride).enumerate() {
-            let column = &mut column[..col_len];
-            if extra.is_some() {
-                column[ny..].fill(Complex::default());
-                self.plans
-                    .col_forward
-                    .process_with_scratch(column, &mut self.plans.complex_scratch);
-            }
-            combine(k, column);
-            self.plans
-                .col_inverse
-                .process_with_scratch(column, &mut self.plans.complex_scratch);
-        }
-        self.inverse_rows(output, add_row);
+        let transforms = Transforms {
+            forward: extra.is_some(),
+            inverse: true,
+        };
+        self.passes
+            .columns(&mut self.plans, transforms, None, combine);
+        self.passes.inverse_rows(&mut self.plans, output, add_row);
     }
 }
 

@@ -1,12 +1,12 @@
 //! The 2D FFT machinery the DC-FFT operator ([`super::DcFft`]), its Fourier preconditioner
 //! ([`super::FourierInverse`]) and the benchmark's FFT pair share: the planned transforms
 //! ([`Plans`]), the transposed layout they move rows and columns through (blocks of
-//! [`BLOCK`] rows, columns [`STRIDE_PAD`] entries apart beyond their length), the inverse
-//! row transform, and the passes split across threads ([`Split`]) with the thread counts
-//! that choose them. It knows neither operator, so both use it without using each other.
+//! [`BLOCK`] rows or columns, columns [`STRIDE_PAD`] entries apart beyond their length), the
+//! inverse row transform, and the passes split across threads ([`Split`]) with the thread
+//! counts that choose them. It knows neither operator, so both use it without using each other.
 //!
-//! Rows move between the row and the column layouts in blocks of [`BLOCK`] rows, so each
-//! transposed write touches `BLOCK` consecutive entries instead of one. Columns are
+//! Rows (or columns) move between the row and the column layouts in blocks of [`BLOCK`], so
+//! each transposed write touches `BLOCK` consecutive entries instead of one. Columns are
 //! [`STRIDE_PAD`] entries longer than the transform: a power-of-two stride maps every
 //! column start to the same cache sets, which made the transposes several times slower.
 
@@ -48,7 +48,7 @@ impl Real for f32 {
     }
 }
 
-/// Rows moved per block between the row and the column layouts.
+/// Rows, or columns, moved per block between the row and the column layouts.
 pub(crate) const BLOCK: usize = 16;
 
 /// Padding of the column stride, in complex entries (128 bytes).
@@ -91,10 +91,11 @@ pub(crate) fn store_row<T: Real>(out: &mut [f64], real: &[T]) {
 /// The long side goes in tiles of [`TILE`]: each of the short side's entries reads or
 /// writes `TILE` consecutive entries of the long side as one slice, into or out of `TILE`
 /// runs of the short side held as slices, where one entry at a time computed and checked a
-/// strided index per entry. Measured on the 4 um rough disc's blocks (16 rows of 289
-/// columns, `Complex<f32>`, columns 584 apart; a throwaway loop of 20,000 copies each way,
-/// built at `opt-level = 3`, four rounds): 0.3 to 0.8 of the time of one entry at a time,
-/// both ways; tiles of 4 took 0.9 to 1.4 times the time of tiles of 8.
+/// strided index per entry. Measured on blocks of 16 rows of 289 columns (`Complex<f32>`,
+/// columns 584 apart, as the split passes move a 288-cell window's; a throwaway loop of
+/// 20,000 copies each way, built at `opt-level = 3`, four rounds): 0.3 to 0.8 of the time
+/// of one entry at a time, both ways; tiles of 4 took 0.9 to 1.4 times the time of tiles
+/// of 8.
 pub(crate) fn transpose<T: Copy>(
     from: &[T],
     from_stride: usize,

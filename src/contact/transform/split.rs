@@ -10,9 +10,11 @@
 //! themselves are shared read-only.
 //!
 //! The row spectra go through a row-major buffer (`spectra`, `ny` x `nx + 1` complex
-//! values) between the forward row pass and the column pass, which the one-thread apply does
-//! not need: 16 bytes per cell (8 in f32), allocated only when the operator runs on more
-//! than one thread.
+//! values) between the forward row pass and the column pass, 16 bytes per cell (8 in f32),
+//! and the columns stay in a buffer of all of them for the inverse row pass. The one-thread
+//! passes of the DC-FFT operator bring each block of columns back into the row spectra
+//! instead; split, a thread's block of columns spans every row, not a contiguous slice of
+//! the row spectra that the thread could own.
 
 use std::num::NonZeroUsize;
 

@@ -1,0 +1,151 @@
+//! The passes of an apply on one thread, and the buffers they work in.
+//!
+//! The row transforms go into the row spectra, a row-major buffer of `ny` rows of `nx + 1`
+//! bins. The columns are gathered from it [`BLOCK`] at a time into a block of columns
+//! `stride` apart, zero-padded to `2 ny`, transformed, multiplied by the kernel's spectrum
+//! and transformed back, and the first `ny` entries of each (the rows whose output is kept)
+//! are scattered back to where they came from. The inverse row transforms then read the row
+//! spectra again.
+//!
+//! The row spectra take half the memory of all the padded columns, so on a rough disc's
+//! windows they stay in the core's 1 MB of L2 where the columns did not: a window of
+//! 288 x 288 cells held its padded columns in 1.35 MB (`Complex<f32>`, columns 584 apart)
+//! and its row spectra in 0.67 MB. The transposes in and out of the columns waited on L3
+//! (`docs/accuracy.md`, "The transposes in tiles"), and the zero half of every column was
+//! filled in the big buffer too.
+
+use rustfft::num_complex::Complex;
+
+use crate::contact::transform::{BLOCK, Plans, Real, inverse_row, load_row, transpose};
+
+/// The sizes of a one-thread apply and the buffers it works in.
+pub(super) struct Passes<T> {
+    nx: usize,
+    ny: usize,
+    /// Half-spectrum row length `nx + 1`.
+    half: usize,
+    /// Padded column length `2 ny`.
+    col_len: usize,
+    /// Distance between column starts in the block, `col_len + STRIDE_PAD`.
+    stride: usize,
+    /// The row transforms, row-major: `ny` rows of `half` bins.
+    spectra: Vec<Complex<T>>,
+    /// [`BLOCK`] columns in flight, `stride` apart.
+    block: Vec<Complex<T>>,
+    /// One zero-padded real row.
+    row_real: Vec<T>,
+}
+
+/// Which transforms of the column pass run: the forward one (the columns gathered from the
+/// row spectra first), and the inverse one (the columns scattered back after).
+#[derive(Clone, Copy)]
+pub(super) struct Transforms {
+    pub(super) forward: bool,
+    pub(super) inverse: bool,
+}
+
+impl<T: Real> Passes<T> {
+    /// Buffers for an `nx` x `ny` grid whose columns are `stride` apart in a block.
+    pub(super) fn new((nx, ny): (usize, usize), stride: usize) -> Self {
+        let half = nx + 1;
+        Self {
+            nx,
+            ny,
+            half,
+            col_len: 2 * ny,
+            stride,
+            spectra: vec![Complex::default(); ny * half],
+            block: vec![Complex::default(); BLOCK * stride],
+            row_real: vec![T::default(); 2 * nx],
+        }
+    }
+
+    /// No buffers: for an operator whose passes run split across threads instead.
+    pub(super) fn none() -> Self {
+        Self {
+            nx: 0,
+            ny: 0,
+            half: 0,
+            col_len: 0,
+            stride: 0,
+            spectra: Vec::new(),
+            block: Vec::new(),
+            row_real: Vec::new(),
+        }
+    }
+
+    /// The row transforms of `input` into the row spectra.
+    pub(super) fn forward_rows(&mut self, plans: &mut Plans<T>, input: &[f64]) {
+        let rows = input.chunks_exact(self.nx);
+        for (row, out) in rows.zip(self.spectra.chunks_exact_mut(self.half)) {
+            // A row without load transforms to zero: the windowed solver's check applies
+            // a window's pressure on the whole grid, where most rows carry none.
+            if row.iter().all(|&v| v == 0.0) {
+                out.fill(Complex::default());
+                continue;
+            }
+            load_row(&mut self.row_real, row);
+            plans
+                .row_forward
+                .process_with_scratch(&mut self.row_real, out, &mut plans.real_scratch)
+                .expect("buffer lengths fixed at construction");
+        }
+    }
+
+    /// The column pass, [`BLOCK`] columns at a time: `each` gets every column's index and
+    /// its `2 ny` entries, transformed forward from the row spectra if `forward` (else as
+    /// the last block left them, for `each` to fill), and the inverse transform of what it
+    /// leaves goes back into the row spectra if `inverse`. The blocks are worked on in the
+    /// block buffer, or in place in `all` (every column, `stride` apart), which keeps them.
+    pub(super) fn columns(
+        &mut self,
+        plans: &mut Plans<T>,
+        transforms: Transforms,
+        mut all: Option<&mut [Complex<T>]>,
+        mut each: impl FnMut(usize, &mut [Complex<T>]),
+    ) {
+        let (ny, half, stride) = (self.ny, self.half, self.stride);
+        for k0 in (0..half).step_by(BLOCK) {
+            let width = BLOCK.min(half - k0);
+            let block = match all.as_deref_mut() {
+                Some(all) => &mut all[k0 * stride..][..width * stride],
+                None => &mut self.block[..width * stride],
+            };
+            if transforms.forward {
+                transpose(&self.spectra[k0..], half, (ny, width), block, stride);
+            }
+            for (j, column) in block.chunks_mut(stride).enumerate() {
+                let column = &mut column[..self.col_len];
+                if transforms.forward {
+                    column[ny..].fill(Complex::default());
+                    plans
+                        .col_forward
+                        .process_with_scratch(column, &mut plans.complex_scratch);
+                }
+                each(k0 + j, column);
+                if transforms.inverse {
+                    plans
+                        .col_inverse
+                        .process_with_scratch(column, &mut plans.complex_scratch);
+                }
+            }
+            if transforms.inverse {
+                transpose(block, stride, (width, ny), &mut self.spectra[k0..], half);
+            }
+        }
+    }
+
+    /// The inverse row transforms of the row spectra, each row `put` into `output`.
+    pub(super) fn inverse_rows(
+        &mut self,
+        plans: &mut Plans<T>,
+        output: &mut [f64],
+        put: fn(&mut [f64], &[T]),
+    ) {
+        let rows = self.spectra.chunks_exact_mut(self.half);
+        for (row, out) in rows.zip(output.chunks_exact_mut(self.nx)) {
+            inverse_row(plans, row, &mut self.row_real);
+            put(out, &self.row_real);
+        }
+    }
+}
