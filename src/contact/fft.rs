@@ -70,21 +70,24 @@ pub struct DcFft<T: Real = f64> {
     plans: Plans<T>,
     /// The kernel spectrum, transposed: entry `(kx, ky)` at `kx * stride + ky`.
     spectrum: Spectrum<T>,
-    /// The buffers of the passes on one thread (none when split).
-    passes: Passes<T>,
-    /// The columns of a split apply, in the spectrum's transposed layout (empty on one
-    /// thread).
-    columns: Vec<Complex<T>>,
+    /// Where the passes run: on one thread, or split across threads.
+    passes: Threads<T>,
     /// The preconditioner: the inverse of the normal kernel's periodic wrap.
     inverse: Option<FourierInverse<T>>,
-    /// The passes split across threads (`None`: one thread).
-    split: Option<Split<T>>,
     /// The kernel in real space, for updates at a few cells (`None` on large grids).
     sparse: Option<KernelRows>,
     /// The transform of the input of [`Operator::keep`] (empty until the first).
     kept: kept::Kept<T>,
     /// Whether every coefficient of the (summed) kernel is nonnegative.
     nonnegative: bool,
+}
+
+/// The passes of an apply and their buffers: on one thread ([`passes`]), or split across
+/// threads with the buffer of all the columns the split passes work in, in the spectrum's
+/// transposed layout.
+enum Threads<T: Real> {
+    One(Passes<T>),
+    Split(Split<T>, Vec<Complex<T>>),
 }
 
 /// The kernel spectrum, stored by what it can hold: real for an even kernel, imaginary for
@@ -173,10 +176,8 @@ impl<T: Real> DcFft<T> {
             half,
             plans: Plans::new(row_len, col_len),
             spectrum: Spectrum::Real(Vec::new()),
-            passes: Passes::new((nx, ny), stride),
-            columns: Vec::new(),
+            passes: Threads::One(Passes::new((nx, ny), stride)),
             inverse: None,
-            split: None,
             sparse: None,
             kept: kept::Kept::default(),
             nonnegative: false,
@@ -187,13 +188,11 @@ impl<T: Real> DcFft<T> {
     /// its preconditioner too where its transform, a quarter of the apply's, is long enough
     /// (`periodic_threads`).
     pub fn threaded(mut self, threads: usize) -> Self {
-        let row_len = 2 * self.nx;
-        self.split = (threads > 1).then(|| Split::new(threads, &self.plans, row_len, self.ny));
-        (self.passes, self.columns) = if self.split.is_some() {
-            let columns = vec![Complex::default(); self.half * self.stride];
-            (Passes::none(), columns)
+        self.passes = if threads > 1 {
+            let split = Split::new(threads, &self.plans, 2 * self.nx, self.ny);
+            Threads::Split(split, vec![Complex::default(); self.half * self.stride])
         } else {
-            (Passes::new((self.nx, self.ny), self.stride), Vec::new())
+            Threads::One(Passes::new((self.nx, self.ny), self.stride))
         };
         let inverse_threads = periodic_threads(threads, self.nx * self.ny);
         self.inverse = self
@@ -204,7 +203,10 @@ impl<T: Real> DcFft<T> {
 
     /// The threads an apply runs on.
     pub fn threads(&self) -> usize {
-        self.split.as_ref().map_or(1, Split::threads)
+        match &self.passes {
+            Threads::One(_) => 1,
+            Threads::Split(split, _) => split.threads(),
+        }
     }
 
     /// The transform of the sum of `kernels` arranged by wrap-around on the padded grid
@@ -276,25 +278,26 @@ impl<T: Real> Operator for DcFft<T> {
         let (nx, ny) = (self.nx, self.ny);
         assert_eq!(input.len(), nx * ny, "input does not match the grid");
         assert_eq!(output.len(), nx * ny, "output does not match the grid");
-        if let Some(split) = &mut self.split {
-            let (spectrum, stride) = (&self.spectrum, self.stride);
-            let product = |k: usize, column: &mut [Complex<T>]| {
-                multiply(spectrum, column, k * stride);
-            };
-            let shape = (nx, ny, self.col_len, stride);
-            split.apply(shape, &product, &mut self.columns, input, output);
-            return;
-        }
-        let (plans, spectrum, stride) = (&mut self.plans, &self.spectrum, self.stride);
-        self.passes.forward_rows(plans, input);
-        let both = Transforms {
-            forward: true,
-            inverse: true,
-        };
-        self.passes.columns(plans, both, None, |k, column| {
+        let (spectrum, stride) = (&self.spectrum, self.stride);
+        let product = |k: usize, column: &mut [Complex<T>]| {
             multiply(spectrum, column, k * stride);
-        });
-        self.passes.inverse_rows(plans, output, store_row);
+        };
+        match &mut self.passes {
+            Threads::Split(split, columns) => {
+                let shape = (nx, ny, self.col_len, stride);
+                split.apply(shape, &product, columns, input, output);
+            }
+            Threads::One(passes) => {
+                let plans = &mut self.plans;
+                passes.forward_rows(plans, input);
+                let both = Transforms {
+                    forward: true,
+                    inverse: true,
+                };
+                passes.columns(plans, both, None, product);
+                passes.inverse_rows(plans, output, store_row);
+            }
+        }
     }
 
     fn keep(&mut self, input: &[f64]) -> Option<f64> {

@@ -18,7 +18,7 @@
 
 use rustfft::num_complex::Complex;
 
-use super::{DcFft, Spectrum, Transforms, multiply};
+use super::{DcFft, Spectrum, Threads, Transforms, multiply};
 use crate::contact::transform::Real;
 
 impl<T: Real> DcFft<T> {
@@ -30,27 +30,29 @@ impl<T: Real> DcFft<T> {
             self.kept = Kept::of(&self.spectrum, (self.half, stride, col_len));
         }
         let mut quadratic = 0.0;
-        if let Some(split) = &mut self.split {
-            let weights = self.kept.weights.chunks_exact(stride);
-            let shape = (nx, ny, col_len, stride);
-            split.passes(shape, &|_, _| {}, &mut self.columns, Some(input), None);
-            // Column by column in order, as on one thread: the same sum to the bit.
-            for (column, weights) in self.columns.chunks_exact(stride).zip(weights) {
-                quadratic += weighted_power(&column[..col_len], &weights[..col_len]);
+        match &mut self.passes {
+            Threads::Split(split, columns) => {
+                let weights = self.kept.weights.chunks_exact(stride);
+                let shape = (nx, ny, col_len, stride);
+                split.passes(shape, &|_, _| {}, columns, Some(input), None);
+                // Column by column in order, as on one thread: the same sum to the bit.
+                for (column, weights) in columns.chunks_exact(stride).zip(weights) {
+                    quadratic += weighted_power(&column[..col_len], &weights[..col_len]);
+                }
+                std::mem::swap(columns, &mut self.kept.spectrum);
             }
-            std::mem::swap(&mut self.columns, &mut self.kept.spectrum);
-        } else {
-            self.passes.forward_rows(&mut self.plans, input);
-            let forward = Transforms {
-                forward: true,
-                inverse: false,
-            };
-            let (spectrum, weights) = (&mut self.kept.spectrum, &self.kept.weights);
-            self.passes
-                .columns(&mut self.plans, forward, Some(spectrum), |k, column| {
+            Threads::One(passes) => {
+                passes.forward_rows(&mut self.plans, input);
+                let forward = Transforms {
+                    forward: true,
+                    inverse: false,
+                };
+                let (spectrum, weights) = (&mut self.kept.spectrum, &self.kept.weights);
+                passes.columns(&mut self.plans, forward, Some(spectrum), |k, column| {
                     // Summed while the column is in the cache, in the order of the columns.
                     quadratic += weighted_power(column, &weights[k * stride..][..col_len]);
                 });
+            }
         }
         Some(quadratic)
     }
@@ -63,9 +65,6 @@ impl<T: Real> DcFft<T> {
         assert!(!self.kept.weights.is_empty(), "nothing kept");
         if let Some(extra) = extra {
             assert_eq!(extra.len(), output.len(), "input does not match the grid");
-            if self.split.is_none() {
-                self.passes.forward_rows(&mut self.plans, extra);
-            }
         }
         let (spectrum, kept) = (&self.spectrum, &self.kept.spectrum);
         let factor = T::narrow(scale);
@@ -81,24 +80,23 @@ impl<T: Real> DcFft<T> {
             }
             multiply(spectrum, column, k * stride);
         };
-        if let Some(split) = &mut self.split {
-            let shape = (nx, ny, col_len, stride);
-            split.passes(
-                shape,
-                &combine,
-                &mut self.columns,
-                extra,
-                Some((output, add_row)),
-            );
-            return;
+        match &mut self.passes {
+            Threads::Split(split, columns) => {
+                let shape = (nx, ny, col_len, stride);
+                split.passes(shape, &combine, columns, extra, Some((output, add_row)));
+            }
+            Threads::One(passes) => {
+                if let Some(extra) = extra {
+                    passes.forward_rows(&mut self.plans, extra);
+                }
+                let transforms = Transforms {
+                    forward: extra.is_some(),
+                    inverse: true,
+                };
+                passes.columns(&mut self.plans, transforms, None, combine);
+                passes.inverse_rows(&mut self.plans, output, add_row);
+            }
         }
-        let transforms = Transforms {
-            forward: extra.is_some(),
-            inverse: true,
-        };
-        self.passes
-            .columns(&mut self.plans, transforms, None, combine);
-        self.passes.inverse_rows(&mut self.plans, output, add_row);
     }
 }
 

@@ -60,20 +60,6 @@ impl<T: Real> Passes<T> {
         }
     }
 
-    /// No buffers: for an operator whose passes run split across threads instead.
-    pub(super) fn none() -> Self {
-        Self {
-            nx: 0,
-            ny: 0,
-            half: 0,
-            col_len: 0,
-            stride: 0,
-            spectra: Vec::new(),
-            block: Vec::new(),
-            row_real: Vec::new(),
-        }
-    }
-
     /// The row transforms of `input` into the row spectra.
     pub(super) fn forward_rows(&mut self, plans: &mut Plans<T>, input: &[f64]) {
         let rows = input.chunks_exact(self.nx);
