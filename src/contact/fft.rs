@@ -32,7 +32,7 @@ use super::influence::{Kernel, Symmetry, offset_index};
 use super::operator::{Operator, Preconditioner};
 use super::precondition::FourierInverse;
 use super::transform::{
-    Plans, Real, STRIDE_PAD, Split, load_row, periodic_threads, store_row, transpose,
+    Plans, Real, STRIDE_PAD, Split, forward_row, periodic_threads, store_row, transpose,
 };
 
 /// The smallest solver tolerance a run solves in single precision (`DcFft<f32>`) at: the
@@ -232,11 +232,7 @@ impl<T: Real> DcFft<T> {
                     add_wrapped_row(&mut row, kernel, dj, scale);
                 }
             }
-            load_row(&mut real, &row);
-            self.plans
-                .row_forward
-                .process_with_scratch(&mut real, out, &mut self.plans.real_scratch)
-                .expect("buffer lengths fixed at construction");
+            forward_row(&mut self.plans, &row, &mut real, out);
         }
         let mut columns = vec![Complex::default(); half * stride];
         transpose(&rows, half, (self.col_len, half), &mut columns, stride);

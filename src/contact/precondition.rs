@@ -20,7 +20,7 @@ use rustfft::num_complex::Complex;
 use super::influence::Kernel;
 use super::operator::{NEAR_REACH, Preconditioner};
 use super::transform::{
-    BLOCK, Plans, Real, STRIDE_PAD, Split, inverse_row, load_row, store_row, transpose,
+    BLOCK, Plans, Real, STRIDE_PAD, Split, forward_row, inverse_row, store_row, transpose,
 };
 
 /// The inverse of a kernel's periodic wrap on its own grid, its transforms computed in `T`.
@@ -185,15 +185,9 @@ impl<T: Real> FourierInverse<T> {
             let rows = BLOCK.min(ny - first);
             for slot in 0..rows {
                 let iy = first + slot;
-                load_row(&mut self.row_real, &input[iy * nx..(iy + 1) * nx]);
-                self.plans
-                    .row_forward
-                    .process_with_scratch(
-                        &mut self.row_real,
-                        &mut self.row_block[slot * half..(slot + 1) * half],
-                        &mut self.plans.real_scratch,
-                    )
-                    .expect("buffer lengths fixed at construction");
+                let row = &input[iy * nx..(iy + 1) * nx];
+                let out = &mut self.row_block[slot * half..(slot + 1) * half];
+                forward_row(&mut self.plans, row, &mut self.row_real, out);
             }
             let columns = &mut self.columns[first..];
             transpose(&self.row_block, half, (rows, half), columns, stride);

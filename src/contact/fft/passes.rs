@@ -16,7 +16,7 @@
 
 use rustfft::num_complex::Complex;
 
-use crate::contact::transform::{BLOCK, Plans, Real, inverse_row, load_row, transpose};
+use crate::contact::transform::{BLOCK, Plans, Real, forward_row, inverse_row, transpose};
 
 /// The sizes of a one-thread apply and the buffers it works in.
 pub(super) struct Passes<T> {
@@ -64,17 +64,7 @@ impl<T: Real> Passes<T> {
     pub(super) fn forward_rows(&mut self, plans: &mut Plans<T>, input: &[f64]) {
         let rows = input.chunks_exact(self.nx);
         for (row, out) in rows.zip(self.spectra.chunks_exact_mut(self.half)) {
-            // A row without load transforms to zero: the windowed solver's check applies
-            // a window's pressure on the whole grid, where most rows carry none.
-            if row.iter().all(|&v| v == 0.0) {
-                out.fill(Complex::default());
-                continue;
-            }
-            load_row(&mut self.row_real, row);
-            plans
-                .row_forward
-                .process_with_scratch(&mut self.row_real, out, &mut plans.real_scratch)
-                .expect("buffer lengths fixed at construction");
+            forward_row(plans, row, &mut self.row_real, out);
         }
     }
 

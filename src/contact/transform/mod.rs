@@ -70,8 +70,29 @@ pub(crate) fn inverse_row<T: Real>(plans: &mut Plans<T>, row: &mut [Complex<T>],
         .expect("imaginary parts of DC and Nyquist zeroed above");
 }
 
+/// The real-to-complex transform of `row`, zero-padded to the length of `padded` (its work
+/// buffer) in its precision, into `out`. A row without load transforms to zero and is not
+/// transformed: the windowed solver's check applies a window's pressure on the whole grid,
+/// where most rows carry none, and the preconditioner's input is zero off the free cells.
+pub(crate) fn forward_row<T: Real>(
+    plans: &mut Plans<T>,
+    row: &[f64],
+    padded: &mut [T],
+    out: &mut [Complex<T>],
+) {
+    if row.iter().all(|&v| v == 0.0) {
+        out.fill(Complex::default());
+        return;
+    }
+    load_row(padded, row);
+    plans
+        .row_forward
+        .process_with_scratch(padded, out, &mut plans.real_scratch)
+        .expect("buffer lengths fixed at construction");
+}
+
 /// `row` into the start of `padded` in its precision, the rest of `padded` zero.
-pub(crate) fn load_row<T: Real>(padded: &mut [T], row: &[f64]) {
+fn load_row<T: Real>(padded: &mut [T], row: &[f64]) {
     let (head, tail) = padded.split_at_mut(row.len());
     head.iter_mut()
         .zip(row)

@@ -20,7 +20,7 @@ use std::num::NonZeroUsize;
 
 use rustfft::num_complex::Complex;
 
-use super::{BLOCK, Plans, Real, inverse_row, load_row, store_row, transpose};
+use super::{BLOCK, Plans, Real, forward_row, inverse_row, store_row, transpose};
 
 /// The most threads an apply may be split across (the bound of the scene's
 /// `numerics.threads`).
@@ -232,11 +232,7 @@ impl<T: Real> Worker<T> {
             .chunks_exact(nx)
             .zip(spectra.chunks_exact_mut(shape.half))
         {
-            load_row(&mut self.row_real, row);
-            self.plans
-                .row_forward
-                .process_with_scratch(&mut self.row_real, out, &mut self.plans.real_scratch)
-                .expect("buffer lengths fixed at construction");
+            forward_row(&mut self.plans, row, &mut self.row_real, out);
         }
     }
 
