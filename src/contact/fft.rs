@@ -10,8 +10,8 @@
 //!   FFT, one after the other while the column is still in the L1 cache;
 //! - complex-to-real FFTs on the `ny` rows whose output is kept.
 //!
-//! On one thread the passes run as [`passes`] lays out; split across threads, as
-//! [`super::transform`]'s `Split` does.
+//! The passes run on one thread or split across threads, as [`super::transform`]'s
+//! `Threads` lays them out.
 //!
 //! The kernel spectrum is computed once per operator and includes the `1 / (4 nx ny)`
 //! normalisation. Arranged by wrap-around, an even kernel is a real even sequence, so its
@@ -21,18 +21,17 @@
 //! per apply.
 
 mod kept;
-mod passes;
 mod sparse;
 
 use rustfft::num_complex::Complex;
 
-use self::passes::{Passes, Transforms};
 use self::sparse::KernelRows;
 use super::influence::{Kernel, Symmetry, offset_index};
 use super::operator::{Operator, Preconditioner};
 use super::precondition::FourierInverse;
 use super::transform::{
-    Plans, Real, STRIDE_PAD, Split, forward_row, periodic_threads, store_row, transpose,
+    Plans, Real, STRIDE_PAD, Threads, Transforms, forward_row, periodic_threads, store_row,
+    transpose,
 };
 
 /// The smallest solver tolerance a run solves in single precision (`DcFft<f32>`) at: the
@@ -80,14 +79,6 @@ pub struct DcFft<T: Real = f64> {
     kept: kept::Kept<T>,
     /// Whether every coefficient of the (summed) kernel is nonnegative.
     nonnegative: bool,
-}
-
-/// The passes of an apply and their buffers: on one thread ([`passes`]), or split across
-/// threads with the buffer of all the columns the split passes work in, in the spectrum's
-/// transposed layout.
-enum Threads<T: Real> {
-    One(Passes<T>),
-    Split(Split<T>, Vec<Complex<T>>),
 }
 
 /// The kernel spectrum, stored by what it can hold: real for an even kernel, imaginary for
@@ -168,15 +159,16 @@ impl<T: Real> DcFft<T> {
     fn planned((nx, ny): (usize, usize)) -> Self {
         let (row_len, col_len, half) = (2 * nx, 2 * ny, nx + 1);
         let stride = col_len + STRIDE_PAD;
+        let plans = Plans::new(row_len, col_len);
         Self {
             nx,
             ny,
             col_len,
             stride,
             half,
-            plans: Plans::new(row_len, col_len),
+            passes: Threads::new((nx, ny), (row_len, col_len), &plans, 1),
+            plans,
             spectrum: Spectrum::Real(Vec::new()),
-            passes: Threads::One(Passes::new((nx, ny), stride)),
             inverse: None,
             sparse: None,
             kept: kept::Kept::default(),
@@ -188,12 +180,8 @@ impl<T: Real> DcFft<T> {
     /// its preconditioner too where its transform, a quarter of the apply's, is long enough
     /// (`periodic_threads`).
     pub fn threaded(mut self, threads: usize) -> Self {
-        self.passes = if threads > 1 {
-            let split = Split::new(threads, &self.plans, 2 * self.nx, self.ny);
-            Threads::Split(split, vec![Complex::default(); self.half * self.stride])
-        } else {
-            Threads::One(Passes::new((self.nx, self.ny), self.stride))
-        };
+        let (shape, lengths) = ((self.nx, self.ny), (2 * self.nx, self.col_len));
+        self.passes = Threads::new(shape, lengths, &self.plans, threads);
         let inverse_threads = periodic_threads(threads, self.nx * self.ny);
         self.inverse = self
             .inverse
@@ -203,10 +191,7 @@ impl<T: Real> DcFft<T> {
 
     /// The threads an apply runs on.
     pub fn threads(&self) -> usize {
-        match &self.passes {
-            Threads::One(_) => 1,
-            Threads::Split(split, _) => split.threads(),
-        }
+        self.passes.threads()
     }
 
     /// The transform of the sum of `kernels` arranged by wrap-around on the padded grid

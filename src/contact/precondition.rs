@@ -19,30 +19,17 @@ use rustfft::num_complex::Complex;
 
 use super::influence::Kernel;
 use super::operator::{NEAR_REACH, Preconditioner};
-use super::transform::{
-    BLOCK, Plans, Real, STRIDE_PAD, Split, forward_row, inverse_row, store_row, transpose,
-};
+use super::transform::{Passes, Plans, Real, STRIDE_PAD, Threads, Transforms, store_row};
 
 /// The inverse of a kernel's periodic wrap on its own grid, its transforms computed in `T`.
 pub struct FourierInverse<T: Real = f64> {
     nx: usize,
     ny: usize,
-    /// Half-spectrum row length `nx / 2 + 1`.
-    half: usize,
-    /// Distance between column starts in `columns`, `ny + STRIDE_PAD`.
-    stride: usize,
     plans: Plans<T>,
     /// `1 / (nx ny K_hat)`, column-major: entry `(kx, ky)` at `kx * ny + ky`.
     inverse_symbol: Vec<T>,
-    /// Work buffer, column-major: entry `(kx, ky)` at `kx * stride + ky`.
-    columns: Vec<Complex<T>>,
-    row_real: Vec<T>,
-    /// The spectra of [`BLOCK`] rows, moved to and from `columns` together so that each
-    /// transposed access touches `BLOCK` consecutive entries (as the DC-FFT operator does;
-    /// at N = 2048 one entry per access made a periodic apply twice as slow per cell).
-    row_block: Vec<Complex<T>>,
-    /// The passes split across threads (`None`: one thread).
-    split: Option<Split<T>>,
+    /// Where the passes run: on one thread, or split across threads.
+    passes: Threads<T>,
     /// [`Preconditioner::near_field`].
     near: Vec<f64>,
 }
@@ -81,8 +68,11 @@ impl<T: Real> FourierInverse<T> {
         let wrapped: Vec<f64> = (0..nx * ny)
             .map(|i| kernel.value(wrapped_offset(i % nx, nx), wrapped_offset(i / nx, ny)))
             .collect();
-        inverse.forward(&wrapped);
-        let symbol: Vec<f64> = inverse.spectrum().map(|c| c.re.widen()).collect();
+        let symbol: Vec<f64> = inverse
+            .spectrum(&wrapped)
+            .iter()
+            .map(|c| c.re.widen())
+            .collect();
         let floor = symbol
             .iter()
             .skip(1)
@@ -142,19 +132,13 @@ impl<T: Real> FourierInverse<T> {
 
     /// The buffers of an `nx` x `ny` grid around `inverse_symbol`.
     fn with_symbol(nx: usize, ny: usize, inverse_symbol: Vec<T>) -> Self {
-        let half = nx / 2 + 1;
-        let stride = ny + STRIDE_PAD;
+        let plans = Plans::new(nx, ny);
         Self {
             nx,
             ny,
-            half,
-            stride,
-            plans: Plans::new(nx, ny),
+            passes: Threads::new((nx, ny), (nx, ny), &plans, 1),
+            plans,
             inverse_symbol,
-            columns: vec![Complex::default(); half * stride],
-            row_real: vec![T::default(); nx],
-            row_block: vec![Complex::default(); BLOCK * half],
-            split: None,
             near: Vec::new(),
         }
     }
@@ -162,41 +146,30 @@ impl<T: Real> FourierInverse<T> {
     /// The same transform applying on `threads` threads (1: on the caller's thread alone),
     /// split as the DC-FFT apply is ([`super::DcFft::threaded`]), equal to the last bit.
     pub(crate) fn threaded(mut self, threads: usize) -> Self {
-        self.split = (threads > 1).then(|| Split::new(threads, &self.plans, self.nx, self.ny));
+        let shape = (self.nx, self.ny);
+        self.passes = Threads::new(shape, shape, &self.plans, threads);
         self
     }
 
     /// The threads an apply runs on.
     pub(crate) fn threads(&self) -> usize {
-        self.split.as_ref().map_or(1, Split::threads)
+        self.passes.threads()
     }
 
-    /// The spectrum in `columns`, column by column without the padding.
-    fn spectrum(&self) -> impl Iterator<Item = &Complex<T>> {
-        self.columns
-            .chunks_exact(self.stride)
-            .flat_map(|column| &column[..self.ny])
-    }
-
-    /// Row transforms then column transforms of `input` into `self.columns`.
-    fn forward(&mut self, input: &[f64]) {
-        let (nx, ny, half, stride) = (self.nx, self.ny, self.half, self.stride);
-        for first in (0..ny).step_by(BLOCK) {
-            let rows = BLOCK.min(ny - first);
-            for slot in 0..rows {
-                let iy = first + slot;
-                let row = &input[iy * nx..(iy + 1) * nx];
-                let out = &mut self.row_block[slot * half..(slot + 1) * half];
-                forward_row(&mut self.plans, row, &mut self.row_real, out);
-            }
-            let columns = &mut self.columns[first..];
-            transpose(&self.row_block, half, (rows, half), columns, stride);
-        }
-        for column in self.columns.chunks_exact_mut(stride) {
-            self.plans
-                .col_forward
-                .process_with_scratch(&mut column[..ny], &mut self.plans.complex_scratch);
-        }
+    /// The transform of `input`, column by column (`kx` major, as the symbol is stored).
+    fn spectrum(&mut self, input: &[f64]) -> Vec<Complex<T>> {
+        let shape = (self.nx, self.ny);
+        let mut passes = Passes::new(shape, shape);
+        passes.forward_rows(&mut self.plans, input);
+        let forward = Transforms {
+            forward: true,
+            inverse: false,
+        };
+        let mut spectrum = Vec::with_capacity((self.nx / 2 + 1) * self.ny);
+        passes.columns(&mut self.plans, forward, None, |_, column| {
+            spectrum.extend_from_slice(column);
+        });
+        spectrum
     }
 }
 
@@ -221,45 +194,27 @@ impl<T: Real> Preconditioner for FourierInverse<T> {
 
     /// `output = M^-1 input`: the inverse of the wrapped kernel, without its mean.
     fn apply(&mut self, input: &[f64], output: &mut [f64]) {
-        let (nx, ny, half, stride) = (self.nx, self.ny, self.half, self.stride);
+        let (nx, ny) = (self.nx, self.ny);
         assert_eq!(input.len(), nx * ny, "input does not match the grid");
         assert_eq!(output.len(), nx * ny, "output does not match the grid");
-        if let Some(split) = &mut self.split {
-            let symbol = &self.inverse_symbol;
-            let product = |k: usize, column: &mut [Complex<T>]| {
-                let symbol = &symbol[k * ny..(k + 1) * ny];
-                column.iter_mut().zip(symbol).for_each(|(c, &s)| *c *= s);
-            };
-            split.apply(
-                (nx, ny, ny, stride),
-                &product,
-                &mut self.columns,
-                input,
-                output,
-            );
-            return;
-        }
-        self.forward(input);
-        for (column, symbol) in self
-            .columns
-            .chunks_exact_mut(stride)
-            .zip(self.inverse_symbol.chunks_exact(ny))
-        {
-            let column = &mut column[..ny];
+        let symbol = &self.inverse_symbol;
+        let product = |k: usize, column: &mut [Complex<T>]| {
+            let symbol = &symbol[k * ny..(k + 1) * ny];
             column.iter_mut().zip(symbol).for_each(|(c, &s)| *c *= s);
-            self.plans
-                .col_inverse
-                .process_with_scratch(column, &mut self.plans.complex_scratch);
-        }
-        for first in (0..ny).step_by(BLOCK) {
-            let rows = BLOCK.min(ny - first);
-            let columns = &self.columns[first..];
-            transpose(columns, stride, (half, rows), &mut self.row_block, half);
-            for slot in 0..rows {
-                let spectrum = &mut self.row_block[slot * half..(slot + 1) * half];
-                let iy = first + slot;
-                inverse_row(&mut self.plans, spectrum, &mut self.row_real);
-                store_row(&mut output[iy * nx..(iy + 1) * nx], &self.row_real);
+        };
+        match &mut self.passes {
+            Threads::Split(split, columns) => {
+                let shape = (nx, ny, ny, ny + STRIDE_PAD);
+                split.apply(shape, &product, columns, input, output);
+            }
+            Threads::One(passes) => {
+                passes.forward_rows(&mut self.plans, input);
+                let both = Transforms {
+                    forward: true,
+                    inverse: true,
+                };
+                passes.columns(&mut self.plans, both, None, product);
+                passes.inverse_rows(&mut self.plans, output, store_row);
             }
         }
     }
@@ -433,8 +388,13 @@ mod tests {
             let wrapped: Vec<f64> = (0..nx * ny)
                 .map(|i| k.value(wrapped_offset(i % nx, nx), wrapped_offset(i / nx, ny)))
                 .collect();
-            inverse.forward(&wrapped);
-            assert!(inverse.spectrum().skip(1).all(|c| c.re > 0.0));
+            assert!(
+                inverse
+                    .spectrum(&wrapped)
+                    .iter()
+                    .skip(1)
+                    .all(|c| c.re > 0.0)
+            );
         }
     }
 }

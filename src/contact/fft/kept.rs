@@ -18,8 +18,8 @@
 
 use rustfft::num_complex::Complex;
 
-use super::{DcFft, Spectrum, Threads, Transforms, multiply};
-use crate::contact::transform::Real;
+use super::{DcFft, Spectrum, multiply};
+use crate::contact::transform::{Real, Threads, Transforms};
 
 impl<T: Real> DcFft<T> {
     /// Transforms `input` and keeps its spectrum; returns `input . K input`.

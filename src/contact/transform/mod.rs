@@ -2,19 +2,22 @@
 //! ([`super::FourierInverse`]) and the benchmark's FFT pair share: the planned transforms
 //! ([`Plans`]), the transposed layout they move rows and columns through (blocks of
 //! [`BLOCK`] rows or columns, columns [`STRIDE_PAD`] entries apart beyond their length), the
-//! inverse row transform, and the passes split across threads ([`Split`]) with the thread
-//! counts that choose them. It knows neither operator, so both use it without using each other.
+//! row transforms, and the passes of a convolution on one thread ([`Passes`]) or split across
+//! threads ([`Split`]), held as [`Threads`], with the thread counts that choose them. It
+//! knows neither operator, so both use it without using each other.
 //!
 //! Rows (or columns) move between the row and the column layouts in blocks of [`BLOCK`], so
 //! each transposed write touches `BLOCK` consecutive entries instead of one. Columns are
 //! [`STRIDE_PAD`] entries longer than the transform: a power-of-two stride maps every
 //! column start to the same cache sets, which made the transposes several times slower.
 
+mod passes;
 mod plans;
 mod split;
 
 use rustfft::num_complex::Complex;
 
+pub(crate) use passes::{Passes, Threads, Transforms};
 pub(crate) use plans::Plans;
 pub use plans::fft_friendly;
 pub use split::{MAX_SPLIT_THREADS, SPLIT_MIN_CELLS, split_threads};

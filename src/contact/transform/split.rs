@@ -12,7 +12,7 @@
 //! The row spectra go through a row-major buffer (`spectra`, `ny` x `nx + 1` complex
 //! values) between the forward row pass and the column pass, 16 bytes per cell (8 in f32),
 //! and the columns stay in a buffer of all of them for the inverse row pass. The one-thread
-//! passes of the DC-FFT operator bring each block of columns back into the row spectra
+//! passes ([`super::Passes`]) bring each block of columns back into the row spectra
 //! instead; split, a thread's block of columns spans every row, not a contiguous slice of
 //! the row spectra that the thread could own.
 

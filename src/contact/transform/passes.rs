@@ -1,13 +1,17 @@
-//! The passes of an apply on one thread, and the buffers they work in.
+//! The passes of a 2D FFT convolution on one thread, and the buffers they work in, for the
+//! DC-FFT operator (rows and columns zero-padded to twice the grid) and the periodic
+//! [`crate::contact::FourierInverse`] (no padding). How they run on several threads:
+//! [`super::Split`]; which of the two an operator runs: [`Threads`].
 //!
-//! The row transforms go into the row spectra, a row-major buffer of `ny` rows of `nx + 1`
-//! bins. The columns are gathered from it [`BLOCK`] at a time into a block of columns
-//! `stride` apart, zero-padded to `2 ny`, transformed, multiplied by the kernel's spectrum
-//! and transformed back, and the first `ny` entries of each (the rows whose output is kept)
-//! are scattered back to where they came from. The inverse row transforms then read the row
-//! spectra again.
+//! The row transforms go into the row spectra, a row-major buffer of `ny` rows of
+//! `row_len / 2 + 1` bins. The columns are gathered from it [`BLOCK`] at a time into a block
+//! of columns `stride` apart, zero-padded to `col_len`, transformed, multiplied by the
+//! kernel's spectrum and transformed back, and the first `ny` entries of each (the rows
+//! whose output is kept) are scattered back to where they came from. The inverse row
+//! transforms then read the row spectra again.
 //!
-//! Why the row spectra and not a buffer of all the padded columns: they take half its
+//! Why the row spectra and not a buffer of all the padded columns (for the DC-FFT
+//! operator): they take half its
 //! memory, so on a rough disc's windows they stay in the core's 1 MB of L2 where all the
 //! columns would not (a 288-cell window: 0.67 MB of row spectra against 1.35 MB of padded
 //! columns 584 apart, `Complex<f32>`), and each column's zero half is filled in the block
@@ -17,15 +21,53 @@
 
 use rustfft::num_complex::Complex;
 
-use crate::contact::transform::{BLOCK, Plans, Real, forward_row, inverse_row, transpose};
+use super::{BLOCK, Plans, Real, STRIDE_PAD, Split, forward_row, inverse_row, transpose};
+
+/// Where an operator's passes run, with their buffers: on one thread, or split across
+/// threads with the buffer of all the columns the split passes work in, `stride` apart.
+pub(crate) enum Threads<T: Real> {
+    One(Passes<T>),
+    Split(Split<T>, Vec<Complex<T>>),
+}
+
+impl<T: Real> Threads<T> {
+    /// The passes of an `nx` x `ny` grid transformed at `row_len` x `col_len` (the grid's
+    /// size, or more when zero-padded), with `plans` planned at those lengths, on `threads`
+    /// threads.
+    pub(crate) fn new(
+        (nx, ny): (usize, usize),
+        (row_len, col_len): (usize, usize),
+        plans: &Plans<T>,
+        threads: usize,
+    ) -> Self {
+        if threads > 1 {
+            let half = row_len / 2 + 1;
+            let split = Split::new(threads, plans, row_len, ny);
+            Self::Split(
+                split,
+                vec![Complex::default(); half * (col_len + STRIDE_PAD)],
+            )
+        } else {
+            Self::One(Passes::new((nx, ny), (row_len, col_len)))
+        }
+    }
+
+    /// The number of threads.
+    pub(crate) fn threads(&self) -> usize {
+        match self {
+            Self::One(_) => 1,
+            Self::Split(split, _) => split.threads(),
+        }
+    }
+}
 
 /// The sizes of a one-thread apply and the buffers it works in.
-pub(super) struct Passes<T> {
+pub(crate) struct Passes<T> {
     nx: usize,
     ny: usize,
-    /// Half-spectrum row length `nx + 1`.
+    /// Half-spectrum row length `row_len / 2 + 1`.
     half: usize,
-    /// Padded column length `2 ny`.
+    /// Column length, `ny` or more when zero-padded.
     col_len: usize,
     /// Distance between column starts in the block, `col_len + STRIDE_PAD`.
     stride: usize,
@@ -40,29 +82,29 @@ pub(super) struct Passes<T> {
 /// Which transforms of the column pass run: the forward one (the columns gathered from the
 /// row spectra first), and the inverse one (the columns scattered back after).
 #[derive(Clone, Copy)]
-pub(super) struct Transforms {
-    pub(super) forward: bool,
-    pub(super) inverse: bool,
+pub(crate) struct Transforms {
+    pub(crate) forward: bool,
+    pub(crate) inverse: bool,
 }
 
 impl<T: Real> Passes<T> {
-    /// Buffers for an `nx` x `ny` grid whose columns are `stride` apart in a block.
-    pub(super) fn new((nx, ny): (usize, usize), stride: usize) -> Self {
-        let half = nx + 1;
+    /// Buffers for an `nx` x `ny` grid transformed at `row_len` x `col_len`.
+    pub(crate) fn new((nx, ny): (usize, usize), (row_len, col_len): (usize, usize)) -> Self {
+        let (half, stride) = (row_len / 2 + 1, col_len + STRIDE_PAD);
         Self {
             nx,
             ny,
             half,
-            col_len: 2 * ny,
+            col_len,
             stride,
             spectra: vec![Complex::default(); ny * half],
             block: vec![Complex::default(); BLOCK * stride],
-            row_real: vec![T::default(); 2 * nx],
+            row_real: vec![T::default(); row_len],
         }
     }
 
     /// The row transforms of `input` into the row spectra.
-    pub(super) fn forward_rows(&mut self, plans: &mut Plans<T>, input: &[f64]) {
+    pub(crate) fn forward_rows(&mut self, plans: &mut Plans<T>, input: &[f64]) {
         let rows = input.chunks_exact(self.nx);
         for (row, out) in rows.zip(self.spectra.chunks_exact_mut(self.half)) {
             forward_row(plans, row, &mut self.row_real, out);
@@ -70,11 +112,11 @@ impl<T: Real> Passes<T> {
     }
 
     /// The column pass, [`BLOCK`] columns at a time: `each` gets every column's index and
-    /// its `2 ny` entries, transformed forward from the row spectra if `forward` (else as
+    /// its `col_len` entries, transformed forward from the row spectra if `forward` (else as
     /// the last block left them, for `each` to fill), and the inverse transform of what it
     /// leaves goes back into the row spectra if `inverse`. The blocks are worked on in the
     /// block buffer, or in place in `all` (every column, `stride` apart), which keeps them.
-    pub(super) fn columns(
+    pub(crate) fn columns(
         &mut self,
         plans: &mut Plans<T>,
         transforms: Transforms,
@@ -113,7 +155,7 @@ impl<T: Real> Passes<T> {
     }
 
     /// The inverse row transforms of the row spectra, each row `put` into `output`.
-    pub(super) fn inverse_rows(
+    pub(crate) fn inverse_rows(
         &mut self,
         plans: &mut Plans<T>,
         output: &mut [f64],
