@@ -5,7 +5,7 @@
 
 use rustfft::num_complex::Complex;
 
-use crate::contact::{BLOCK, Plans, STRIDE_PAD, transpose};
+use crate::contact::{BLOCK, Plans, column_stride, transpose};
 
 /// A planned padded FFT round trip for an `N x N` grid.
 pub struct FftPair {
@@ -22,7 +22,7 @@ impl FftPair {
     /// Plans the transforms of the `2n x 2n` padded grid.
     pub fn new(n: usize) -> Self {
         let (len, half) = (2 * n, n + 1);
-        let stride = len + STRIDE_PAD;
+        let stride = column_stride(len);
         Self {
             len,
             half,

@@ -30,7 +30,7 @@ use super::influence::{Kernel, Symmetry, offset_index};
 use super::operator::{Operator, Preconditioner};
 use super::precondition::FourierInverse;
 use super::transform::{
-    Plans, Real, STRIDE_PAD, Threads, Transforms, forward_row, periodic_threads, store_row,
+    Plans, Real, Threads, Transforms, column_stride, forward_row, periodic_threads, store_row,
     transpose,
 };
 
@@ -62,7 +62,7 @@ pub struct DcFft<T: Real = f64> {
     ny: usize,
     /// Padded column length `2 ny`.
     col_len: usize,
-    /// Distance between column starts in the transposed buffers, `col_len + STRIDE_PAD`.
+    /// Distance between column starts in the transposed buffers ([`column_stride`]).
     stride: usize,
     /// Half-spectrum row length `nx + 1`.
     half: usize,
@@ -158,7 +158,7 @@ impl<T: Real> DcFft<T> {
 
     fn planned((nx, ny): (usize, usize)) -> Self {
         let (row_len, col_len, half) = (2 * nx, 2 * ny, nx + 1);
-        let stride = col_len + STRIDE_PAD;
+        let stride = column_stride(col_len);
         let plans = Plans::new(row_len, col_len);
         Self {
             nx,

@@ -19,7 +19,7 @@ use rustfft::num_complex::Complex;
 
 use super::influence::Kernel;
 use super::operator::{NEAR_REACH, Preconditioner};
-use super::transform::{Passes, Plans, Real, STRIDE_PAD, Threads, Transforms, store_row};
+use super::transform::{Passes, Plans, Real, Threads, Transforms, column_stride, store_row};
 
 /// The inverse of a kernel's periodic wrap on its own grid, its transforms computed in `T`.
 pub struct FourierInverse<T: Real = f64> {
@@ -204,7 +204,7 @@ impl<T: Real> Preconditioner for FourierInverse<T> {
         };
         match &mut self.passes {
             Threads::Split(split, columns) => {
-                let shape = (nx, ny, ny, ny + STRIDE_PAD);
+                let shape = (nx, ny, ny, column_stride(ny));
                 split.apply(shape, &product, columns, input, output);
             }
             Threads::One(passes) => {

@@ -55,7 +55,13 @@ impl Real for f32 {
 pub(crate) const BLOCK: usize = 16;
 
 /// Padding of the column stride, in complex entries (128 bytes).
-pub(crate) const STRIDE_PAD: usize = 8;
+const STRIDE_PAD: usize = 8;
+
+/// The distance between column starts of columns `col_len` long in a transposed buffer:
+/// [`STRIDE_PAD`] entries beyond their length.
+pub(crate) const fn column_stride(col_len: usize) -> usize {
+    col_len + STRIDE_PAD
+}
 
 /// The complex-to-real transform of one row's half spectrum `row` into `real`.
 pub(crate) fn inverse_row<T: Real>(plans: &mut Plans<T>, row: &mut [Complex<T>], real: &mut [T]) {

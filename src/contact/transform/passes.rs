@@ -11,17 +11,16 @@
 //! transforms then read the row spectra again.
 //!
 //! Why the row spectra and not a buffer of all the padded columns (for the DC-FFT
-//! operator): they take half its
-//! memory, so on a rough disc's windows they stay in the core's 1 MB of L2 where all the
-//! columns would not (a 288-cell window: 0.67 MB of row spectra against 1.35 MB of padded
-//! columns 584 apart, `Complex<f32>`), and each column's zero half is filled in the block
-//! of 16 columns (75 KB at that size). The 4 um rough disc took 0.891 of the CPU time of the buffer of all the
-//! columns, with the same results to the bit (`docs/accuracy.md`, "The columns a block at a
-//! time, through the row spectra").
+//! operator): they take half its memory, so on a rough disc's windows they stay in the
+//! core's 1 MB of L2 where all the columns would not (a 288-cell window: 0.67 MB of row
+//! spectra against 1.35 MB of padded columns 584 apart, `Complex<f32>`), and each column's
+//! zero half is filled in the block of 16 columns (75 KB at that size). The 4 um rough disc
+//! took 0.891 of the CPU time of the buffer of all the columns, with the same results to
+//! the bit (`docs/accuracy.md`, "The columns a block at a time, through the row spectra").
 
 use rustfft::num_complex::Complex;
 
-use super::{BLOCK, Plans, Real, STRIDE_PAD, Split, forward_row, inverse_row, transpose};
+use super::{BLOCK, Plans, Real, Split, column_stride, forward_row, inverse_row, transpose};
 
 /// Where an operator's passes run, with their buffers: on one thread, or split across
 /// threads with the buffer of all the columns the split passes work in, `stride` apart.
@@ -45,7 +44,7 @@ impl<T: Real> Threads<T> {
             let split = Split::new(threads, plans, row_len, ny);
             Self::Split(
                 split,
-                vec![Complex::default(); half * (col_len + STRIDE_PAD)],
+                vec![Complex::default(); half * column_stride(col_len)],
             )
         } else {
             Self::One(Passes::new((nx, ny), (row_len, col_len)))
@@ -69,7 +68,7 @@ pub(crate) struct Passes<T> {
     half: usize,
     /// Column length, `ny` or more when zero-padded.
     col_len: usize,
-    /// Distance between column starts in the block, `col_len + STRIDE_PAD`.
+    /// Distance between column starts in the block ([`column_stride`]).
     stride: usize,
     /// The row transforms, row-major: `ny` rows of `half` bins.
     spectra: Vec<Complex<T>>,
@@ -90,7 +89,7 @@ pub(crate) struct Transforms {
 impl<T: Real> Passes<T> {
     /// Buffers for an `nx` x `ny` grid transformed at `row_len` x `col_len`.
     pub(crate) fn new((nx, ny): (usize, usize), (row_len, col_len): (usize, usize)) -> Self {
-        let (half, stride) = (row_len / 2 + 1, col_len + STRIDE_PAD);
+        let (half, stride) = (row_len / 2 + 1, column_stride(col_len));
         Self {
             nx,
             ny,
