@@ -5,7 +5,7 @@
 
 use rustfft::num_complex::Complex;
 
-use crate::contact::{BLOCK, Plans, column_stride, transpose};
+use crate::contact::{BLOCK, Plans, column_stride, each_value, pack, packed_len, transpose};
 
 /// A planned padded FFT round trip for an `N x N` grid.
 pub struct FftPair {
@@ -14,6 +14,8 @@ pub struct FftPair {
     stride: usize,
     plans: Plans,
     data: Vec<f64>,
+    /// One row held in pairs.
+    packed: Vec<Complex<f64>>,
     block: Vec<Complex<f64>>,
     columns: Vec<Complex<f64>>,
 }
@@ -29,6 +31,7 @@ impl FftPair {
             stride,
             plans: Plans::new(len, len),
             data: (0..len * len).map(|i| (i % 17) as f64).collect(),
+            packed: vec![Complex::default(); packed_len(len)],
             block: vec![Complex::default(); BLOCK * half],
             columns: vec![Complex::default(); half * stride],
         }
@@ -39,12 +42,10 @@ impl FftPair {
         let (len, half, stride) = (self.len, self.half, self.stride);
         for first in (0..len).step_by(BLOCK) {
             for slot in 0..BLOCK {
-                let row = &mut self.data[(first + slot) * len..][..len];
+                pack(&self.data[(first + slot) * len..][..len], &mut self.packed);
                 let out = &mut self.block[slot * half..][..half];
-                self.plans
-                    .row_forward
-                    .process_with_scratch(row, out, &mut self.plans.real_scratch)
-                    .expect("lengths fixed at construction");
+                let scratch = &mut self.plans.row_scratch;
+                self.plans.rows.forward(&mut self.packed, out, scratch);
             }
             let columns = &mut self.columns[first..];
             transpose(&self.block, half, (BLOCK, half), columns, stride);
@@ -63,13 +64,10 @@ impl FftPair {
             transpose(columns, stride, (half, BLOCK), &mut self.block, half);
             for slot in 0..BLOCK {
                 let spectrum = &mut self.block[slot * half..][..half];
-                spectrum[0].im = 0.0;
-                spectrum[half - 1].im = 0.0;
+                let scratch = &mut self.plans.row_scratch;
+                self.plans.rows.inverse(spectrum, &mut self.packed, scratch);
                 let row = &mut self.data[(first + slot) * len..][..len];
-                self.plans
-                    .row_inverse
-                    .process_with_scratch(spectrum, row, &mut self.plans.real_scratch)
-                    .expect("DC and Nyquist made real above");
+                each_value(row, &self.packed, |v, re| *v = re);
             }
         }
         // Undo the unnormalised round trip's growth so repeated calls stay finite.

@@ -30,8 +30,8 @@ use super::influence::{Kernel, Symmetry, offset_index};
 use super::operator::{Operator, Preconditioner};
 use super::precondition::FourierInverse;
 use super::transform::{
-    Plans, Real, Threads, Transforms, column_stride, forward_row, periodic_threads, store_row,
-    transpose,
+    Plans, Real, Threads, Transforms, column_stride, forward_row, packed_len, periodic_threads,
+    store_row, transpose,
 };
 
 /// The smallest solver tolerance a run solves in single precision (`DcFft<f32>`) at: the
@@ -203,7 +203,7 @@ impl<T: Real> DcFft<T> {
         let (nx, ny, half, stride) = (self.nx, self.ny, self.half, self.stride);
         let scale = 1.0 / (4 * nx * ny) as f64;
         let mut row = vec![0.0; 2 * nx];
-        let mut real = vec![T::default(); 2 * nx];
+        let mut packed = vec![Complex::default(); packed_len(2 * nx)];
         let mut rows = vec![Complex::default(); self.col_len * half];
         for (iy, out) in rows.chunks_exact_mut(half).enumerate() {
             row.fill(0.0);
@@ -217,7 +217,7 @@ impl<T: Real> DcFft<T> {
                     add_wrapped_row(&mut row, kernel, dj, scale);
                 }
             }
-            forward_row(&mut self.plans, &row, &mut real, out);
+            forward_row(&mut self.plans, &row, &mut packed, out);
         }
         let mut columns = vec![Complex::default(); half * stride];
         transpose(&rows, half, (self.col_len, half), &mut columns, stride);

@@ -51,7 +51,7 @@ pub use problem::{
 pub use residual::complementarity_residual;
 pub use solver::{NormalSolver, UPDATE_ROUNDOFF, solve, solve_known};
 pub use transform::Real;
-pub(crate) use transform::{BLOCK, Plans, column_stride, transpose};
+pub(crate) use transform::{BLOCK, Plans, column_stride, each_value, pack, packed_len, transpose};
 pub use transform::{MAX_SPLIT_THREADS, SPLIT_MIN_CELLS, fft_friendly, split_threads};
 pub use window::{KEPT_SHAPES, MARGIN_FRACTION, MIN_MARGIN, WindowFractions, WindowedSolver};
 pub use worn_rows::{WornRows, add_worn_rows, worn_row_depths_m};

@@ -19,7 +19,7 @@
 use rustfft::num_complex::Complex;
 
 use super::{DcFft, Spectrum, multiply};
-use crate::contact::transform::{Real, Threads, Transforms};
+use crate::contact::transform::{Real, Threads, Transforms, each_value};
 
 impl<T: Real> DcFft<T> {
     /// Transforms `input` and keeps its spectrum; returns `input . K input`.
@@ -153,9 +153,9 @@ fn weighted_power<T: Real>(column: &[Complex<T>], weights: &[T]) -> f64 {
     lanes.iter().map(|v| v.widen()).sum::<f64>() + tail.widen()
 }
 
-/// Adds the first `out.len()` values of `real` to `out`.
-fn add_row<T: Real>(out: &mut [f64], real: &[T]) {
-    out.iter_mut().zip(real).for_each(|(o, &v)| *o += v.widen());
+/// Adds the first `out.len()` values of the row held in pairs in `packed` to `out`.
+fn add_row<T: Real>(out: &mut [f64], packed: &[Complex<T>]) {
+    each_value(out, packed, |o, v| *o += v.widen());
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! ([`super::FourierInverse`]) and the benchmark's FFT pair share: the planned transforms
 //! ([`Plans`]), the transposed layout they move rows and columns through (blocks of
 //! [`BLOCK`] rows or columns, columns [`STRIDE_PAD`] entries apart beyond their length), the
-//! row transforms, and the passes of a convolution on one thread ([`Passes`]) or split across
+//! row transforms ([`RealRows`]), and the passes of a convolution on one thread ([`Passes`]) or split across
 //! threads ([`Split`]), held as [`Threads`], with the thread counts that choose them. It
 //! knows neither operator, so both use it without using each other.
 //!
@@ -13,6 +13,7 @@
 
 mod passes;
 mod plans;
+mod rows;
 mod split;
 
 use rustfft::num_complex::Complex;
@@ -20,17 +21,31 @@ use rustfft::num_complex::Complex;
 pub(crate) use passes::{Passes, Threads, Transforms};
 pub(crate) use plans::Plans;
 pub use plans::fft_friendly;
+pub(crate) use rows::{RealRows, each_value, pack, packed_len};
 pub use split::{MAX_SPLIT_THREADS, SPLIT_MIN_CELLS, split_threads};
 pub(crate) use split::{Split, periodic_threads};
 
 /// The floating-point type a transform computes in: `f64`, or `f32` where a solve's
 /// tolerance leaves room for its round-off (`SINGLE_PRECISION_MIN_TOLERANCE`). Fields go in
-/// and come out as `f64` either way (`load_row`, `store_row`).
+/// and come out as `f64` either way (`pack`, `store_row`).
 pub trait Real: rustfft::FftNum + rustfft::num_traits::NumAssign + Default {
     /// `value` rounded to this type.
     fn narrow(value: f64) -> Self;
     /// This value as an `f64`, exactly.
     fn widen(self) -> f64;
+
+    /// The forward real-row transform's untangling of the pairs of bins `(k, m - k)`,
+    /// `k = 1..=twiddles.len()`, of `bins` (`m + 1` of them) with their `twiddles`
+    /// (the real rows' transforms, `transform::rows`): one pair at a time.
+    fn untangle(bins: &mut [Complex<Self>], twiddles: &[Complex<Self>]) {
+        rows::each_pair(bins, twiddles, rows::untangle_pair);
+    }
+
+    /// The inverse real-row transform's tangling of the pairs of bins `(k, m - k)` of
+    /// `bins`, as [`Self::untangle`] takes them.
+    fn tangle(bins: &mut [Complex<Self>], twiddles: &[Complex<Self>]) {
+        rows::each_pair(bins, twiddles, rows::tangle_pair);
+    }
 }
 
 impl Real for f64 {
@@ -42,12 +57,19 @@ impl Real for f64 {
     }
 }
 
+/// Two pairs of bins at a time in `f32x4` lanes (the measurement in `transform::rows`).
 impl Real for f32 {
     fn narrow(value: f64) -> Self {
         value as f32
     }
     fn widen(self) -> f64 {
         f64::from(self)
+    }
+    fn untangle(bins: &mut [Complex<Self>], twiddles: &[Complex<Self>]) {
+        rows::lanes::untangle(bins, twiddles);
+    }
+    fn tangle(bins: &mut [Complex<Self>], twiddles: &[Complex<Self>]) {
+        rows::lanes::tangle(bins, twiddles);
     }
 }
 
@@ -63,55 +85,38 @@ pub(crate) const fn column_stride(col_len: usize) -> usize {
     col_len + STRIDE_PAD
 }
 
-/// The complex-to-real transform of one row's half spectrum `row` into `real`.
-pub(crate) fn inverse_row<T: Real>(plans: &mut Plans<T>, row: &mut [Complex<T>], real: &mut [T]) {
-    // The DC and (at an even length) Nyquist bins of a real signal are real; round-off
-    // leaves tiny imaginary parts that realfft rejects.
-    row[0].im = T::default();
-    if real.len().is_multiple_of(2) {
-        if let Some(nyquist) = row.last_mut() {
-            nyquist.im = T::default();
-        }
-    }
-    plans
-        .row_inverse
-        .process_with_scratch(row, real, &mut plans.real_scratch)
-        .expect("imaginary parts of DC and Nyquist zeroed above");
+/// The inverse transform of one row's half spectrum `row` (used up) into `packed`, the real
+/// row held in pairs ([`pack`]).
+pub(crate) fn inverse_row<T: Real>(
+    plans: &mut Plans<T>,
+    row: &mut [Complex<T>],
+    packed: &mut [Complex<T>],
+) {
+    plans.rows.inverse(row, packed, &mut plans.row_scratch);
 }
 
-/// The real-to-complex transform of `row`, zero-padded to the length of `padded` (its work
-/// buffer) in its precision, into `out`. A row without load transforms to zero and is not
-/// transformed: the windowed solver's check applies a window's pressure on the whole grid,
-/// where most rows carry none, and the preconditioner's input is zero off the free cells.
+/// The forward transform of `row`, zero-padded to the transform's length in its precision
+/// (`packed`, its work buffer, holds it in pairs), into `out`. A row without load
+/// transforms to zero and is not transformed: the windowed solver's check applies a
+/// window's pressure on the whole grid, where most rows carry none, and the
+/// preconditioner's input is zero off the free cells.
 pub(crate) fn forward_row<T: Real>(
     plans: &mut Plans<T>,
     row: &[f64],
-    padded: &mut [T],
+    packed: &mut [Complex<T>],
     out: &mut [Complex<T>],
 ) {
     if row.iter().all(|&v| v == 0.0) {
         out.fill(Complex::default());
         return;
     }
-    load_row(padded, row);
-    plans
-        .row_forward
-        .process_with_scratch(padded, out, &mut plans.real_scratch)
-        .expect("buffer lengths fixed at construction");
+    pack(row, packed);
+    plans.rows.forward(packed, out, &mut plans.row_scratch);
 }
 
-/// `row` into the start of `padded` in its precision, the rest of `padded` zero.
-fn load_row<T: Real>(padded: &mut [T], row: &[f64]) {
-    let (head, tail) = padded.split_at_mut(row.len());
-    head.iter_mut()
-        .zip(row)
-        .for_each(|(p, &v)| *p = T::narrow(v));
-    tail.fill(T::default());
-}
-
-/// The first `out.len()` values of `real` into `out`.
-pub(crate) fn store_row<T: Real>(out: &mut [f64], real: &[T]) {
-    out.iter_mut().zip(real).for_each(|(o, &v)| *o = v.widen());
+/// The first `out.len()` values of the row held in pairs in `packed` into `out`.
+pub(crate) fn store_row<T: Real>(out: &mut [f64], packed: &[Complex<T>]) {
+    each_value(out, packed, |o, v| *o = v.widen());
 }
 
 /// `to[c * to_stride + r] = from[r * from_stride + c]` for `r < rows` and `c < cols`: a

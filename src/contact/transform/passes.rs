@@ -20,7 +20,10 @@
 
 use rustfft::num_complex::Complex;
 
-use super::{BLOCK, Plans, Real, Split, column_stride, forward_row, inverse_row, transpose};
+use super::split::RowPut;
+use super::{
+    BLOCK, Plans, Real, Split, column_stride, forward_row, inverse_row, packed_len, transpose,
+};
 
 /// Where an operator's passes run, with their buffers: on one thread, or split across
 /// threads with the buffer of all the columns the split passes work in, `stride` apart.
@@ -74,8 +77,8 @@ pub(crate) struct Passes<T> {
     spectra: Vec<Complex<T>>,
     /// [`BLOCK`] columns in flight, `stride` apart.
     block: Vec<Complex<T>>,
-    /// One zero-padded real row.
-    row_real: Vec<T>,
+    /// One zero-padded real row, held in pairs.
+    row_packed: Vec<Complex<T>>,
 }
 
 /// Which transforms of the column pass run: the forward one (the columns gathered from the
@@ -98,7 +101,7 @@ impl<T: Real> Passes<T> {
             stride,
             spectra: vec![Complex::default(); ny * half],
             block: vec![Complex::default(); BLOCK * stride],
-            row_real: vec![T::default(); row_len],
+            row_packed: vec![Complex::default(); packed_len(row_len)],
         }
     }
 
@@ -106,7 +109,7 @@ impl<T: Real> Passes<T> {
     pub(crate) fn forward_rows(&mut self, plans: &mut Plans<T>, input: &[f64]) {
         let rows = input.chunks_exact(self.nx);
         for (row, out) in rows.zip(self.spectra.chunks_exact_mut(self.half)) {
-            forward_row(plans, row, &mut self.row_real, out);
+            forward_row(plans, row, &mut self.row_packed, out);
         }
     }
 
@@ -158,12 +161,12 @@ impl<T: Real> Passes<T> {
         &mut self,
         plans: &mut Plans<T>,
         output: &mut [f64],
-        put: fn(&mut [f64], &[T]),
+        put: RowPut<T>,
     ) {
         let rows = self.spectra.chunks_exact_mut(self.half);
         for (row, out) in rows.zip(output.chunks_exact_mut(self.nx)) {
-            inverse_row(plans, row, &mut self.row_real);
-            put(out, &self.row_real);
+            inverse_row(plans, row, &mut self.row_packed);
+            put(out, &self.row_packed);
         }
     }
 }

@@ -1,48 +1,40 @@
-//! Planned 2D FFTs: the row (real-to-complex and back) and column (complex) transforms with
-//! their scratch, planned once per grid and shared by the DC-FFT operator, its preconditioner
-//! and the benchmark's FFT pair.
+//! Planned 2D FFTs: the row (real, [`RealRows`]) and column (complex) transforms with their
+//! scratch, planned once per grid and shared by the DC-FFT operator, its preconditioner and
+//! the benchmark's FFT pair.
 
 use std::sync::Arc;
 
-use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
-use super::Real;
+use super::{Real, RealRows};
 
-/// Planned row (real-to-complex and back) and column (complex) transforms of a 2D FFT,
+/// Planned row (real, forward and inverse) and column (complex) transforms of a 2D FFT,
 /// with the scratch they need. A clone shares the transforms and has its own scratch.
 #[derive(Clone)]
 pub(crate) struct Plans<T: Real = f64> {
-    pub(crate) row_forward: Arc<dyn RealToComplex<T>>,
-    pub(crate) row_inverse: Arc<dyn ComplexToReal<T>>,
+    pub(crate) rows: Arc<RealRows<T>>,
     pub(crate) col_forward: Arc<dyn Fft<T>>,
     pub(crate) col_inverse: Arc<dyn Fft<T>>,
-    pub(crate) real_scratch: Vec<Complex<T>>,
+    pub(crate) row_scratch: Vec<Complex<T>>,
     pub(crate) complex_scratch: Vec<Complex<T>>,
 }
 
 impl<T: Real> Plans<T> {
     /// Plans rows of `row_len` reals and columns of `col_len` complex values.
     pub(crate) fn new(row_len: usize, col_len: usize) -> Self {
-        let mut real_planner = RealFftPlanner::<T>::new();
-        let row_forward = real_planner.plan_fft_forward(row_len);
-        let row_inverse = real_planner.plan_fft_inverse(row_len);
         let mut planner = FftPlanner::<T>::new();
+        let rows = RealRows::new(row_len, &mut planner);
         let col_forward = planner.plan_fft_forward(col_len);
         let col_inverse = planner.plan_fft_inverse(col_len);
-        let real_scratch_len = row_forward
-            .get_scratch_len()
-            .max(row_inverse.get_scratch_len());
         let complex_scratch_len = col_forward
             .get_inplace_scratch_len()
             .max(col_inverse.get_inplace_scratch_len());
         Self {
-            row_forward,
-            row_inverse,
+            row_scratch: vec![Complex::default(); rows.scratch_len()],
+            rows: Arc::new(rows),
             col_forward,
             col_inverse,
-            real_scratch: vec![Complex::default(); real_scratch_len],
             complex_scratch: vec![Complex::default(); complex_scratch_len],
         }
     }

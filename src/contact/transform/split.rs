@@ -20,7 +20,7 @@ use std::num::NonZeroUsize;
 
 use rustfft::num_complex::Complex;
 
-use super::{BLOCK, Plans, Real, forward_row, inverse_row, store_row, transpose};
+use super::{BLOCK, Plans, Real, forward_row, inverse_row, packed_len, store_row, transpose};
 
 /// The most threads an apply may be split across (the bound of the scene's
 /// `numerics.threads`).
@@ -86,13 +86,14 @@ pub(crate) struct Split<T: Real = f64> {
 /// The product of column `k` of the spectrum with the kernel's, in place.
 pub(crate) type ColumnProduct<'a, T> = &'a (dyn Fn(usize, &mut [Complex<T>]) + Sync);
 
-/// How a row of an inverse transform goes into the output: stored, or added.
-pub(crate) type RowPut<T> = fn(&mut [f64], &[T]);
+/// How a row of an inverse transform, held in pairs, goes into the output: stored, or
+/// added.
+pub(crate) type RowPut<T> = fn(&mut [f64], &[Complex<T>]);
 
 /// One thread's scratch.
 struct Worker<T: Real> {
     plans: Plans<T>,
-    row_real: Vec<T>,
+    row_packed: Vec<Complex<T>>,
     row_block: Vec<Complex<T>>,
 }
 
@@ -115,7 +116,7 @@ impl<T: Real> Split<T> {
             workers: (0..threads)
                 .map(|_| Worker {
                     plans: plans.clone(),
-                    row_real: vec![T::default(); row_len],
+                    row_packed: vec![Complex::default(); packed_len(row_len)],
                     row_block: vec![Complex::default(); BLOCK * half],
                 })
                 .collect(),
@@ -232,7 +233,7 @@ impl<T: Real> Worker<T> {
             .chunks_exact(nx)
             .zip(spectra.chunks_exact_mut(shape.half))
         {
-            forward_row(&mut self.plans, row, &mut self.row_real, out);
+            forward_row(&mut self.plans, row, &mut self.row_packed, out);
         }
     }
 
@@ -293,8 +294,8 @@ impl<T: Real> Worker<T> {
             );
             for (slot, out) in rows.chunks_exact_mut(nx).enumerate() {
                 let row = &mut self.row_block[slot * half..(slot + 1) * half];
-                inverse_row(&mut self.plans, row, &mut self.row_real);
-                put(out, &self.row_real);
+                inverse_row(&mut self.plans, row, &mut self.row_packed);
+                put(out, &self.row_packed);
             }
         }
     }
