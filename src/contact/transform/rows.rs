@@ -11,7 +11,9 @@
 //! complex transform took 212 ns, realfft's untangling about 300 ns, and the same
 //! arithmetic two pairs at a time in `f32x4` lanes 145 ns. In double precision a lane
 //! holds one bin, and the lanes took 221 to 234 ns against 224 to 268 ns one pair at a
-//! time, so `f64` keeps the pair-at-a-time loop ([`Real::untangle`]).
+//! time, so `f64` keeps the pair-at-a-time loop ([`Real::untangle`]). In the runs: 0.961
+//! of realfft's CPU time on the 4 um rough disc (f32) and 1.003 on the smooth disc (f64),
+//! the same results to the bit (`docs/accuracy.md`, "The real rows' untangling").
 
 use std::sync::Arc;
 
