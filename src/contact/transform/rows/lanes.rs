@@ -8,7 +8,7 @@
 use rustfft::num_complex::Complex;
 use wide::f32x4;
 
-use super::{each_pair, tangle_pair, untangle_pair};
+use super::{Pair, each_pair, tangle_pair, untangle_pair};
 
 /// The forward transform's untangling of the pairs `(k, m - k)` of `bins` with `twiddles`.
 pub(in crate::contact::transform) fn untangle(
@@ -29,7 +29,7 @@ fn two_at_a_time(
     bins: &mut [Complex<f32>],
     twiddles: &[Complex<f32>],
     two: impl Fn(f32x4, f32x4, f32x4) -> (f32x4, f32x4),
-    one: impl Fn(Complex<f32>, Complex<f32>, Complex<f32>) -> (Complex<f32>, Complex<f32>),
+    one: impl Fn(Complex<f32>, Complex<f32>, Complex<f32>) -> Pair<f32>,
 ) {
     let m = bins.len() - 1;
     let whole = twiddles.len() - twiddles.len() % 2;
@@ -70,9 +70,10 @@ fn tangle_two(a: f32x4, b: f32x4, w: f32x4) -> (f32x4, f32x4) {
     (low, high)
 }
 
-/// [`super::turned`] for two pairs: `sum.im w.re + diff.re w.im` in the real lanes and
-/// `sum.im w.im + diff.re (-w.re)`, which is `sum.im w.im - diff.re w.re` exactly (a
-/// product's sign is its factors'), in the imaginary ones.
+/// The twiddled part of [`super::sum_diff_turned`] for two pairs: `sum.im w.re +
+/// diff.re w.im` in the real lanes and `sum.im w.im + diff.re (-w.re)`, which is
+/// `sum.im w.im - diff.re w.re` exactly (a product's sign is its factors'), in the
+/// imaginary ones.
 #[inline(always)]
 fn turned(sum: f32x4, diff: f32x4, w: f32x4) -> f32x4 {
     let (s, d, w) = (sum.to_array(), diff.to_array(), w.to_array());

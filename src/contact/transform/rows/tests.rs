@@ -3,7 +3,9 @@ use realfft::RealFftPlanner;
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex;
 
-use super::{RealRows, each_pair, each_value, lanes, pack, packed_len, tangle_pair, untangle_pair};
+use super::{
+    Pair, RealRows, each_pair, each_value, lanes, pack, packed_len, tangle_pair, untangle_pair,
+};
 use crate::contact::transform::Real;
 
 /// Even lengths whose half is even and odd (the middle bin alone, or none), a half with
@@ -116,7 +118,7 @@ fn the_lanes_untangle_and_tangle_as_one_pair_at_a_time_to_the_bit() {
             };
         }
         type Lanes = fn(&mut [Complex<f32>], &[Complex<f32>]);
-        type One = fn(Complex<f32>, Complex<f32>, Complex<f32>) -> (Complex<f32>, Complex<f32>);
+        type One = fn(Complex<f32>, Complex<f32>, Complex<f32>) -> Pair<f32>;
         let both: [(Lanes, One); 2] = [
             (lanes::untangle, untangle_pair),
             (lanes::tangle, tangle_pair),
