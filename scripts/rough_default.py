@@ -18,8 +18,8 @@ change of 2e-5 relative moves E by up to 1 mV and the WAC by up to 1e-3 (the flo
 closer than that of any candidate.
 
 Usage: scripts/rough_default.py [--bin target/release/tribosim] [--reference FILE]
-[--markdown docs/accuracy.md] [--only LABEL ...] (about 15 minutes on 2 cores, 3 more the
-first time, for the reference). Standard library only.
+[--markdown docs/accuracy.md] [--only LABEL ...] (about 5 minutes on 2 cores with the
+build of 2026-12-01, 3 more the first time, for the reference). Standard library only.
 """
 
 import argparse
