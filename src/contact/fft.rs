@@ -30,8 +30,7 @@ use super::influence::{Kernel, Symmetry, offset_index};
 use super::operator::{Operator, Preconditioner};
 use super::precondition::FourierInverse;
 use super::transform::{
-    Plans, Real, Threads, Transforms, column_stride, forward_row, packed_len, periodic_threads,
-    store_row, transpose,
+    Plans, Real, Threads, column_stride, forward_row, packed_len, periodic_threads, transpose,
 };
 
 /// The smallest solver tolerance a run solves in single precision (`DcFft<f32>`) at: the
@@ -263,22 +262,9 @@ impl<T: Real> Operator for DcFft<T> {
         let product = |k: usize, column: &mut [Complex<T>]| {
             multiply(spectrum, column, k * stride);
         };
-        match &mut self.passes {
-            Threads::Split(split, columns) => {
-                let shape = (nx, ny, self.col_len, stride);
-                split.apply(shape, &product, columns, input, output);
-            }
-            Threads::One(passes) => {
-                let plans = &mut self.plans;
-                passes.forward_rows(plans, input);
-                let both = Transforms {
-                    forward: true,
-                    inverse: true,
-                };
-                passes.columns(plans, both, None, product);
-                passes.inverse_rows(plans, output, store_row);
-            }
-        }
+        let shape = ((nx, ny), self.col_len);
+        self.passes
+            .convolve(&mut self.plans, shape, &product, (input, output));
     }
 
     fn keep(&mut self, input: &[f64]) -> Option<f64> {

@@ -19,7 +19,7 @@ use rustfft::num_complex::Complex;
 
 use super::influence::Kernel;
 use super::operator::{NEAR_REACH, Preconditioner};
-use super::transform::{Passes, Plans, Real, Threads, Transforms, column_stride, store_row};
+use super::transform::{Passes, Plans, Real, Threads, Transforms};
 
 /// The inverse of a kernel's periodic wrap on its own grid, its transforms computed in `T`.
 pub struct FourierInverse<T: Real = f64> {
@@ -202,21 +202,9 @@ impl<T: Real> Preconditioner for FourierInverse<T> {
             let symbol = &symbol[k * ny..(k + 1) * ny];
             column.iter_mut().zip(symbol).for_each(|(c, &s)| *c *= s);
         };
-        match &mut self.passes {
-            Threads::Split(split, columns) => {
-                let shape = (nx, ny, ny, column_stride(ny));
-                split.apply(shape, &product, columns, input, output);
-            }
-            Threads::One(passes) => {
-                passes.forward_rows(&mut self.plans, input);
-                let both = Transforms {
-                    forward: true,
-                    inverse: true,
-                };
-                passes.columns(&mut self.plans, both, None, product);
-                passes.inverse_rows(&mut self.plans, output, store_row);
-            }
-        }
+        let shape = ((nx, ny), ny);
+        self.passes
+            .convolve(&mut self.plans, shape, &product, (input, output));
     }
 }
 

@@ -20,9 +20,10 @@
 
 use rustfft::num_complex::Complex;
 
-use super::split::RowPut;
+use super::split::{ColumnProduct, RowPut};
 use super::{
-    BLOCK, Plans, Real, Split, column_stride, forward_row, inverse_row, packed_len, transpose,
+    BLOCK, Plans, Real, Split, column_stride, forward_row, inverse_row, packed_len, store_row,
+    transpose,
 };
 
 /// Where an operator's passes run, with their buffers: on one thread, or split across
@@ -59,6 +60,33 @@ impl<T: Real> Threads<T> {
         match self {
             Self::One(_) => 1,
             Self::Split(split, _) => split.threads(),
+        }
+    }
+
+    /// `output = K input` on the `nx` x `ny` grid, its columns transformed at `col_len`:
+    /// the rows forward, `product` on each column of the spectrum between its forward and
+    /// inverse transforms, the rows back; on one thread or split, as these passes run.
+    pub(crate) fn convolve(
+        &mut self,
+        plans: &mut Plans<T>,
+        ((nx, ny), col_len): ((usize, usize), usize),
+        product: ColumnProduct<T>,
+        (input, output): (&[f64], &mut [f64]),
+    ) {
+        match self {
+            Self::Split(split, columns) => {
+                let shape = (nx, ny, col_len, column_stride(col_len));
+                split.apply(shape, product, columns, input, output);
+            }
+            Self::One(passes) => {
+                passes.forward_rows(plans, input);
+                let both = Transforms {
+                    forward: true,
+                    inverse: true,
+                };
+                passes.columns(plans, both, None, product);
+                passes.inverse_rows(plans, output, store_row);
+            }
         }
     }
 }
